@@ -1,0 +1,88 @@
+// Benchmarks of the foundation (Google Benchmark):
+//   build/bench/insitu_bench                       all of them
+//   build/bench/insitu_bench --benchmark_filter=Demo
+// The figures quoted in README.md and the issue notes come from this program.
+#include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
+
+#include <filesystem>
+#include <random>
+
+#include "cubemap.h"
+#include "equirect.h"
+#include "gaussian_irradiance.h"
+#include "mesh.h"
+#include "pipeline.h"
+
+namespace {
+using namespace insitu;
+
+CubeMap random_cube(int n) {
+  CubeMap cube(n);
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<float> u(0, 1);
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) cube.set_texel(f, i, j, Rgb(u(rng), u(rng), u(rng)));
+  cube.update_borders();
+  return cube;
+}
+
+// Seamless bilinear cube lookups per second.
+void BM_CubeLookup(benchmark::State& state) {
+  const CubeMap cube = random_cube(int(state.range(0)));
+  std::mt19937 rng(2);
+  std::normal_distribution<float> g(0, 1);
+  std::vector<Vec3f> dirs(4096);
+  for (auto& d : dirs) d = Vec3f(g(rng), g(rng), g(rng));
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(cube.lookup(dirs[i++ & 4095]));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_CubeLookup)->Arg(64)->Arg(512);
+
+// The legacy per-face blur (kernel as wide as the face), per cube.
+void BM_LegacyBlur(benchmark::State& state) {
+  const CubeMap cube = random_cube(int(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(gaussian_blur_faces(cube));
+}
+BENCHMARK(BM_LegacyBlur)->Arg(64)->Arg(256)->Arg(512)->Unit(benchmark::kMillisecond);
+
+// Loading a real mesh (validation pass + tinyobjloader + conversion).
+void BM_LoadObj(benchmark::State& state) {
+  const std::string path = std::string(INSITU_SHARED_DIR) + "/data/models/suzanne.obj";
+  if (!std::filesystem::exists(path)) {
+    state.SkipWithError("../shared/data/models/suzanne.obj is absent");
+    return;
+  }
+  for (auto _ : state) {
+    Warnings w;
+    benchmark::DoNotOptimize(load_obj(path, w));
+  }
+}
+BENCHMARK(BM_LoadObj)->Unit(benchmark::kMillisecond);
+
+// The demo scene with the realtime integrator, 16 spp, on 1 thread and on all: load excluded.
+void BM_DemoRealtime(benchmark::State& state) {
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(state.range(0)));
+  SceneSpec spec = parse_scene_file(std::string(INSITU_SOURCE_DIR) + "/scenes/demo/scene.json");
+  const LoadedScene scene = load_scene(spec);
+  for (auto _ : state) benchmark::DoNotOptimize(render_scene(scene));
+  state.counters["camera_samples/s"] =
+      benchmark::Counter(double(scene.camera.width) * scene.camera.height * spec.render.spp * double(state.iterations()),
+                         benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_DemoRealtime)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Loading the demo scene: photo, six shots -> cube, three OBJ files, Embree build.
+void BM_DemoLoad(benchmark::State& state) {
+  const SceneSpec spec = parse_scene_file(std::string(INSITU_SOURCE_DIR) + "/scenes/demo/scene.json");
+  for (auto _ : state) benchmark::DoNotOptimize(load_scene(spec));
+}
+BENCHMARK(BM_DemoLoad)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

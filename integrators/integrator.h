@@ -1,0 +1,47 @@
+// The integrator interface and its registry. One integrator per file in integrators/, each
+// opening with a comment that documents its parameters; registry.cpp maps names to factories in
+// a plain table (no static-initialization tricks).
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "camera.h"
+#include "cubemap.h"
+#include "embree_scene.h"
+#include "sampler.h"
+
+namespace insitu {
+
+// What an integrator may use: the objects, and the room's light as a radiance cube.
+struct RenderInputs {
+  const EmbreeScene* objects = nullptr;
+  const CubeMap* environment = nullptr;
+};
+
+// One camera sample: the objects' radiance where they cover the sample, and the coverage (0/1
+// for a pinhole sample; averaged over samples it is the pixel's alpha).
+struct CameraSample {
+  Rgb radiance = Rgb::Zero();
+  float coverage = 0.0f;
+};
+
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  // Must be safe to call from many threads at once.
+  virtual CameraSample sample(const Ray& ray, Sampler& sampler) const = 0;
+};
+
+struct IntegratorEntry {
+  const char* name;
+  const char* summary;
+  std::unique_ptr<Integrator> (*create)(const RenderInputs& inputs);
+};
+
+const std::vector<IntegratorEntry>& integrator_registry();
+// Throws InputError naming the known integrators when `name` is not one of them.
+std::unique_ptr<Integrator> make_integrator(const std::string& name, const RenderInputs& inputs);
+bool is_integrator(const std::string& name);
+
+}  // namespace insitu

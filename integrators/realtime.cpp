@@ -1,0 +1,44 @@
+// Integrator `realtime`: the legacy real-time path of the 2011 renderer, kept exactly so that
+// users can A/B against it.
+//
+//   colour(x) = base_colour(x) × B(n(x))
+//
+// base_colour = Kd × map_Kd(uv); n = the interpolated shading normal (facing the camera);
+// B = the radiance cube with each face Gaussian-blurred on its own by a kernel as wide as the face
+// (gaussian_irradiance.h), looked up along n. No visibility, no shadows, no bounce light, no
+// local scene (planes in the scene's local_scene are ignored, as the legacy renderer had none).
+//
+// Parameters: none beyond the scene's (spp sets the anti-aliasing samples per pixel).
+#include "gaussian_irradiance.h"
+#include "integrators/integrator.h"
+
+namespace insitu {
+namespace {
+
+class RealtimeIntegrator final : public Integrator {
+ public:
+  explicit RealtimeIntegrator(const RenderInputs& in)
+      : objects_(in.objects), blurred_(gaussian_blur_faces(*in.environment)) {}
+
+  CameraSample sample(const Ray& ray, Sampler&) const override {
+    CameraSample out;
+    const Hit hit = objects_->intersect(ray);
+    if (!hit.valid()) return out;
+    const SurfacePoint sp = objects_->surface(ray, hit);
+    out.coverage = 1.0f;
+    out.radiance = sp.material->base_colour(sp.uv) * blurred_.lookup(sp.ns_world);
+    return out;
+  }
+
+ private:
+  const EmbreeScene* objects_;
+  CubeMap blurred_;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_realtime_integrator(const RenderInputs& inputs) {
+  return std::make_unique<RealtimeIntegrator>(inputs);
+}
+
+}  // namespace insitu

@@ -1,0 +1,33 @@
+#include <fmt/format.h>
+
+#include "error.h"
+#include "integrators/integrator.h"
+
+namespace insitu {
+
+std::unique_ptr<Integrator> make_realtime_integrator(const RenderInputs& inputs);
+
+const std::vector<IntegratorEntry>& integrator_registry() {
+  static const std::vector<IntegratorEntry> table = {
+      {"realtime", "legacy real-time path: base colour x face-blurred cube at the normal, no shadows",
+       make_realtime_integrator},
+  };
+  return table;
+}
+
+bool is_integrator(const std::string& name) {
+  for (const auto& e : integrator_registry())
+    if (name == e.name) return true;
+  return false;
+}
+
+std::unique_ptr<Integrator> make_integrator(const std::string& name, const RenderInputs& inputs) {
+  std::string known;
+  for (const auto& e : integrator_registry()) {
+    if (name == e.name) return e.create(inputs);
+    known += known.empty() ? e.name : std::string(", ") + e.name;
+  }
+  throw InputError("", fmt::format("unknown integrator '{}' (known: {})", name, known));
+}
+
+}  // namespace insitu

@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Installs insitu's build and test dependencies from Debian 12 packages. Idempotent; run as root.
+set -euo pipefail
+packages=(
+  cmake g++ make pkg-config
+  libembree-dev libopenimageio-dev libopenexr-dev libopencv-dev libceres-dev
+  libtinyobjloader-dev libtbb-dev libeigen3-dev
+  nlohmann-json3-dev libcli11-dev libfmt-dev libgtest-dev libbenchmark-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends "${missing[@]}"

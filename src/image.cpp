@@ -1,0 +1,157 @@
+#include "image.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "colour.h"
+#include "error.h"
+
+namespace insitu {
+namespace fs = std::filesystem;
+using namespace OIIO;
+
+ImageFile read_image_file(const std::string& path) {
+  if (!fs::exists(path)) throw InputError(path, "file not found");
+  auto in = ImageInput::open(path);
+  if (!in) throw InputError(path, "cannot read image: " + geterror());
+  const ImageSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    throw InputError(path, "image has no pixels");
+  ImageFile file;
+  file.path = path;
+  file.format = in->format_name();
+  file.display_referred = !(spec.format.basetype == TypeDesc::FLOAT ||
+                            spec.format.basetype == TypeDesc::HALF ||
+                            spec.format.basetype == TypeDesc::DOUBLE);
+  const int nc = spec.nchannels;
+  std::vector<float> raw(std::size_t(spec.width) * spec.height * nc);
+  if (!in->read_image(0, 0, 0, nc, TypeDesc::FLOAT, raw.data()))
+    throw InputError(path, "cannot decode image: " + in->geterror());
+  in->close();
+  Image& img = file.stored;
+  img = Image(spec.width, spec.height, 3);
+  const std::size_t n = std::size_t(spec.width) * spec.height;
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) img.data[i * 3 + c] = raw[i * nc + std::min(c, nc < 3 ? 0 : c)];
+  return file;
+}
+
+std::size_t sanitize(Image& img) {
+  std::size_t count = 0;
+  for (float& v : img.data)
+    if (!(v >= 0.0f) || !std::isfinite(v)) { v = 0.0f; ++count; }
+  return count;
+}
+
+Image linearize(const ImageFile& file, std::size_t* clamped) {
+  Image img = file.stored;
+  std::size_t count = sanitize(img);
+  if (file.display_referred)
+    for (float& v : img.data) v = srgb_to_linear(v);
+  if (clamped) *clamped = count;
+  return img;
+}
+
+namespace {
+
+// "dir/name.ext" -> "dir/.name.tmp-<pid>-<n>.ext": same folder (so rename is atomic), same
+// extension (so OpenImageIO picks the same format).
+std::string temporary_name(const fs::path& final_path) {
+  static std::atomic<int> counter{0};
+  return (final_path.parent_path() /
+          fmt::format(".{}.tmp-{}-{}{}", final_path.stem().string(), ::getpid(), counter++,
+                      final_path.extension().string()))
+      .string();
+}
+
+void commit(const std::string& tmp, const std::string& path) {
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw InputError(path, "cannot write: " + ec.message());
+  }
+}
+
+void make_parent(const fs::path& p) {
+  std::error_code ec;
+  if (!p.parent_path().empty()) fs::create_directories(p.parent_path(), ec);
+  if (ec) throw InputError(p.string(), "cannot create folder: " + ec.message());
+}
+
+TypeDesc storage_type(const std::string& ext_lower) {
+  // Float, not half, for EXR: radiance spans 1e-6 to 1e5 and half overflows at 65504.
+  if (ext_lower == ".exr" || ext_lower == ".hdr" || ext_lower == ".pfm" || ext_lower == ".tif" || ext_lower == ".tiff")
+    return TypeDesc::FLOAT;
+  return TypeDesc::UINT8;
+}
+
+// Writes `pixels` (float, interleaved) with `spec` under a temporary name, then renames it to
+// `path`; on any failure the temporary file is removed and an InputError names `path`.
+void write_atomically(const std::string& path, const std::string& format, const ImageSpec& spec,
+                      const float* pixels) {
+  const fs::path p(path);
+  make_parent(p);
+  const std::string tmp = temporary_name(p);
+  auto out = ImageOutput::create(format.empty() ? tmp : format);
+  if (!out) throw InputError(path, "no image format for '" + p.extension().string() + "'");
+  if (!out->open(tmp, spec) || !out->write_image(TypeDesc::FLOAT, pixels) || !out->close()) {
+    const std::string err = out->geterror();
+    out.reset();
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw InputError(path, "cannot write image: " + err);
+  }
+  out.reset();
+  commit(tmp, path);
+}
+
+}  // namespace
+
+void write_image(const std::string& path, const Image& img) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  ImageSpec spec(img.width, img.height, img.channels, storage_type(ext));
+  if (ext == ".jpg" || ext == ".jpeg") spec.attribute("CompressionQuality", 92);
+  write_atomically(path, "", spec, img.data.data());
+}
+
+void write_exr_channels(const std::string& path, int width, int height,
+                        const std::vector<ExrChannel>& channels, bool half_float) {
+  const int nc = int(channels.size());
+  ImageSpec spec(width, height, nc, half_float ? TypeDesc::HALF : TypeDesc::FLOAT);
+  spec.channelnames.clear();
+  for (const auto& ch : channels) spec.channelnames.push_back(ch.name);
+  spec.alpha_channel = -1;
+  for (int i = 0; i < nc; ++i)
+    if (channels[i].name == "A") spec.alpha_channel = i;
+  spec.attribute("compression", "zip");
+  std::vector<float> interleaved(std::size_t(width) * height * nc);
+  for (int i = 0; i < nc; ++i) {
+    const Image& src = *channels[i].image;
+    for (std::size_t k = 0; k < std::size_t(width) * height; ++k)
+      interleaved[k * nc + i] = src.data[k * src.channels + channels[i].channel];
+  }
+  write_atomically(path, "openexr", spec, interleaved.data());
+}
+
+Image resize(const Image& img, int width, int height, const std::string& filter) {
+  ImageSpec spec(img.width, img.height, img.channels, TypeDesc::FLOAT);
+  ImageBuf src(spec, const_cast<float*>(img.data.data()));
+  ImageSpec dst_spec(width, height, img.channels, TypeDesc::FLOAT);
+  ImageBuf dst(dst_spec);
+  if (!ImageBufAlgo::resize(dst, src, filter)) throw std::runtime_error("resize: " + dst.geterror());
+  Image out(width, height, img.channels);
+  dst.get_pixels(ROI::All(), TypeDesc::FLOAT, out.data.data());
+  return out;
+}
+
+}  // namespace insitu

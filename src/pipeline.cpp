@@ -1,0 +1,73 @@
+#include "pipeline.h"
+
+#include <chrono>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "composite.h"
+#include "integrators/integrator.h"
+
+namespace insitu {
+
+LoadedScene load_scene(const SceneSpec& spec) {
+  const auto start = std::chrono::steady_clock::now();
+  LoadedScene s;
+  s.spec = spec;
+  try {
+    s.photo = read_image_file(spec.photo);
+  } catch (const InputError& e) {
+    throw e.with_context(spec.photo_where);
+  }
+  std::size_t clamped = 0;
+  s.photo_linear = linearize(s.photo, &clamped);
+  if (clamped > 0) s.warnings.add(spec.photo, fmt::format("{} negative or non-finite values clamped to 0", clamped));
+  s.camera = build_camera(spec.camera, s.photo.stored.width, s.photo.stored.height);
+  s.environment = load_environment(spec.environment, s.warnings, &s.environment_info);
+
+  std::vector<Mesh> meshes;
+  for (const ObjectSpec& obj : spec.objects) {
+    Mesh mesh;
+    try {
+      mesh = load_obj(obj.mesh, s.warnings);
+    } catch (const InputError& e) {
+      throw e.with_context(obj.where + ".mesh");
+    }
+    transform_mesh(mesh, obj.M_world_from_object);
+    meshes.push_back(std::move(mesh));
+  }
+  if (!spec.local_scene.empty() && spec.render.integrator == "realtime")
+    s.warnings.add(spec.path, "local_scene is not used by the realtime integrator (the legacy path draws no shadows)");
+  s.objects = std::make_unique<EmbreeScene>(std::move(meshes));
+  s.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return s;
+}
+
+RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress) {
+  RenderInputs inputs;
+  inputs.objects = scene.objects.get();
+  inputs.environment = &scene.environment;
+  auto integrator = make_integrator(scene.spec.render.integrator, inputs);
+  RenderResult r;
+  r.layers = render(scene.camera, *integrator, scene.spec.render, progress);
+  r.composite_linear = composite_over(scene.photo_linear, r.layers);
+  r.composite_encoded = encode_composite(r.composite_linear, r.layers.alpha, scene.photo);
+  return r;
+}
+
+void write_outputs(const LoadedScene& scene, const RenderResult& r) {
+  const std::string& image = scene.spec.output.image;
+  std::string ext = std::filesystem::path(image).extension().string();
+  for (auto& c : ext) c = char(std::tolower(c));
+  const bool linear_out = ext == ".exr" || ext == ".tif" || ext == ".tiff";
+  write_image(image, linear_out ? r.composite_linear : r.composite_encoded);
+  if (!scene.spec.output.layers.empty()) {
+    const Image &c = r.composite_linear, &o = r.layers.objects, &a = r.layers.alpha;
+    write_exr_channels(scene.spec.output.layers, c.width, c.height,
+                       {{"R", &c, 0}, {"G", &c, 1}, {"B", &c, 2},
+                        {"objects.R", &o, 0}, {"objects.G", &o, 1}, {"objects.B", &o, 2}, {"objects.A", &a, 0},
+                        {"photo.R", &scene.photo_linear, 0}, {"photo.G", &scene.photo_linear, 1},
+                        {"photo.B", &scene.photo_linear, 2}});
+  }
+}
+
+}  // namespace insitu

@@ -1,0 +1,34 @@
+// The render loop: for every pixel, spp camera samples at jittered sub-pixel positions (a
+// stratified jittered grid when spp is a perfect square), each traced by the integrator. Tiles run
+// in parallel on TBB; every sample's random numbers come from the counter-based hash, so the
+// image does not depend on the number of threads.
+#pragma once
+#include <cstdint>
+#include <functional>
+
+#include "camera.h"
+#include "image.h"
+#include "integrators/integrator.h"
+
+namespace insitu {
+
+struct RenderSettings {
+  std::string integrator = "realtime";
+  int spp = 16;
+  std::uint64_t seed = 1;
+};
+
+struct RenderLayers {
+  Image objects;  // RGB, premultiplied by coverage: mean over samples of radiance × coverage
+  Image alpha;    // 1 channel: mean coverage
+  std::size_t nonfinite_samples = 0;  // zeroed and counted, never propagated
+  double seconds = 0;
+};
+
+// progress(fraction done) is called from the rendering threads, serialized.
+using ProgressFn = std::function<void(double)>;
+
+RenderLayers render(const Camera& camera, const Integrator& integrator, const RenderSettings& settings,
+                    const ProgressFn& progress = {});
+
+}  // namespace insitu

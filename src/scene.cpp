@@ -1,0 +1,329 @@
+#include "scene.h"
+
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "integrators/integrator.h"
+#include "json_reader.h"
+
+namespace insitu {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string resolve(const fs::path& dir, const std::string& rel) {
+  const fs::path p(rel);
+  return (p.is_absolute() ? p : dir / p).lexically_normal().string();
+}
+
+std::string existing_file(const JsonValue& v, const fs::path& dir) {
+  const std::string rel = v.string();
+  if (rel.empty()) v.fail("empty path");
+  const std::string p = resolve(dir, rel);
+  if (!fs::is_regular_file(p)) v.fail(fmt::format("file not found: {}", p));
+  return p;
+}
+
+std::string output_file(const JsonValue& v, const fs::path& dir, std::initializer_list<const char*> exts) {
+  const std::string p = resolve(dir, v.string());
+  std::string ext = fs::path(p).extension().string();
+  for (auto& ch : ext) ch = char(std::tolower(ch));
+  for (const char* e : exts)
+    if (ext == e) return p;
+  std::string list;
+  for (const char* e : exts) list += (list.empty() ? "" : ", ") + std::string(e);
+  v.fail(fmt::format("unsupported extension '{}' (use {})", ext, list));
+}
+
+int parse_axis(const JsonValue& v) {
+  const std::string s = v.string();
+  static const char* names[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+  for (int f = 0; f < 6; ++f)
+    if (s == names[f]) return f;
+  v.fail(fmt::format("'{}' is not an axis (+x, -x, +y, -y, +z, -z)", s));
+}
+
+CameraSpec parse_camera(JsonObject o, const fs::path& dir) {
+  CameraSpec c;
+  c.where = o.where();
+  if (auto f = o.find("file")) {
+    c.kind = CameraSpec::Kind::File;
+    c.file = existing_file(*f, dir);
+    o.finish();
+    return c;
+  }
+  auto read_fov = [&](JsonObject& obj) {
+    if (auto h = obj.find("hfov_deg")) c.hfov_deg = h->number(1e-3, 179.0);
+    if (auto v = obj.find("vfov_deg")) c.vfov_deg = v->number(1e-3, 179.0);
+    if (c.hfov_deg && c.vfov_deg) obj.fail("give hfov_deg or vfov_deg, not both");
+  };
+  if (o.has("eye")) {
+    c.kind = CameraSpec::Kind::LookAt;
+    c.eye = o.get("eye").vec3();
+    const JsonValue look = o.get("look");
+    c.look = look.vec3();
+    if ((c.look - c.eye).norm() <= 1e-12 * std::max(1.0, c.eye.norm())) look.fail("look point equals the eye");
+    if (auto up = o.find("up")) {
+      c.up = up->vec3();
+      if (c.up.cross(c.look - c.eye).norm() <= 1e-9 * c.up.norm() * (c.look - c.eye).norm())
+        up->fail("up is parallel to the viewing direction");
+    }
+    read_fov(o);
+    if (!c.hfov_deg && !c.vfov_deg) o.fail("missing hfov_deg or vfov_deg");
+    o.finish();
+    return c;
+  }
+  c.kind = CameraSpec::Kind::Explicit;
+  JsonObject in(o.get("intrinsics"));
+  read_fov(in);
+  if (c.hfov_deg || c.vfov_deg) {
+    if (in.has("fx") || in.has("fy")) in.fail("give a field of view or fx/fy, not both");
+  } else {
+    c.fx = in.get("fx").number(1e-9, 1e12);
+    c.fy = in.find("fy") ? in.get("fy").number(1e-9, 1e12) : *c.fx;
+  }
+  if (auto cx = in.find("cx")) c.cx = cx->number();
+  if (auto cy = in.find("cy")) c.cy = cy->number();
+  in.finish();
+  JsonObject pose(o.get("pose"));
+  const JsonValue R = pose.get("R");
+  if (R.size() != 3) R.fail("expected 3 rows of 3 numbers");
+  for (std::size_t r = 0; r < 3; ++r) {
+    const Vec3d row = R.element(r).vec3();
+    c.R_cam_from_world.row(long(r)) = row.transpose();
+  }
+  const double orth = (c.R_cam_from_world * c.R_cam_from_world.transpose() - Mat3d::Identity()).norm();
+  if (orth > 1e-6 || c.R_cam_from_world.determinant() < 0)
+    R.fail(fmt::format("not a rotation (|R Rᵀ − I| = {:.2g}, det = {:.6g})", orth, c.R_cam_from_world.determinant()));
+  c.t_cam_from_world = pose.get("t").vec3();
+  pose.finish();
+  o.finish();
+  return c;
+}
+
+EnvironmentSpec parse_environment(const JsonValue& v, const fs::path& dir) {
+  EnvironmentSpec e;
+  e.where = v.where();
+  if (v.is_string()) {
+    e.image = existing_file(v, dir);
+    return e;
+  }
+  JsonObject o(v);
+  if (auto s = o.find("scale")) e.scale = s->number(0.0, 1e12);
+  if (auto n = o.find("face_size")) e.face_size = int(n->integer(1, 4096));
+  if (auto img = o.find("image")) {
+    if (o.has("shots")) o.fail("give 'image' or 'shots', not both");
+    e.image = existing_file(*img, dir);
+    o.finish();
+    return e;
+  }
+  JsonObject s(o.get("shots"));
+  if (auto h = s.find("hfov_deg")) e.hfov_deg = h->number(90.0, 170.0);
+  auto shot = [&](int face, const char* key) {
+    const JsonValue p = s.get(key);
+    e.shots[face] = existing_file(p, dir);
+    e.shot_where[face] = p.where();
+  };
+  if (s.has("front") || s.has("right") || s.has("back") || s.has("left") || s.has("front_axis")) {
+    // front/right/back/left plus which world axis "front" faces; right = front × up.
+    const JsonValue fa = s.get("front_axis");
+    const int front = parse_axis(fa);
+    if (front == kPosY || front == kNegY) fa.fail("front_axis must be horizontal (+x, -x, +z, -z)");
+    // Turning right (clockwise seen from above) about +Y: -z -> +x -> +z -> -x -> -z.
+    static const int ring[4] = {kNegZ, kPosX, kPosZ, kNegX};
+    int k = 0;
+    while (ring[k] != front) ++k;
+    const int walls[4] = {ring[k], ring[(k + 1) % 4], ring[(k + 2) % 4], ring[(k + 3) % 4]};
+    const char* names[4] = {"front", "right", "back", "left"};
+    for (int i = 0; i < 4; ++i) shot(walls[i], names[i]);
+    const JsonValue faced = s.get("faced");
+    const std::string fs_ = faced.string();
+    e.faced_face = -1;
+    for (int i = 0; i < 4; ++i)
+      if (fs_ == names[i]) e.faced_face = walls[i];
+    if (e.faced_face < 0) e.faced_face = parse_axis(faced);
+  } else {
+    shot(kPosX, "+x");
+    shot(kNegX, "-x");
+    shot(kPosZ, "+z");
+    shot(kNegZ, "-z");
+    e.faced_face = parse_axis(s.get("faced"));
+  }
+  if (e.faced_face == kPosY || e.faced_face == kNegY) s.get("faced").fail("the faced wall must be horizontal");
+  shot(kPosY, "up");
+  shot(kNegY, "down");
+  s.finish();
+  o.finish();
+  return e;
+}
+
+ObjectSpec parse_object(JsonObject o, const fs::path& dir) {
+  ObjectSpec obj;
+  obj.where = o.where();
+  const JsonValue mesh = o.get("mesh");
+  obj.mesh = existing_file(mesh, dir);
+  if (auto m = o.find("matrix")) {
+    if (o.has("translate") || o.has("rotate") || o.has("scale"))
+      o.fail("give 'matrix' or translate/rotate/scale, not both");
+    obj.M_world_from_object = m->mat4();
+    if ((obj.M_world_from_object.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).norm() > 1e-12)
+      m->fail("the last row must be [0, 0, 0, 1] (affine transforms only)");
+    const double det = obj.M_world_from_object.topLeftCorner<3, 3>().determinant();
+    if (!(std::abs(det) > 1e-300)) m->fail("the matrix is singular");
+  } else {
+    Vec3d translate = Vec3d::Zero(), axis(0, 1, 0), scale(1, 1, 1);
+    double angle_deg = 0;
+    if (auto t = o.find("translate")) translate = t->vec3();
+    if (auto r = o.find("rotate")) {
+      if (r->is_number()) angle_deg = r->number();
+      else {
+        JsonObject ro(*r);
+        angle_deg = ro.get("angle_deg").number();
+        if (auto a = ro.find("axis")) {
+          axis = a->vec3();
+          if (!(axis.norm() > 0)) a->fail("the rotation axis is zero");
+        }
+        ro.finish();
+      }
+    }
+    if (auto s = o.find("scale")) {
+      scale = s->is_number() ? Vec3d::Constant(s->number()) : s->vec3();
+      if (!(scale.cwiseAbs().minCoeff() > 0)) s->fail("scale must not be zero");
+    }
+    obj.M_world_from_object = object_transform(translate, angle_deg, axis, scale);
+  }
+  o.finish();
+  return obj;
+}
+
+}  // namespace
+
+Mat4d object_transform(const Vec3d& translate, double rotate_deg, const Vec3d& axis, const Vec3d& scale) {
+  Mat4d M = Mat4d::Identity();
+  const Mat3d R = Eigen::AngleAxisd(deg_to_rad(rotate_deg), axis.normalized()).toRotationMatrix();
+  M.topLeftCorner<3, 3>() = R * scale.asDiagonal();
+  M.topRightCorner<3, 1>() = translate;
+  return M;
+}
+
+SceneSpec parse_scene_file(const std::string& path) {
+  const json doc = read_json_file(path);
+  const fs::path dir = fs::path(path).parent_path();
+  SceneSpec scene;
+  scene.path = path;
+  JsonObject root(JsonValue(doc, path, "$"));
+
+  const JsonValue photo = root.get("photo");
+  scene.photo = existing_file(photo, dir);
+  scene.photo_where = photo.where();
+  scene.camera = parse_camera(JsonObject(root.get("camera")), dir);
+  scene.environment = parse_environment(root.get("environment"), dir);
+
+  if (auto ls = root.find("local_scene")) {
+    for (std::size_t i = 0; i < ls->size(); ++i) {
+      JsonObject item(ls->element(i));
+      PlaneSpec plane;
+      JsonObject pl(item.get("plane"));
+      plane.point = pl.get("point").vec3();
+      const JsonValue n = pl.get("normal");
+      plane.normal = n.vec3();
+      if (!(plane.normal.norm() > 0)) n.fail("the normal is zero");
+      plane.normal.normalize();
+      pl.finish();
+      if (auto a = item.find("albedo")) {
+        if (a->is_string()) {
+          if (a->string() != "from_photo") a->fail("expected \"from_photo\" or [r, g, b]");
+        } else {
+          const Vec3d rgb = a->vec3();
+          if (rgb.minCoeff() < 0 || rgb.maxCoeff() > 1) a->fail("albedo must lie in [0, 1]");
+          plane.albedo_from_photo = false;
+          plane.albedo = rgb.cast<float>().array();
+        }
+      }
+      item.finish();
+      scene.local_scene.push_back(plane);
+    }
+  }
+  if (auto objs = root.find("objects"))
+    for (std::size_t i = 0; i < objs->size(); ++i) scene.objects.push_back(parse_object(JsonObject(objs->element(i)), dir));
+
+  if (auto r = root.find("render")) {
+    JsonObject ro(*r);
+    if (auto in = ro.find("integrator")) {
+      scene.render.integrator = in->string();
+      if (!is_integrator(scene.render.integrator)) {
+        try {
+          make_integrator(scene.render.integrator, {});
+        } catch (const InputError& e) {
+          in->fail(e.message());
+        }
+      }
+    }
+    if (auto spp = ro.find("spp")) scene.render.spp = int(spp->integer(1, 1 << 20));
+    if (auto seed = ro.find("seed")) scene.render.seed = std::uint64_t(seed->integer(0, std::numeric_limits<long>::max()));
+    ro.finish();
+  }
+  scene.output.image = resolve(dir, "out/composite.png");
+  scene.output.layers = resolve(dir, "out/layers.exr");
+  if (auto out = root.find("output")) {
+    JsonObject oo(*out);
+    if (auto img = oo.find("image")) scene.output.image = output_file(*img, dir, {".png", ".jpg", ".jpeg", ".exr", ".tif", ".tiff"});
+    if (auto layers = oo.find("layers")) scene.output.layers = output_file(*layers, dir, {".exr"});
+    oo.finish();
+  }
+  root.finish();
+  return scene;
+}
+
+Camera build_camera(const CameraSpec& c, int width, int height) {
+  if (c.kind == CameraSpec::Kind::LookAt) {
+    const double hfov = c.hfov_deg ? *c.hfov_deg
+                                   : rad_to_deg(2 * std::atan(std::tan(0.5 * deg_to_rad(*c.vfov_deg)) * width / height));
+    return Camera::look_at(c.eye, c.look, c.up, hfov, width, height);
+  }
+  Camera cam;
+  cam.width = width;
+  cam.height = height;
+  if (c.kind == CameraSpec::Kind::File) {
+    const json doc = read_json_file(c.file);
+    JsonObject o(JsonValue(doc, c.file, "$"));
+    const long w = o.get("width").integer(1, 1 << 20), h = o.get("height").integer(1, 1 << 20);
+    if (w != width || h != height)
+      throw InputError(c.file + ":$.width", fmt::format("camera is for {}x{} images, the photo is {}x{}", w, h, width, height));
+    // camera.json: intrinsics and pose define the camera; eye/look/up and the fields of view
+    // are there for people and are recomputed from them.
+    JsonObject in(o.get("intrinsics"));
+    cam.fx = in.get("fx").number(1e-9, 1e12);
+    cam.fy = in.get("fy").number(1e-9, 1e12);
+    cam.cx = in.get("cx").number();
+    cam.cy = in.get("cy").number();
+    in.finish();
+    JsonObject pose(o.get("pose"));
+    const JsonValue R = pose.get("R");
+    if (R.size() != 3) R.fail("expected 3 rows of 3 numbers");
+    for (std::size_t r = 0; r < 3; ++r) cam.R_cam_from_world.row(long(r)) = R.element(r).vec3().transpose();
+    if ((cam.R_cam_from_world * cam.R_cam_from_world.transpose() - Mat3d::Identity()).norm() > 1e-6 ||
+        cam.R_cam_from_world.determinant() < 0)
+      R.fail("not a rotation");
+    cam.t_cam_from_world = pose.get("t").vec3();
+    pose.finish();
+    for (const char* informational : {"eye", "look", "up", "hfov_deg", "vfov_deg"}) o.find(informational);
+    o.finish();
+    return cam;
+  }
+  if (c.fx) {
+    cam.fx = *c.fx;
+    cam.fy = c.fy ? *c.fy : *c.fx;
+  } else if (c.hfov_deg) {
+    cam.fx = cam.fy = 0.5 * width / std::tan(0.5 * deg_to_rad(*c.hfov_deg));
+  } else {
+    cam.fx = cam.fy = 0.5 * height / std::tan(0.5 * deg_to_rad(*c.vfov_deg));
+  }
+  cam.cx = c.cx ? *c.cx : 0.5 * width;
+  cam.cy = c.cy ? *c.cy : 0.5 * height;
+  cam.R_cam_from_world = c.R_cam_from_world;
+  cam.t_cam_from_world = c.t_cam_from_world;
+  return cam;
+}
+
+}  // namespace insitu

@@ -1,0 +1,77 @@
+// The scene file (DESIGN.md "Scene file"): JSON, paths relative to the file, unknown keys are
+// errors. parse_scene_file() checks types, ranges and that every named file exists; every error
+// names the file and the JSON path. The reference is in README.md.
+#pragma once
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "camera.h"
+#include "cubemap.h"
+#include "render.h"
+
+namespace insitu {
+
+struct CameraSpec {
+  enum class Kind { LookAt, Explicit, File } kind = Kind::LookAt;
+  std::string where;  // JSON location, for messages
+  // LookAt: eye, look, up and one field of view. Explicit: intrinsics (or a field of view) and R, t.
+  Vec3d eye = Vec3d::Zero(), look = Vec3d::Zero(), up = Vec3d(0, 1, 0);
+  std::optional<double> hfov_deg, vfov_deg;
+  std::optional<double> fx, fy, cx, cy;
+  Mat3d R_cam_from_world = Mat3d::Identity();
+  Vec3d t_cam_from_world = Vec3d::Zero();
+  std::string file;  // File: a camera.json
+};
+
+struct EnvironmentSpec {
+  std::string where;
+  std::string image;                 // equirectangular (2:1) or cube strip (1:6) HDR image
+  std::array<std::string, 6> shots;  // or six shots, by face (+X, −X, +Y, −Y, +Z, −Z)
+  std::array<std::string, 6> shot_where;
+  int faced_face = kNegZ;
+  double hfov_deg = 90.0;
+  int face_size = 0;  // 0: natural size of the input
+  double scale = 1.0;
+  bool from_shots() const { return image.empty(); }
+};
+
+struct PlaneSpec {
+  Vec3d point = Vec3d::Zero(), normal = Vec3d(0, 1, 0);
+  bool albedo_from_photo = true;
+  Rgb albedo = Rgb::Zero();
+};
+
+struct ObjectSpec {
+  std::string where;
+  std::string mesh;
+  Mat4d M_world_from_object = Mat4d::Identity();
+};
+
+struct OutputSpec {
+  std::string image;   // composite (PNG, JPEG, EXR, TIFF)
+  std::string layers;  // multi-layer EXR
+};
+
+struct SceneSpec {
+  std::string path;  // the scene file
+  std::string photo;
+  std::string photo_where;
+  CameraSpec camera;
+  EnvironmentSpec environment;
+  std::vector<PlaneSpec> local_scene;
+  std::vector<ObjectSpec> objects;
+  RenderSettings render;
+  OutputSpec output;
+};
+
+SceneSpec parse_scene_file(const std::string& path);
+
+// Builds the camera for a photo of width x height.
+Camera build_camera(const CameraSpec& spec, int width, int height);
+
+// The object transform: translate · rotate · scale (scale first), or a 4x4 matrix.
+Mat4d object_transform(const Vec3d& translate, double rotate_deg, const Vec3d& axis, const Vec3d& scale);
+
+}  // namespace insitu

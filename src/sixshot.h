@@ -1,0 +1,60 @@
+// The photo-cube: six plain photos, taken from where the furniture will stand, assembled into a
+// radiance cube map (DESIGN.md "Six shots" and "Cube maps").
+//
+// Each shot is a pinhole photo with square pixels and horizontal field of view hfov_deg (90° by
+// default), looking along its face's axis:
+//   walls (±X, ±Z):   up = +Y
+//   ceiling (+Y):     up = −F, so that the bottom edge of the shot points toward F
+//   floor (−Y):       up = +F, so that the top edge of the shot points toward F
+// where F is the axis of the wall the user faced when shooting ceiling and floor; right =
+// forward × up. Every texel of the cube is the bilinear sample of its face's shot at the pixel its
+// direction projects to, which mirrors and rotates the photos into the cube convention (for a 90°
+// square shot of the face's size the texel centres are the pixel centres).
+#pragma once
+#include <array>
+#include <string>
+
+#include "cubemap.h"
+#include "image.h"
+
+namespace insitu {
+
+struct ShotBasis {
+  Vec3d forward, up, right;
+};
+// Camera axes of the shot for `face`, given the faced wall `faced_face` (one of ±X, ±Z).
+ShotBasis shot_basis(int face, int faced_face);
+
+// Linear RGB shots indexed by face (+X, −X, +Y, −Y, +Z, −Z).
+struct ShotSet {
+  std::array<Image, 6> shots;
+  std::array<std::string, 6> names;  // for messages
+  int faced_face = kNegZ;
+  double hfov_deg = 90.0;
+};
+
+// The face size that keeps one shot pixel per texel: min over shots of
+// side * tan(45°) / tan(hfov/2), capped at max_face_size.
+int natural_face_size(const ShotSet& set, int max_face_size = 1024);
+
+// Assembles the cube. Throws InputError naming the shot when a shot is not square or does not
+// cover its whole face (field of view below 90°).
+CubeMap assemble_cube(const ShotSet& set, int face_size);
+
+// The reverse, for tests and the demo generator: the shot of `face` a phone would take of a
+// radiance function, with `w`×`h` pixels.
+template <class Radiance>
+Image render_shot(const Radiance& radiance, int face, int faced_face, double hfov_deg, int w, int h) {
+  const ShotBasis b = shot_basis(face, faced_face);
+  const double f_px = 0.5 * w / std::tan(0.5 * deg_to_rad(hfov_deg));
+  Image img(w, h, 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double xc = (x + 0.5 - 0.5 * w) / f_px, yc = -(y + 0.5 - 0.5 * h) / f_px;
+      const Vec3d d = (b.forward + xc * b.right + yc * b.up).normalized();
+      img.set_rgb(x, y, radiance(d.cast<float>()));
+    }
+  return img;
+}
+
+}  // namespace insitu

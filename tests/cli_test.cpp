@@ -1,0 +1,100 @@
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "scene_fixture.h"
+
+namespace insitu {
+namespace {
+
+struct CliRun {
+  int exit_code;
+  std::string out, err;
+};
+
+// Runs the insitu binary with `args`, stdin closed, capturing stdout and stderr.
+CliRun run_insitu(const test::TempDir& dir, const std::string& args) {
+  const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
+  const std::string cmd = std::string(INSITU_BINARY) + " " + args + " < /dev/null > " + out + " 2> " + err;
+  const int status = std::system(cmd.c_str());
+  auto slurp = [](const std::string& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  };
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+}
+
+int count_lines(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
+
+void expect_one_line_error(const CliRun& r, const std::string& contains) {
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_EQ(r.err.rfind("insitu: error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(contains), std::string::npos) << r.err;
+}
+
+TEST(Cli, Version) {
+  test::TempDir dir;
+  const CliRun r = run_insitu(dir, "--version");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out, std::string("insitu ") + INSITU_VERSION + "\n");
+}
+
+TEST(Cli, HelpListsTheRenderVerb) {
+  test::TempDir dir;
+  const CliRun r = run_insitu(dir, "--help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("render"), std::string::npos);
+}
+
+TEST(Cli, UsageErrorsAreOneLine) {
+  test::TempDir dir;
+  expect_one_line_error(run_insitu(dir, ""), "subcommand");
+  expect_one_line_error(run_insitu(dir, "render"), "scene");
+  expect_one_line_error(run_insitu(dir, "paint scene.json"), "");
+  expect_one_line_error(run_insitu(dir, "render x.json --spp 0"), "spp");
+}
+
+TEST(Cli, MissingSceneFile) {
+  test::TempDir dir;
+  expect_one_line_error(run_insitu(dir, dir.file("nope.json")), "");
+  expect_one_line_error(run_insitu(dir, "render " + dir.file("nope.json")), "nope.json: file not found");
+}
+
+TEST(Cli, BadInputsExitTwoAndWriteNothing) {
+  test::SceneFixture fx;
+  std::filesystem::copy_file(test::test_data("bad_index_range.obj"), fx.dir.path() / "bad.obj");
+  auto j = fx.scene;
+  j["objects"][0]["mesh"] = "bad.obj";
+  j["output"] = {{"image", "out/composite.png"}, {"layers", "out/layers.exr"}};
+  const std::string scene = fx.write(j);
+  expect_one_line_error(run_insitu(fx.dir, "render " + scene), "$.objects[0].mesh: " + fx.dir.file("bad.obj") + ":4: face vertex index 7");
+  EXPECT_FALSE(std::filesystem::exists(fx.dir.file("out/composite.png")));
+  EXPECT_FALSE(std::filesystem::exists(fx.dir.file("out/layers.exr")));
+
+  fx.dir.write("scene.json", "{ \"photo\": ");
+  expect_one_line_error(run_insitu(fx.dir, "render " + fx.dir.file("scene.json")), "malformed JSON");
+
+  const std::string good = fx.write();
+  expect_one_line_error(run_insitu(fx.dir, "render " + good + " --integrator magic"), "unknown integrator 'magic'");
+  expect_one_line_error(run_insitu(fx.dir, "render " + good + " -o out/x.bmpx"), "unsupported extension");
+}
+
+TEST(Cli, RendersAScene) {
+  test::SceneFixture fx;
+  const std::string scene = fx.write();
+  const CliRun r = run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("c.png") + " --spp 2");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(fx.dir.file("c.png")));
+  EXPECT_TRUE(std::filesystem::exists(fx.dir.file("out/layers.exr")));
+  // No temporary files are left behind.
+  for (const auto& e : std::filesystem::recursive_directory_iterator(fx.dir.path()))
+    EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+}
+
+}  // namespace
+}  // namespace insitu

@@ -1,0 +1,233 @@
+#include <gtest/gtest.h>
+
+#include <tbb/global_control.h>
+
+#include "pipeline.h"
+#include "scene_fixture.h"
+
+namespace insitu {
+namespace {
+
+using test::SceneFixture;
+
+// Expects parse+load of `j` to fail with an InputError whose place ends with `where` (after the
+// scene file's path) and whose message contains `what`.
+void expect_error(const SceneFixture& fx, const nlohmann::json& j, const std::string& where, const std::string& what) {
+  const std::string path = fx.write(j);
+  try {
+    load_scene(parse_scene_file(path));
+    ADD_FAILURE() << "expected an InputError at " << where;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().substr(0, path.size()), path) << e.what();
+    EXPECT_EQ(e.where().substr(std::min(e.where().size(), path.size())), where) << e.what();
+    EXPECT_NE(e.message().find(what), std::string::npos) << e.what();
+  }
+}
+
+TEST(SceneFile, ValidSceneLoads) {
+  SceneFixture fx;
+  const LoadedScene s = load_scene(parse_scene_file(fx.write()));
+  EXPECT_EQ(s.camera.width, fx.width);
+  EXPECT_EQ(s.environment.size(), 4);  // 16 / 4
+  EXPECT_EQ(s.objects->meshes().size(), 1u);
+  EXPECT_EQ(s.spec.render.spp, 4);
+  EXPECT_EQ(s.spec.render.integrator, "realtime");
+}
+
+TEST(SceneFile, MalformedJsonNamesLineAndColumn) {
+  SceneFixture fx;
+  const std::string path = fx.dir.write("scene.json", "{\n  \"photo\": \"photo.png\",\n  \"camera\": {,\n}");
+  try {
+    parse_scene_file(path);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), path + ":3:14") << e.what();
+    EXPECT_NE(e.message().find("malformed JSON"), std::string::npos);
+  }
+}
+
+TEST(SceneFile, MissingSceneFile) {
+  EXPECT_THROW(parse_scene_file("/nonexistent/scene.json"), InputError);
+}
+
+TEST(SceneFile, UnknownKeys) {
+  SceneFixture fx;
+  auto j = fx.scene;
+  j["photos"] = "photo.png";
+  expect_error(fx, j, ":$.photos", "unknown key");
+  j = fx.scene;
+  j["render"]["sp"] = 4;
+  expect_error(fx, j, ":$.render.sp", "unknown key");
+  j = fx.scene;
+  j["objects"][0]["rotation"] = 30;
+  expect_error(fx, j, ":$.objects[0].rotation", "unknown key");
+}
+
+TEST(SceneFile, WrongTypes) {
+  SceneFixture fx;
+  auto j = fx.scene;
+  j["render"]["spp"] = "many";
+  expect_error(fx, j, ":$.render.spp", "expected an integer");
+  j = fx.scene;
+  j["camera"]["eye"] = {1, 2};
+  expect_error(fx, j, ":$.camera.eye", "expected an array of 3 numbers");
+  j = fx.scene;
+  j["objects"] = nlohmann::json::array({"good_quad.obj"});
+  expect_error(fx, j, ":$.objects[0]", "expected an object, got string");
+  j = fx.scene;
+  j["photo"] = 3;
+  expect_error(fx, j, ":$.photo", "expected a string");
+}
+
+TEST(SceneFile, OutOfRangeValues) {
+  SceneFixture fx;
+  auto j = fx.scene;
+  j["render"]["spp"] = 0;
+  expect_error(fx, j, ":$.render.spp", "0 is out of range");
+  j = fx.scene;
+  j["camera"]["hfov_deg"] = 180;
+  expect_error(fx, j, ":$.camera.hfov_deg", "out of range");
+  j = fx.scene;
+  j["objects"][0]["scale"] = 0;
+  expect_error(fx, j, ":$.objects[0].scale", "scale must not be zero");
+  j = fx.scene;
+  j["camera"]["look"] = j["camera"]["eye"];
+  expect_error(fx, j, ":$.camera.look", "look point equals the eye");
+  j = fx.scene;
+  j["render"]["integrator"] = "raytrace";
+  expect_error(fx, j, ":$.render.integrator", "unknown integrator 'raytrace' (known: realtime)");
+}
+
+TEST(SceneFile, MissingFilesAndKeys) {
+  SceneFixture fx;
+  auto j = fx.scene;
+  j["photo"] = "nope.jpg";
+  expect_error(fx, j, ":$.photo", "file not found");
+  j = fx.scene;
+  j["objects"][0]["mesh"] = "sofa.obj";
+  expect_error(fx, j, ":$.objects[0].mesh", "file not found");
+  j = fx.scene;
+  j.erase("camera");
+  expect_error(fx, j, ":$", "missing required key 'camera'");
+}
+
+TEST(SceneFile, BadMeshErrorCarriesJsonPathAndObjLine) {
+  SceneFixture fx;
+  std::filesystem::copy_file(test::test_data("bad_zero_index.obj"), fx.dir.path() / "bad.obj");
+  auto j = fx.scene;
+  j["objects"][0]["mesh"] = "bad.obj";
+  expect_error(fx, j, ":$.objects[0].mesh: " + fx.dir.file("bad.obj") + ":5", "face vertex index 0");
+}
+
+TEST(SceneFile, EnvironmentOfWrongShape) {
+  SceneFixture fx;
+  write_image(fx.dir.file("square.exr"), Image(8, 8, 3, 1.0f));
+  auto j = fx.scene;
+  j["environment"] = "square.exr";
+  expect_error(fx, j, ":$.environment", "neither equirectangular (2:1) nor a cube strip (1:6)");
+}
+
+TEST(SceneFile, CameraFileOfAnotherSizeIsAnError) {
+  SceneFixture fx;
+  nlohmann::json cam = camera_to_json(Camera::look_at({0, 1, 1}, {0, 0, 0}, {0, 1, 0}, 50, 640, 480));
+  fx.dir.write("camera.json", cam.dump());
+  auto j = fx.scene;
+  j["camera"] = {{"file", "camera.json"}};
+  const std::string path = fx.write(j);
+  try {
+    load_scene(parse_scene_file(path));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), fx.dir.file("camera.json") + ":$.width");
+    EXPECT_NE(e.message().find("camera is for 640x480 images, the photo is 48x32"), std::string::npos);
+  }
+}
+
+TEST(SceneFile, CameraFileRoundTrip) {
+  SceneFixture fx;
+  const Camera original = Camera::look_at({0.3, 1.7, 2.2}, {0, 0, 0}, {0, 1, 0}, 55, fx.width, fx.height);
+  fx.dir.write("camera.json", camera_to_json(original).dump());
+  auto j = fx.scene;
+  j["camera"] = {{"file", "camera.json"}};
+  const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
+  EXPECT_NEAR((s.camera.R_cam_from_world - original.R_cam_from_world).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((s.camera.t_cam_from_world - original.t_cam_from_world).norm(), 0.0, 1e-12);
+  EXPECT_DOUBLE_EQ(s.camera.fx, original.fx);
+}
+
+TEST(SceneFile, ExplicitIntrinsicsAndPose) {
+  SceneFixture fx;
+  auto j = fx.scene;
+  j["camera"] = {{"intrinsics", {{"fx", 40.0}, {"cx", 20.0}}},
+                 {"pose", {{"R", {{1, 0, 0}, {0, -1, 0}, {0, 0, -1}}}, {"t", {0, 0, 3}}}}};
+  const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
+  EXPECT_DOUBLE_EQ(s.camera.fy, 40.0);
+  EXPECT_DOUBLE_EQ(s.camera.cx, 20.0);
+  EXPECT_DOUBLE_EQ(s.camera.cy, 16.0);  // the image centre by default
+  j["camera"]["pose"]["R"] = {{1, 0, 0}, {0, 1, 0}, {0, 0, -1}};  // a reflection
+  expect_error(fx, j, ":$.camera.pose.R", "not a rotation");
+}
+
+// Untouched pixels must come out exactly as they went in: with no objects, and with objects
+// entirely out of view.
+TEST(SceneFile, NoObjectsReproducesThePhotoBitForBit) {
+  SceneFixture fx;
+  for (int variant = 0; variant < 2; ++variant) {
+    auto j = fx.scene;
+    if (variant == 0) j["objects"] = nlohmann::json::array();
+    else j["objects"][0]["translate"] = {0, 0, 50};  // behind the camera
+    j["output"] = {{"image", "out/composite.png"}};
+    const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
+    const RenderResult r = render_scene(s);
+    write_outputs(s, r);
+    const ImageFile in = read_image_file(fx.dir.file("photo.png"));
+    const ImageFile out = read_image_file(fx.dir.file("out/composite.png"));
+    ASSERT_EQ(in.stored.data.size(), out.stored.data.size());
+    EXPECT_EQ(in.stored.data, out.stored.data) << "variant " << variant;
+  }
+}
+
+TEST(Demo, RendersWithObjectsWhereTheCameraSeesThem) {
+  const std::string path = test::source_dir() + "/scenes/demo/scene.json";
+  SceneSpec spec = parse_scene_file(path);
+  spec.render.spp = 4;
+  spec.output = {};
+  const LoadedScene s = load_scene(spec);
+  const RenderResult r = render_scene(s);
+  EXPECT_EQ(r.layers.nonfinite_samples, 0u);
+  // The ball's centre and the table top's centre, placed as in scene.json, are covered; a point
+  // of the wall high above them is not.
+  for (const Vec3d& p : {Vec3d(0.95, 0.2, -0.2), Vec3d(-0.2, 0.74, -1.2)}) {
+    const Vec2d uv = s.camera.project(p);
+    EXPECT_EQ(*r.layers.alpha.at(int(uv.x()), int(uv.y())), 1.0f) << p.transpose();
+  }
+  const Vec2d wall = s.camera.project(Vec3d(0.0, 2.3, -3.0));
+  EXPECT_EQ(*r.layers.alpha.at(int(wall.x()), int(wall.y())), 0.0f);
+  // Wherever alpha is 0 the encoded composite is the photo as stored.
+  std::size_t untouched = 0;
+  for (int y = 0; y < s.camera.height; ++y)
+    for (int x = 0; x < s.camera.width; ++x)
+      if (*r.layers.alpha.at(x, y) == 0.0f) {
+        ++untouched;
+        for (int k = 0; k < 3; ++k) ASSERT_EQ(r.composite_encoded.at(x, y)[k], s.photo.stored.at(x, y)[k]);
+      }
+  EXPECT_GT(untouched, std::size_t(s.camera.width) * s.camera.height / 2);
+}
+
+TEST(Render, BitIdenticalForAnyNumberOfThreads) {
+  const std::string path = test::source_dir() + "/scenes/demo/scene.json";
+  SceneSpec spec = parse_scene_file(path);
+  spec.render.spp = 3;
+  const LoadedScene s = load_scene(spec);
+  RenderResult one;
+  {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, 1);
+    one = render_scene(s);
+  }
+  const RenderResult many = render_scene(s);
+  EXPECT_EQ(one.layers.objects.data, many.layers.objects.data);
+  EXPECT_EQ(one.layers.alpha.data, many.layers.alpha.data);
+}
+
+}  // namespace
+}  // namespace insitu
