@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <random>
 
+#include "calibration.h"
 #include "cubemap.h"
 #include "equirect.h"
 #include "gaussian_irradiance.h"
@@ -82,6 +83,26 @@ void BM_DemoLoad(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(load_scene(spec));
 }
 BENCHMARK(BM_DemoLoad)->Unit(benchmark::kMillisecond);
+
+// Calibration from n noisy non-coplanar points (σ = 1 px), model chosen automatically: starts
+// (focal sweep + DLT), robust fit, outlier search, three models, F-tests and covariance.
+void BM_Calibrate(benchmark::State& state) {
+  const int n = int(state.range(0));
+  const Camera truth = Camera::look_at({2, 1.6, 3}, {0, 0.8, 0}, {0, 1, 0}, 60, 1920, 1080);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::normal_distribution<double> g(0, 1);
+  std::vector<ControlPoint> pts;
+  for (int i = 0; i < n; ++i) {
+    ControlPoint p;
+    p.p_world = truth.unproject({1920 * (0.05 + 0.9 * u(rng)), 1080 * (0.05 + 0.9 * u(rng))}, 2 + 3 * u(rng));
+    p.uv_px = truth.project(p.p_world) + Vec2d(g(rng), g(rng));
+    p.name = std::to_string(i);
+    pts.push_back(p);
+  }
+  for (auto _ : state) benchmark::DoNotOptimize(calibrate(pts, 1920, 1080));
+}
+BENCHMARK(BM_Calibrate)->Arg(6)->Arg(20)->Arg(100)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -44,6 +44,13 @@ ImageFile read_image_file(const std::string& path) {
   return file;
 }
 
+std::pair<int, int> read_image_size(const std::string& path) {
+  if (!fs::exists(path)) throw InputError(path, "file not found");
+  auto in = ImageInput::open(path);
+  if (!in) throw InputError(path, "cannot read image: " + geterror());
+  return {in->spec().width, in->spec().height};
+}
+
 std::size_t sanitize(Image& img) {
   std::size_t count = 0;
   for (float& v : img.data)

@@ -33,6 +33,8 @@ struct ImageFile {
 };
 
 ImageFile read_image_file(const std::string& path);
+// Width and height from the header alone.
+std::pair<int, int> read_image_size(const std::string& path);
 
 // Linear Rec.709: display-referred files through the inverse sRGB transfer function, float files
 // as they are. Negative and non-finite values are clamped to 0 and counted in *clamped.

@@ -21,7 +21,27 @@ LoadedScene load_scene(const SceneSpec& spec) {
   std::size_t clamped = 0;
   s.photo_linear = linearize(s.photo, &clamped);
   if (clamped > 0) s.warnings.add(spec.photo, fmt::format("{} negative or non-finite values clamped to 0", clamped));
-  s.camera = build_camera(spec.camera, s.photo.stored.width, s.photo.stored.height);
+  const int width = s.photo.stored.width, height = s.photo.stored.height;
+  if (spec.camera.kind == CameraSpec::Kind::Points) {
+    // Calibrate; the uncertainty is reported at the objects' mean position when there are any.
+    CalibrationOptions options;
+    if (spec.camera.model) options.model = parse_model(*spec.camera.model);
+    if (!spec.objects.empty()) {
+      Vec3d mean = Vec3d::Zero();
+      for (const auto& o : spec.objects) mean += o.M_world_from_object.topRightCorner<3, 1>() / double(spec.objects.size());
+      options.insertion_world = mean;
+    }
+    try {
+      const auto points = read_control_points(spec.camera.points, spec.camera.bottom_left_origin, height);
+      s.calibration = calibrate(points, width, height, options);
+    } catch (const InputError& e) {
+      throw e.with_context(spec.camera.where + ".points");
+    }
+    s.camera = s.calibration->camera;
+    for (const auto& w : s.calibration->warnings) s.warnings.add(spec.camera.where, w);
+  } else {
+    s.camera = build_camera(spec.camera, width, height);
+  }
   s.environment = load_environment(spec.environment, s.warnings, &s.environment_info);
 
   std::vector<Mesh> meshes;

@@ -3,6 +3,7 @@
 #pragma once
 #include <memory>
 
+#include "calibration.h"
 #include "camera.h"
 #include "cubemap.h"
 #include "embree_scene.h"
@@ -19,6 +20,7 @@ struct LoadedScene {
   ImageFile photo;
   Image photo_linear;
   Camera camera;
+  std::optional<CalibrationResult> calibration;  // when the camera came from control points
   CubeMap environment;
   EnvironmentInfo environment_info;
   std::unique_ptr<EmbreeScene> objects;

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 
+#include "calibration.h"
 #include "integrators/integrator.h"
 #include "json_reader.h"
 
@@ -46,6 +47,24 @@ int parse_axis(const JsonValue& v) {
 CameraSpec parse_camera(JsonObject o, const fs::path& dir) {
   CameraSpec c;
   c.where = o.where();
+  if (auto pts = o.find("points")) {
+    c.kind = CameraSpec::Kind::Points;
+    c.points = existing_file(*pts, dir);
+    if (auto m = o.find("model")) {
+      const std::string name = m->string();
+      if (name != "auto") {
+        if (!parse_model(name)) m->fail("expected \"auto\", \"f\", \"f+c\" or \"f+c+a\"");
+        c.model = name;
+      }
+    }
+    if (auto origin = o.find("origin")) {
+      const std::string s = origin->string();
+      if (s != "top_left" && s != "bottom_left") origin->fail("expected \"top_left\" or \"bottom_left\"");
+      c.bottom_left_origin = s == "bottom_left";
+    }
+    o.finish();
+    return c;
+  }
   if (auto f = o.find("file")) {
     c.kind = CameraSpec::Kind::File;
     c.file = existing_file(*f, dir);
@@ -307,7 +326,7 @@ Camera build_camera(const CameraSpec& c, int width, int height) {
       R.fail("not a rotation");
     cam.t_cam_from_world = pose.get("t").vec3();
     pose.finish();
-    for (const char* informational : {"eye", "look", "up", "hfov_deg", "vfov_deg"}) o.find(informational);
+    for (const char* informational : {"eye", "look", "up", "hfov_deg", "vfov_deg", "calibration"}) o.find(informational);
     o.finish();
     return cam;
   }

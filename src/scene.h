@@ -14,7 +14,7 @@
 namespace insitu {
 
 struct CameraSpec {
-  enum class Kind { LookAt, Explicit, File } kind = Kind::LookAt;
+  enum class Kind { LookAt, Explicit, File, Points } kind = Kind::LookAt;
   std::string where;  // JSON location, for messages
   // LookAt: eye, look, up and one field of view. Explicit: intrinsics (or a field of view) and R, t.
   Vec3d eye = Vec3d::Zero(), look = Vec3d::Zero(), up = Vec3d(0, 1, 0);
@@ -23,6 +23,10 @@ struct CameraSpec {
   Mat3d R_cam_from_world = Mat3d::Identity();
   Vec3d t_cam_from_world = Vec3d::Zero();
   std::string file;  // File: a camera.json
+  // Points: calibrate from control points (calibration.h).
+  std::string points;
+  std::optional<std::string> model;  // "f", "f+c", "f+c+a"; nullopt: auto
+  bool bottom_left_origin = false;
 };
 
 struct EnvironmentSpec {
@@ -68,7 +72,7 @@ struct SceneSpec {
 
 SceneSpec parse_scene_file(const std::string& path);
 
-// Builds the camera for a photo of width x height.
+// Builds the camera for a photo of width x height (not for Kind::Points: see pipeline.cpp).
 Camera build_camera(const CameraSpec& spec, int width, int height);
 
 // The object transform: translate · rotate · scale (scale first), or a 4x4 matrix.

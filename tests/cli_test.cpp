@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "camera.h"
 #include "scene_fixture.h"
 
 namespace insitu {
@@ -94,6 +95,46 @@ TEST(Cli, RendersAScene) {
   // No temporary files are left behind.
   for (const auto& e : std::filesystem::recursive_directory_iterator(fx.dir.path()))
     EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+}
+
+}  // namespace
+}  // namespace insitu
+
+namespace insitu {
+namespace {
+
+TEST(Cli, CalibrateWritesACameraFileThatScenesRead) {
+  test::SceneFixture fx;
+  // Points seen by a known camera of the fixture's photo size.
+  const Camera truth = Camera::look_at({0.5, 2.0, 1.5}, {0.5, 0.0, -0.5}, {0, 1, 0}, 60, fx.width, fx.height);
+  nlohmann::json pts = nlohmann::json::array();
+  const Vec3d xyz[] = {{0, 0, 0}, {1, 0, 0}, {1, 0, -1}, {0, 0, -1}, {0.5, 0.5, -0.5}, {0.2, 0.8, -0.9}, {0.9, 0.3, -0.2}};
+  for (const auto& p : xyz) {
+    const Vec2d uv = truth.project(p);
+    pts.push_back({{"uv", {uv.x(), uv.y()}}, {"xyz", {p.x(), p.y(), p.z()}}});
+  }
+  fx.dir.write("points.json", pts.dump());
+  const CliRun r = run_insitu(fx.dir, "calibrate --points " + fx.dir.file("points.json") + " --image " +
+                                          fx.dir.file("photo.png") + " -o " + fx.dir.file("camera.json") + " --vc " +
+                                          fx.dir.file("camera.vc"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("model        f"), std::string::npos) << r.out;
+  auto j = fx.scene;
+  j["camera"] = {{"file", "camera.json"}};
+  const CliRun render = run_insitu(fx.dir, "render " + fx.write(j) + " --spp 1");
+  EXPECT_EQ(render.exit_code, 0) << render.err;
+  EXPECT_TRUE(std::filesystem::exists(fx.dir.file("camera.vc")));
+}
+
+TEST(Cli, CalibrateBadInputIsOneLine) {
+  test::TempDir dir;
+  dir.write("few.json", R"([{"uv": [1, 2], "xyz": [0, 0, 0]}])");
+  expect_one_line_error(run_insitu(dir, "calibrate --points " + dir.file("few.json") + " --size 640 480"),
+                        "few.json: 1 control point(s): calibration needs at least 5");
+  expect_one_line_error(run_insitu(dir, "calibrate --points " + dir.file("few.json")), "--image or --size");
+  expect_one_line_error(run_insitu(dir, "calibrate --points " + dir.file("few.json") + " --size 640 480 --model g"), "model");
+  dir.write("nan.csv", "1,2,3,4,5\n1,2,nan,4,5\n");
+  expect_one_line_error(run_insitu(dir, "calibrate --points " + dir.file("nan.csv") + " --size 640 480"), "nan.csv:2");
 }
 
 }  // namespace

@@ -40,8 +40,8 @@ TEST(CubeMap, CentreEdgeAndCornerDirectionsLandOnTheirTexel) {
   for (const Case& c : kCases) {
     const FaceCoord fc = direction_to_face(c.dir * 3.0f);  // length does not matter
     EXPECT_EQ(fc.face, c.face) << c.dir.transpose();
-    EXPECT_EQ(int(fc.s * n), c.i) << c.dir.transpose();
-    EXPECT_EQ(int(fc.t * n), c.j) << c.dir.transpose();
+    EXPECT_EQ(int(fc.s * float(n)), c.i) << c.dir.transpose();
+    EXPECT_EQ(int(fc.t * float(n)), c.j) << c.dir.transpose();
     EXPECT_EQ(cube.lookup_nearest(c.dir)[0], id_value(c.face, c.i, c.j, n)) << c.dir.transpose();
   }
 }
@@ -56,8 +56,8 @@ TEST(CubeMap, TexelDirectionRoundTrip) {
           EXPECT_NEAR(d.norm(), 1.0f, 1e-6f);
           const FaceCoord fc = direction_to_face(d);
           ASSERT_EQ(fc.face, f);
-          EXPECT_EQ(int(fc.s * n), i);
-          EXPECT_EQ(int(fc.t * n), j);
+          EXPECT_EQ(int(fc.s * float(n)), i);
+          EXPECT_EQ(int(fc.t * float(n)), j);
           // Bilinear at a texel centre is the texel itself.
           EXPECT_NEAR(cube.lookup(d)[0], id_value(f, i, j, n), 0.05f);  // ids differ by >= 1; border ids by ~5000
         }

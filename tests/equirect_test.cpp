@@ -52,7 +52,7 @@ TEST(Equirect, RealHdriBrightestDirectionSurvivesConversion) {
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x)
       if (luminance(img.rgb(x, y)) > best) { best = luminance(img.rgb(x, y)); bx = x; by = y; }
-  const Vec3f d_sun = equirect_to_direction((bx + 0.5f) / img.width, (by + 0.5f) / img.height);
+  const Vec3f d_sun = equirect_to_direction((float(bx) + 0.5f) / float(img.width), (float(by) + 0.5f) / float(img.height));
   const CubeMap cube = cube_from_equirect(img, 64);
   Vec3f d_best = Vec3f::Zero();
   best = -1;

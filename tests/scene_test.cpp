@@ -231,3 +231,37 @@ TEST(Render, BitIdenticalForAnyNumberOfThreads) {
 
 }  // namespace
 }  // namespace insitu
+
+namespace insitu {
+namespace {
+
+// The demo's generator used eye (1.7, 1.45, 2.5), look (−0.2, 0.45, −1.2), hfov 62°
+// (tools/make_demo.cpp); its points.json carries ~0.7 px of click noise per axis. The calibrated
+// camera must agree within 4 reported standard deviations.
+TEST(Demo, CalibratedCameraAgreesWithTheGeneratorsCamera) {
+  const SceneSpec spec = parse_scene_file(test::source_dir() + "/scenes/demo/scene.json");
+  ASSERT_EQ(spec.camera.kind, CameraSpec::Kind::Points);
+  const LoadedScene s = load_scene(spec);
+  ASSERT_TRUE(s.calibration.has_value());
+  const CalibrationResult& c = *s.calibration;
+  ASSERT_TRUE(c.sigma.known);
+  EXPECT_NEAR(s.camera.hfov_deg(), 62.0, 4 * c.sigma.hfov_deg);
+  const Vec3d eye_true(1.7, 1.45, 2.5);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(s.camera.eye_world()[k], eye_true[k], 4 * c.sigma.eye_world[k]) << k;
+  const Vec3d fwd_true = (Vec3d(-0.2, 0.45, -1.2) - eye_true).normalized();
+  EXPECT_LT(rad_to_deg(std::acos(std::min(1.0, fwd_true.dot(s.camera.forward_world())))), 4 * c.sigma.view_direction_deg);
+  EXPECT_LT(c.rms_px, 1.5);
+}
+
+TEST(SceneFile, CameraFromPointsErrorsCarryTheJsonPath) {
+  SceneFixture fx;
+  fx.dir.write("points.json", R"([{"uv": [1, 2], "xyz": [0, 0, 0]}, {"uv": [5, 2], "xyz": [1, 0, 0]}])");
+  auto j = fx.scene;
+  j["camera"] = {{"points", "points.json"}};
+  expect_error(fx, j, ":$.camera.points", "2 control point(s): calibration needs at least 5");
+  j["camera"] = {{"points", "points.json"}, {"model", "f+x"}};
+  expect_error(fx, j, ":$.camera.model", "expected \"auto\"");
+}
+
+}  // namespace
+}  // namespace insitu

@@ -1,19 +1,25 @@
 // The insitu command line: a thin shell over the library (DESIGN.md "Layout").
 //
 //   insitu render SCENE [-o OUT] [--spp N] [--integrator NAME] [--seed N]
+//   insitu calibrate --points P (--image PHOTO | --size W H) [--model M] [--origin O] [--at X Y Z]
+//                    [-o camera.json] [--vc OUT.vc]
 //   insitu --help | --version
 //
 // Bad input: one line `insitu: error: <where>: <what>` on stderr, exit code 2, nothing written.
 // Internal failure: exit code 1.
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
 
+#include "calibration.h"
 #include "integrators/integrator.h"
 #include "pipeline.h"
 #include "progress.h"
+#include "text_file.h"
+#include "view_correlation.h"
 
 namespace {
 
@@ -64,6 +70,50 @@ int run_render(const RenderArgs& a) {
   return 0;
 }
 
+struct CalibrateArgs {
+  std::string points;
+  std::string image;
+  std::vector<int> size;
+  std::string model = "auto";
+  std::string origin = "top-left";
+  std::vector<double> at;
+  std::string output;
+  std::string vc;
+};
+
+int run_calibrate(const CalibrateArgs& a) {
+  int width = 0, height = 0;
+  if (!a.image.empty()) {
+    std::tie(width, height) = read_image_size(a.image);
+  } else {
+    width = a.size[0];
+    height = a.size[1];
+  }
+  CalibrationOptions options;
+  if (a.model != "auto") options.model = parse_model(a.model);
+  if (!a.at.empty()) options.insertion_world = Vec3d(a.at[0], a.at[1], a.at[2]);
+  const auto points = read_control_points(a.points, a.origin == "bottom-left", height);
+  CalibrationResult r;
+  try {
+    r = calibrate(points, width, height, options);
+  } catch (const InputError& e) {
+    throw e.with_context(a.points);
+  }
+  std::printf("%s", calibration_report(r).c_str());
+  if (!a.output.empty()) {
+    write_text_file(a.output, calibration_to_json(r).dump(2) + "\n");
+    std::printf("wrote %s\n", a.output.c_str());
+  }
+  if (!a.vc.empty()) {
+    std::vector<ControlPoint> inliers;
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (!r.points[i].outlier) inliers.push_back(points[i]);
+    write_view_correlation(a.vc, view_correlation_from_camera(r.camera, inliers));
+    std::printf("wrote %s\n", a.vc.c_str());
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -81,8 +131,24 @@ int main(int argc, char** argv) {
   for (const auto& e : integrator_registry()) integrators_help += fmt::format(" {} ({})", e.name, e.summary);
   render->add_option("--integrator", render_args.integrator, integrators_help);
 
+  CalibrateArgs cal;
+  CLI::App* calibrate_cmd = app.add_subcommand("calibrate", "recover the camera from 2D-3D control points");
+  calibrate_cmd->add_option("--points", cal.points, "control points: .json, .csv or a View Correlation .vc file")->required();
+  auto* image_opt = calibrate_cmd->add_option("--image", cal.image, "the photo (for its size)");
+  auto* size_opt = calibrate_cmd->add_option("--size", cal.size, "the photo's size in pixels")->expected(2)->check(CLI::PositiveNumber);
+  image_opt->excludes(size_opt);
+  calibrate_cmd->add_option("--model", cal.model, "camera model: auto, f, f+c, f+c+a")
+      ->check(CLI::IsMember({"auto", "f", "f+c", "f+c+a"}));
+  calibrate_cmd->add_option("--origin", cal.origin, "pixel origin of the points: top-left or bottom-left")
+      ->check(CLI::IsMember({"top-left", "bottom-left"}));
+  calibrate_cmd->add_option("--at", cal.at, "world point (m) where the uncertainty in pixels is reported")->expected(3);
+  calibrate_cmd->add_option("-o,--output", cal.output, "write camera.json");
+  calibrate_cmd->add_option("--vc", cal.vc, "also write the View Correlation parameter set");
+
   try {
     app.parse(argc, argv);
+    if (calibrate_cmd->parsed() && cal.image.empty() && cal.size.empty())
+      throw CLI::RequiredError("--image or --size");
   } catch (const CLI::Success& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
@@ -93,6 +159,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (render->parsed()) return run_render(render_args);
+    if (calibrate_cmd->parsed()) return run_calibrate(cal);
   } catch (const InputError& e) {
     std::string msg = e.what();
     for (auto& c : msg)

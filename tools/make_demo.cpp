@@ -1,10 +1,13 @@
 // Generates the demo scene (scenes/demo): a procedural empty room seen by a camera (the "photo"),
 // six 90° shots from where the furniture will stand (8-bit sRGB JPEGs, as a phone gives them),
-// simple procedural furniture as OBJ/MTL, and the scene file.
+// control points clicked in the photo (points.json, with ~1 px of click noise), simple procedural
+// furniture as OBJ/MTL, and the scene file, whose camera is calibrated from the points.
+// The true camera: eye (1.7, 1.45, 2.5), looking at (−0.2, 0.45, −1.2), up +Y, hfov 62°.
 //
 //   make_demo OUT_DIR
 //
-// The room is a box 5 m × 2.6 m × 6 m (x, y, z) with a bright window in the −X wall and a lamp
+// The room is a box 5 m × 2.6 m × 6 m (x, y, z) with a bright window in the −X wall, a door in
+// the back wall and a lamp
 // under the ceiling. Being convex and empty, it needs no visibility: the radiance of a wall point
 // is (albedo/π)·(E_window + E_lamp + E_ambient), with E_window integrated over the window's area,
 // E_lamp = L·π(R/d)²·cosθ for the spherical lamp, and a constant E_ambient standing in for the
@@ -35,6 +38,8 @@ const Vec3f kLampCentre(1.2f, 2.3f, -1.0f);
 const float kLampRadius = 0.12f;
 const Rgb kLampRadiance(60.0f, 48.0f, 32.0f);
 const Rgb kAmbientIrradiance(1.1f, 1.05f, 1.0f);
+// A door in the back (−Z) wall: x in [0.3, 1.2], y in [0, 2.05].
+const float kDoorX0 = 0.3f, kDoorX1 = 1.2f, kDoorY1 = 2.05f;
 const float kExposure = 0.55f;  // photo value = exposure × radiance
 
 float hash01(std::uint64_t a, std::uint64_t b) { return hash_to_unit(hash4(7, a, b, 0)); }
@@ -53,6 +58,11 @@ Rgb albedo_at(const Vec3f& p, int axis, int side) {
     return wood;
   }
   if (axis == 1 && side == 1) return Rgb(0.85f, 0.85f, 0.84f);  // ceiling
+  if (axis == 2 && side == 0 && p.x() > kDoorX0 - 0.06f && p.x() < kDoorX1 + 0.06f && p.y() < kDoorY1 + 0.06f) {
+    // A door in the back wall, with a white frame 6 cm wide.
+    if (p.x() < kDoorX0 || p.x() > kDoorX1 || p.y() > kDoorY1) return Rgb(0.85f, 0.85f, 0.83f);
+    return Rgb(0.30f, 0.19f, 0.11f);
+  }
   if (p.y() < 0.1f) return Rgb(0.88f, 0.88f, 0.86f);          // skirting board
   return Rgb(0.72f, 0.68f, 0.60f);                              // warm off-white walls
 }
@@ -252,9 +262,37 @@ int main(int argc, char** argv) {
 
   write_furniture(out);
 
+  // Control points: room corners and window corners a user would click, projected by the true
+  // camera, with about 1 px of click noise (σ = 0.7 px per axis), rounded to 0.1 px.
+  const std::vector<std::pair<std::string, Vec3d>> landmarks = {
+      {"floor corner, back left", {-2.5, 0.0, -3.0}},       {"floor corner, back right", {2.5, 0.0, -3.0}},
+      {"ceiling corner, back left", {-2.5, 2.6, -3.0}},     {"ceiling corner, back right", {2.5, 2.6, -3.0}},
+      {"window, bottom back", {-2.5, 0.9, -2.2}},           {"window, bottom front", {-2.5, 0.9, -0.6}},
+      {"window, top back", {-2.5, 2.1, -2.2}},              {"window, top front", {-2.5, 2.1, -0.6}},
+      {"window, mullion cross", {-2.5, 1.5, -1.4}},         {"skirting top, back left", {-2.5, 0.1, -3.0}},
+      {"door, bottom left", {0.3, 0.0, -3.0}},              {"door, bottom right", {1.2, 0.0, -3.0}},
+      {"door, top left", {0.3, 2.05, -3.0}},                {"door, top right", {1.2, 2.05, -3.0}},
+  };
+  nlohmann::ordered_json points = nlohmann::ordered_json::array();
+  std::uint64_t k = 0;
+  for (const auto& [name, p] : landmarks) {
+    double depth = 0;
+    const Vec2d uv = cam.project(p, &depth);
+    if (depth <= 0 || uv.x() < 0 || uv.y() < 0 || uv.x() > cam.width || uv.y() > cam.height) continue;
+    // Box–Muller from the counter-based hash: two Gaussian numbers per point.
+    const double u1 = std::max(1e-12, double(hash_to_unit(hash4(99, k, 0, 0)))), u2 = hash_to_unit(hash4(99, k, 0, 1));
+    ++k;
+    const double r = 0.7 * std::sqrt(-2 * std::log(u1));
+    const Vec2d noisy = uv + Vec2d(r * std::cos(2 * kPi * u2), r * std::sin(2 * kPi * u2));
+    points.push_back({{"name", name},
+                      {"uv", {std::round(noisy.x() * 10) / 10, std::round(noisy.y() * 10) / 10}},
+                      {"xyz", {p.x(), p.y(), p.z()}}});
+  }
+  write_text(out / "points.json", points.dump(2) + "\n");
+
   nlohmann::ordered_json scene = {
       {"photo", "photo.jpg"},
-      {"camera", {{"eye", {eye.x(), eye.y(), eye.z()}}, {"look", {look.x(), look.y(), look.z()}}, {"hfov_deg", hfov_deg}}},
+      {"camera", {{"points", "points.json"}}},
       {"environment",
        {{"shots",
          {{"+x", "shots/east.jpg"}, {"-x", "shots/west.jpg"}, {"+z", "shots/south.jpg"}, {"-z", "shots/north.jpg"},

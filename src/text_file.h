@@ -1,0 +1,9 @@
+// Whole text files, written atomically (temporary name in the same folder, then rename).
+#pragma once
+#include <string>
+
+namespace insitu {
+
+void write_text_file(const std::string& path, const std::string& text);
+
+}  // namespace insitu
