@@ -9,6 +9,7 @@
 #include "camera.h"
 #include "cubemap.h"
 #include "embree_scene.h"
+#include "irradiance.h"
 #include "sampler.h"
 
 namespace insitu {
@@ -17,6 +18,7 @@ namespace insitu {
 struct RenderInputs {
   const EmbreeScene* objects = nullptr;
   const CubeMap* environment = nullptr;
+  IrradianceMode irradiance_mode = IrradianceMode::kExact;  // for integrators that use one
 };
 
 // One camera sample: the objects' radiance where they cover the sample, and the coverage (0/1

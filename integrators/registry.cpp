@@ -6,11 +6,14 @@
 namespace insitu {
 
 std::unique_ptr<Integrator> make_realtime_integrator(const RenderInputs& inputs);
+std::unique_ptr<Integrator> make_irradiance_integrator(const RenderInputs& inputs);
 
 const std::vector<IntegratorEntry>& integrator_registry() {
   static const std::vector<IntegratorEntry> table = {
       {"realtime", "legacy real-time path: base colour x face-blurred cube at the normal, no shadows",
        make_realtime_integrator},
+      {"irradiance", "Lambertian objects lit by an irradiance mode (render.irradiance), no visibility",
+       make_irradiance_integrator},
   };
   return table;
 }

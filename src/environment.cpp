@@ -1,11 +1,22 @@
 #include "environment.h"
 
+#include <filesystem>
 #include <fmt/format.h>
 
 #include "equirect.h"
 #include "sixshot.h"
 
 namespace insitu {
+
+EnvironmentSpec environment_from_argument(const std::string& path) {
+  std::string ext = path.size() >= 5 ? path.substr(path.size() - 5) : "";
+  for (auto& c : ext) c = char(std::tolower(c));
+  if (ext == ".json") return parse_scene_file(path).environment;
+  if (!std::filesystem::exists(path)) throw InputError(path, "file not found");
+  EnvironmentSpec spec;
+  spec.image = path;
+  return spec;
+}
 
 CubeMap load_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo* info) {
   EnvironmentInfo local;

@@ -12,6 +12,9 @@ struct EnvironmentInfo {
   int face_size = 0;
 };
 
+// An environment named on the command line: a scene file (its environment) or an HDR image.
+EnvironmentSpec environment_from_argument(const std::string& path);
+
 CubeMap load_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo* info = nullptr);
 
 }  // namespace insitu

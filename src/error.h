@@ -19,6 +19,7 @@ class InputError : public std::runtime_error {
   const std::string& message() const { return what_; }
   // A copy with `outer` prepended to the place: "outer: where: what".
   InputError with_context(const std::string& outer) const {
+    if (outer.empty()) return *this;
     return InputError(where_.empty() ? outer : outer + ": " + where_, what_);
   }
 

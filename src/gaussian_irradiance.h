@@ -11,6 +11,7 @@
 
 namespace insitu {
 
+constexpr int kLegacyMaxFace = 256;  // larger faces are box-averaged to this first
 int legacy_kernel_size(int face_size);
 double legacy_sigma(int kernel_size);  // 0.3((k−1)/2 − 1) + 0.8
 CubeMap gaussian_blur_faces(const CubeMap& radiance);

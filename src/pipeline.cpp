@@ -66,8 +66,11 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress) 
   RenderInputs inputs;
   inputs.objects = scene.objects.get();
   inputs.environment = &scene.environment;
+  inputs.irradiance_mode = scene.spec.render.irradiance;
+  const auto start = std::chrono::steady_clock::now();
   auto integrator = make_integrator(scene.spec.render.integrator, inputs);
   RenderResult r;
+  r.prepare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.layers = render(scene.camera, *integrator, scene.spec.render, progress);
   r.composite_linear = composite_over(scene.photo_linear, r.layers);
   r.composite_encoded = encode_composite(r.composite_linear, r.layers.alpha, scene.photo);

@@ -31,6 +31,7 @@ struct LoadedScene {
 LoadedScene load_scene(const SceneSpec& spec);
 
 struct RenderResult {
+  double prepare_seconds = 0;  // the integrator's precomputation (legacy blur, irradiance cube)
   RenderLayers layers;
   Image composite_linear;
   Image composite_encoded;  // what goes into a PNG/JPEG

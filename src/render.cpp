@@ -22,6 +22,7 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
   std::atomic<long> rows_done{0};
   std::mutex progress_mutex;
   constexpr int kTile = 16;
+  if (progress) progress(0.0);  // the loop starts now (integrators may have precomputed before)
 
   tbb::parallel_for(tbb::blocked_range2d<int>(0, h, kTile, 0, w, kTile), [&](const tbb::blocked_range2d<int>& r) {
     std::size_t local_nonfinite = 0;

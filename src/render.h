@@ -14,6 +14,7 @@ namespace insitu {
 
 struct RenderSettings {
   std::string integrator = "realtime";
+  IrradianceMode irradiance = IrradianceMode::kExact;
   int spp = 16;
   std::uint64_t seed = 1;
 };
@@ -25,7 +26,8 @@ struct RenderLayers {
   double seconds = 0;
 };
 
-// progress(fraction done) is called from the rendering threads, serialized.
+// progress(fraction done) is called once with 0 when the sample loop starts, then from the
+// rendering threads, serialized.
 using ProgressFn = std::function<void(double)>;
 
 RenderLayers render(const Camera& camera, const Integrator& integrator, const RenderSettings& settings,

@@ -278,6 +278,11 @@ SceneSpec parse_scene_file(const std::string& path) {
         }
       }
     }
+    if (auto irr = ro.find("irradiance")) {
+      const auto mode = parse_irradiance_mode(irr->string());
+      if (!mode) irr->fail("expected \"gaussian\", \"sh9\" or \"exact\"");
+      scene.render.irradiance = *mode;
+    }
     if (auto spp = ro.find("spp")) scene.render.spp = int(spp->integer(1, 1 << 20));
     if (auto seed = ro.find("seed")) scene.render.seed = std::uint64_t(seed->integer(0, std::numeric_limits<long>::max()));
     ro.finish();

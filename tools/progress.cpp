@@ -14,6 +14,10 @@ Progress::~Progress() { finish(); }
 
 void Progress::update(double fraction) {
   const auto now = std::chrono::steady_clock::now();
+  if (fraction == 0.0 && !shown_) {
+    start_ = now;  // work starts now: earlier set-up is not part of it
+    return;
+  }
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   if (elapsed < 1.0 || finished_) return;
   if (tty_) {

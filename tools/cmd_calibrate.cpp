@@ -1,0 +1,70 @@
+// insitu calibrate --points P (--image PHOTO | --size W H) [--model M] [--origin O] [--at X Y Z]
+//                  [-o camera.json] [--vc OUT.vc]
+#include <cstdio>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "calibration.h"
+#include "commands.h"
+#include "image.h"
+#include "text_file.h"
+#include "view_correlation.h"
+
+namespace insitu {
+namespace {
+
+struct CalibrateArgs {
+  std::string points, image, model = "auto", origin = "top-left", output, vc;
+  std::vector<int> size;
+  std::vector<double> at;
+};
+
+int run_calibrate(const CalibrateArgs& a) {
+  if (a.image.empty() && a.size.empty()) throw InputError("calibrate", "give --image PHOTO or --size W H");
+  int width = 0, height = 0;
+  if (!a.image.empty()) std::tie(width, height) = read_image_size(a.image);
+  else { width = a.size[0]; height = a.size[1]; }
+  CalibrationOptions options;
+  if (a.model != "auto") options.model = parse_model(a.model);
+  if (!a.at.empty()) options.insertion_world = Vec3d(a.at[0], a.at[1], a.at[2]);
+  const auto points = read_control_points(a.points, a.origin == "bottom-left", height);
+  CalibrationResult r;
+  try {
+    r = calibrate(points, width, height, options);
+  } catch (const InputError& e) {
+    throw e.with_context(a.points);
+  }
+  std::printf("%s", calibration_report(r).c_str());
+  if (!a.output.empty()) {
+    write_text_file(a.output, calibration_to_json(r).dump(2) + "\n");
+    std::printf("wrote %s\n", a.output.c_str());
+  }
+  if (!a.vc.empty()) {
+    std::vector<ControlPoint> inliers;
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (!r.points[i].outlier) inliers.push_back(points[i]);
+    write_view_correlation(a.vc, view_correlation_from_camera(r.camera, inliers));
+    std::printf("wrote %s\n", a.vc.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command add_calibrate_command(CLI::App& app) {
+  auto a = std::make_shared<CalibrateArgs>();
+  CLI::App* cmd = app.add_subcommand("calibrate", "recover the camera from 2D-3D control points");
+  cmd->add_option("--points", a->points, "control points: .json, .csv or a View Correlation .vc file")->required();
+  auto* image_opt = cmd->add_option("--image", a->image, "the photo (for its size)");
+  auto* size_opt = cmd->add_option("--size", a->size, "the photo's size in pixels")->expected(2)->check(CLI::PositiveNumber);
+  image_opt->excludes(size_opt);
+  cmd->add_option("--model", a->model, "camera model: auto, f, f+c, f+c+a")->check(CLI::IsMember({"auto", "f", "f+c", "f+c+a"}));
+  cmd->add_option("--origin", a->origin, "pixel origin of the points: top-left or bottom-left")
+      ->check(CLI::IsMember({"top-left", "bottom-left"}));
+  cmd->add_option("--at", a->at, "world point (m) where the uncertainty in pixels is reported")->expected(3);
+  cmd->add_option("-o,--output", a->output, "write camera.json");
+  cmd->add_option("--vc", a->vc, "also write the View Correlation parameter set");
+  return [cmd, a] { return cmd->parsed() ? run_calibrate(*a) : -1; };
+}
+
+}  // namespace insitu

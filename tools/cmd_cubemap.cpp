@@ -1,0 +1,74 @@
+// insitu cubemap ENV -o DIR [--irradiance-size N]
+//
+// ENV is a scene file (its environment: six shots or an HDR image) or an HDR image. Writes
+//   DIR/cube.exr               the radiance cube, a vertical strip of the faces +X…−Z (linear)
+//   DIR/cube.png               the cube unfolded as a cross, seen from inside (preview.h)
+//   DIR/equirect.exr           the radiance as an equirectangular image (4n × 2n, linear)
+//   DIR/irradiance_MODE.exr    each mode's irradiance E (not E/π), sampled at the texel centres of
+//                              an N² cube (default 32), as a strip
+//   DIR/irradiance_MODE.png    its cross, E/π at the radiance preview's exposure, so that all
+//                              previews compare directly
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "commands.h"
+#include "environment.h"
+#include "equirect.h"
+#include "irradiance.h"
+#include "preview.h"
+
+namespace insitu {
+namespace {
+
+struct CubemapArgs {
+  std::string env, out;
+  int irradiance_size = 32;
+};
+
+int run_cubemap(const CubemapArgs& a) {
+  Warnings warnings;
+  EnvironmentInfo info;
+  const CubeMap cube = load_environment(environment_from_argument(a.env), warnings, &info);
+  print_warnings(warnings);
+  namespace fs = std::filesystem;
+  const fs::path dir(a.out);
+  const double exposure = preview_exposure(cube);
+  auto out = [&](const std::string& name) { return (dir / name).string(); };
+  write_image(out("cube.exr"), cube_to_strip(cube));
+  write_image(out("cube.png"), cube_cross_preview(cube, exposure));
+  write_image(out("equirect.exr"), cube_to_equirect(cube));
+  for (IrradianceMode mode : {IrradianceMode::kGaussian, IrradianceMode::kSh9, IrradianceMode::kExact}) {
+    const auto field = make_irradiance(mode, cube, a.irradiance_size);
+    const int n = a.irradiance_size;
+    CubeMap e(n), e_over_pi(n);
+    for (int f = 0; f < 6; ++f)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const Rgb E = field->irradiance(texel_direction(f, i, j, n));
+          e.set_texel(f, i, j, E);
+          e_over_pi.set_texel(f, i, j, E / kPiF);
+        }
+    e_over_pi.update_borders();
+    const std::string name = std::string("irradiance_") + irradiance_mode_name(mode);
+    write_image(out(name + ".exr"), cube_to_strip(e));
+    write_image(out(name + ".png"), cube_cross_preview(e_over_pi, exposure));
+  }
+  std::printf("%s: face size %d, %zu clamped values; wrote cube.exr, cube.png, equirect.exr and "
+              "irradiance_{gaussian,sh9,exact}.{exr,png} to %s\n",
+              a.env.c_str(), cube.size(), info.clamped_values, a.out.c_str());
+  return 0;
+}
+
+}  // namespace
+
+Command add_cubemap_command(CLI::App& app) {
+  auto a = std::make_shared<CubemapArgs>();
+  CLI::App* cmd = app.add_subcommand("cubemap", "assemble the environment into an HDR cube, previews and irradiance cubes");
+  cmd->add_option("env", a->env, "a scene file (its environment) or an HDR image")->required();
+  cmd->add_option("-o,--output", a->out, "output folder")->required();
+  cmd->add_option("--irradiance-size", a->irradiance_size, "face size of the irradiance cubes")->check(CLI::Range(1, 512));
+  return [cmd, a] { return cmd->parsed() ? run_cubemap(*a) : -1; };
+}
+
+}  // namespace insitu
