@@ -139,3 +139,42 @@ TEST(Cli, CalibrateBadInputIsOneLine) {
 
 }  // namespace
 }  // namespace insitu
+
+namespace insitu {
+namespace {
+
+TEST(Cli, CubemapWritesEveryOutput) {
+  test::SceneFixture fx;
+  const CliRun r = run_insitu(fx.dir, "cubemap " + fx.write() + " -o " + fx.dir.file("cube") + " --irradiance-size 4");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"cube.exr", "cube.png", "equirect.exr", "irradiance_gaussian.exr", "irradiance_sh9.exr",
+                        "irradiance_exact.exr", "irradiance_exact.png"})
+    EXPECT_TRUE(std::filesystem::exists(fx.dir.file(std::string("cube/") + f))) << f;
+  // The strip holds the cube at its face size (the fixture's 16×8 equirect: 4), the irradiance
+  // strip 4×24.
+  EXPECT_EQ(read_image_size(fx.dir.file("cube/cube.exr")), std::make_pair(4, 24));
+  EXPECT_EQ(read_image_size(fx.dir.file("cube/irradiance_sh9.exr")), std::make_pair(4, 24));
+  expect_one_line_error(run_insitu(fx.dir, "cubemap " + fx.dir.file("none.exr") + " -o " + fx.dir.file("x")), "none.exr: file not found");
+}
+
+TEST(Cli, IrradianceReportPrintsEveryMode) {
+  test::SceneFixture fx;
+  const CliRun r = run_insitu(fx.dir, "irradiance-report " + fx.dir.file("env.exr") + " --normals 16 --csv " + fx.dir.file("r.csv"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* mode : {"| gaussian |", "| sh9 |", "| exact |"}) EXPECT_NE(r.out.find(mode), std::string::npos) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(fx.dir.file("r.csv")));
+}
+
+TEST(Cli, IrradianceIntegratorWithGaussianEqualsRealtime) {
+  test::SceneFixture fx;
+  const std::string scene = fx.write();
+  ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("a.png")).exit_code, 0);
+  ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " --integrator irradiance --irradiance gaussian -o " + fx.dir.file("b.png")).exit_code, 0);
+  EXPECT_EQ(read_image_file(fx.dir.file("a.png")).stored.data, read_image_file(fx.dir.file("b.png")).stored.data);
+  auto j = fx.scene;
+  j["render"]["irradiance"] = "sh10";
+  expect_one_line_error(run_insitu(fx.dir, "render " + fx.write(j)), "$.render.irradiance: expected \"gaussian\", \"sh9\" or \"exact\"");
+}
+
+}  // namespace
+}  // namespace insitu

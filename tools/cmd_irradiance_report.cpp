@@ -33,7 +33,9 @@ int run_report(const ReportArgs& a) {
     const CubeMap cube = load_environment(spec, w);
     print_warnings(w);
     const IrradianceReport rep = irradiance_report(cube, a.normals, a.exact_size);
-    const std::string name = std::filesystem::path(env).stem().string();
+    // A scene is named by its folder (scenes/demo/scene.json -> demo), an image by its stem.
+    const std::filesystem::path ep(env);
+    const std::string name = ep.extension() == ".json" ? ep.parent_path().filename().string() : ep.stem().string();
     for (const ModeReport& m : rep.modes) {
       std::printf("| %s | %d | %s | %.2f | %.1f | %.4f | %.4f | %.4f |\n", name.c_str(), rep.face_size,
                   irradiance_mode_name(m.mode), m.precompute_ms, m.lookup_ns, m.mean_rel_error, m.max_rel_error,
