@@ -44,7 +44,7 @@ CubeMap load_environment(const EnvironmentSpec& spec, Warnings& warnings, Enviro
   } else {
     ShotSet set;
     set.faced_face = spec.faced_face;
-    set.hfov_deg = spec.hfov_deg;
+    set.set_hfov(spec.hfov_deg);
     for (int f = 0; f < 6; ++f) {
       std::size_t clamped = 0;
       try {
@@ -57,11 +57,17 @@ CubeMap load_environment(const EnvironmentSpec& spec, Warnings& warnings, Enviro
       if (clamped > 0) warnings.add(spec.shots[f], fmt::format("{} negative or non-finite values clamped to 0", clamped));
     }
     const int n = spec.face_size > 0 ? spec.face_size : natural_face_size(set);
+    AssemblyInfo assembly;
     try {
-      cube = assemble_cube(set, n);
+      cube = assemble_cube(set, n, &assembly);
     } catch (const InputError& e) {
       throw e.with_context(spec.where);
     }
+    local.coverage = assembly.coverage;
+    for (int f = 0; f < 6; ++f)
+      if (assembly.coverage[std::size_t(f)] < 1.0)
+        warnings.add(spec.shots[std::size_t(f)], fmt::format("covers {:.1f}% of face {}; the rest is filled from its neighbours",
+                                                             100 * assembly.coverage[std::size_t(f)], face_name(f)));
   }
   if (spec.scale != 1.0) {
     CubeMap scaled(cube.size());

@@ -137,7 +137,7 @@ EnvironmentSpec parse_environment(const JsonValue& v, const fs::path& dir) {
     return e;
   }
   JsonObject s(o.get("shots"));
-  if (auto h = s.find("hfov_deg")) e.hfov_deg = h->number(90.0, 170.0);
+  if (auto h = s.find("hfov_deg")) e.hfov_deg = h->number(1.0, 170.0);
   auto shot = [&](int face, const char* key) {
     const JsonValue p = s.get(key);
     e.shots[face] = existing_file(p, dir);

@@ -1,15 +1,17 @@
 // The photo-cube: six plain photos, taken from where the furniture will stand, assembled into a
 // radiance cube map (DESIGN.md "Six shots" and "Cube maps").
 //
-// Each shot is a pinhole photo with square pixels and horizontal field of view hfov_deg (90° by
-// default), looking along its face's axis:
+// Each shot is a pinhole photo with square pixels, any size, principal point at its centre and
+// horizontal field of view hfov_deg (90° by default), looking along its face's axis:
 //   walls (±X, ±Z):   up = +Y
 //   ceiling (+Y):     up = −F, so that the bottom edge of the shot points toward F
 //   floor (−Y):       up = +F, so that the top edge of the shot points toward F
 // where F is the axis of the wall the user faced when shooting ceiling and floor; right =
 // forward × up. Every texel of the cube is the bilinear sample of its face's shot at the pixel its
 // direction projects to, which mirrors and rotates the photos into the cube convention (for a 90°
-// square shot of the face's size the texel centres are the pixel centres).
+// square shot of the face's size the texel centres are the pixel centres). Texels that no shot
+// covers (narrow or non-square shots) are filled smoothly from their neighbours, across face
+// edges (fill_uncovered), and reported as coverage.
 #pragma once
 #include <array>
 #include <string>
@@ -30,16 +32,26 @@ struct ShotSet {
   std::array<Image, 6> shots;
   std::array<std::string, 6> names;  // for messages
   int faced_face = kNegZ;
-  double hfov_deg = 90.0;
+  std::array<double, 6> hfov_deg = {90, 90, 90, 90, 90, 90};
+  void set_hfov(double deg) { hfov_deg.fill(deg); }
 };
 
+struct AssemblyInfo {
+  std::array<double, 6> coverage = {1, 1, 1, 1, 1, 1};  // fraction of each face's texels a shot covers
+};
+
+// Fills the texels whose weight is 0 smoothly from the others, seamlessly across faces: a
+// multiresolution (pull–push) pass over ever coarser cubes, then relaxation toward the solution of
+// Laplace's equation at each level on the way back up. `weight` holds 1 where `cube` is known.
+void fill_uncovered(CubeMap& cube, const CubeMap& weight);
+
 // The face size that keeps one shot pixel per texel: min over shots of
-// side * tan(45°) / tan(hfov/2), capped at max_face_size.
+// width · tan(45°) / tan(hfov/2), capped at max_face_size.
 int natural_face_size(const ShotSet& set, int max_face_size = 1024);
 
-// Assembles the cube. Throws InputError naming the shot when a shot is not square or does not
-// cover its whole face (field of view below 90°).
-CubeMap assemble_cube(const ShotSet& set, int face_size);
+// Assembles the cube; a face its shot covers less than fully is filled (AssemblyInfo::coverage).
+// Throws InputError naming a shot that covers none of its face.
+CubeMap assemble_cube(const ShotSet& set, int face_size, AssemblyInfo* info = nullptr);
 
 // The reverse, for tests and the demo generator: the shot of `face` a phone would take of a
 // radiance function, with `w`×`h` pixels.
