@@ -31,6 +31,13 @@ ImageFile read_image_file(const std::string& path) {
   file.display_referred = !(spec.format.basetype == TypeDesc::FLOAT ||
                             spec.format.basetype == TypeDesc::HALF ||
                             spec.format.basetype == TypeDesc::DOUBLE);
+  file.bits = int(spec.format.size()) * 8;
+  if (const float t = spec.get_float_attribute("ExposureTime", 0.0f); t > 0) file.exposure.time_s = t;
+  if (const float n = spec.get_float_attribute("FNumber", 0.0f); n > 0) file.exposure.f_number = n;
+  int iso = spec.get_int_attribute("Exif:PhotographicSensitivity", 0);
+  if (iso <= 0) iso = spec.get_int_attribute("Exif:ISOSpeedRatings", 0);
+  if (iso > 0) file.exposure.iso = iso;
+  if (const int f35 = spec.get_int_attribute("Exif:FocalLengthIn35mmFilm", 0); f35 > 0) file.exposure.focal_35mm_mm = f35;
   const int nc = spec.nchannels;
   std::vector<float> raw(std::size_t(spec.width) * spec.height * nc);
   if (!in->read_image(0, 0, 0, nc, TypeDesc::FLOAT, raw.data()))
@@ -42,6 +49,12 @@ ImageFile read_image_file(const std::string& path) {
   for (std::size_t i = 0; i < n; ++i)
     for (int c = 0; c < 3; ++c) img.data[i * 3 + c] = raw[i * nc + std::min(c, nc < 3 ? 0 : c)];
   return file;
+}
+
+std::optional<double> Exposure::relative() const {
+  if (!time_s) return std::nullopt;
+  const double n = f_number.value_or(1.0);
+  return *time_s * iso.value_or(1.0) / (n * n);
 }
 
 std::pair<int, int> read_image_size(const std::string& path) {
@@ -123,11 +136,17 @@ void write_atomically(const std::string& path, const std::string& format, const 
 
 }  // namespace
 
-void write_image(const std::string& path, const Image& img) {
+void write_image(const std::string& path, const Image& img, const Exposure* exposure) {
   std::string ext = fs::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
   ImageSpec spec(img.width, img.height, img.channels, storage_type(ext));
   if (ext == ".jpg" || ext == ".jpeg") spec.attribute("CompressionQuality", 92);
+  if (exposure) {
+    if (exposure->time_s) spec.attribute("ExposureTime", float(*exposure->time_s));
+    if (exposure->f_number) spec.attribute("FNumber", float(*exposure->f_number));
+    if (exposure->iso) spec.attribute("Exif:PhotographicSensitivity", int(*exposure->iso));
+    if (exposure->focal_35mm_mm) spec.attribute("Exif:FocalLengthIn35mmFilm", int(*exposure->focal_35mm_mm));
+  }
   write_atomically(path, "", spec, img.data.data());
 }
 

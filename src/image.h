@@ -3,6 +3,7 @@
 // the final name (DESIGN.md "Errors").
 #pragma once
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,12 +25,22 @@ struct Image {
   void set_rgb(int x, int y, const Rgb& c) { float* p = at(x, y); p[0] = c[0]; p[1] = c[1]; p[2] = c[2]; }
 };
 
+// What a camera recorded about an exposure (EXIF, through OpenImageIO); absent values are empty.
+struct Exposure {
+  std::optional<double> time_s, f_number, iso, focal_35mm_mm;
+  // The relative exposure k = t · ISO / N² (missing ISO or N count as 1: taken as equal between
+  // the images compared). Empty without an exposure time.
+  std::optional<double> relative() const;
+};
+
 // An image file as stored: values normalized by OpenImageIO (8-bit k -> k/255), always RGB.
 struct ImageFile {
   std::string path;
   Image stored;
   bool display_referred = false;  // integer pixels (8/16-bit): sRGB-encoded, decoded to linear
   std::string format;             // "png", "jpeg", "openexr", ...
+  int bits = 32;                  // bits per stored channel
+  Exposure exposure;
 };
 
 ImageFile read_image_file(const std::string& path);
@@ -45,7 +56,8 @@ std::size_t sanitize(Image& img);
 
 // Writes RGB(A) float pixels; the format follows the extension. 8-bit formats get the values
 // rounded to k/255 after clamping to [0,1] (the caller encodes with sRGB first).
-void write_image(const std::string& path, const Image& img);
+// `exposure`, when given, is written as EXIF (ExposureTime, FNumber, ISO, 35 mm focal length).
+void write_image(const std::string& path, const Image& img, const Exposure* exposure = nullptr);
 
 // A multi-part EXR written as one file: named channel groups ("R","G","B","A",
 // "objects.R", ...), all of width x height, stored as half or float.

@@ -18,8 +18,10 @@ LoadedScene load_scene(const SceneSpec& spec) {
   } catch (const InputError& e) {
     throw e.with_context(spec.photo_where);
   }
+  // The environment first: brackets may recover the camera response that linearizes the photo.
+  s.environment = load_environment(spec.environment, s.warnings, &s.environment_info, &s.photo);
   std::size_t clamped = 0;
-  s.photo_linear = linearize(s.photo, &clamped);
+  s.photo_linear = linearize_photo(s.photo, s.environment_info, &clamped);
   if (clamped > 0) s.warnings.add(spec.photo, fmt::format("{} negative or non-finite values clamped to 0", clamped));
   const int width = s.photo.stored.width, height = s.photo.stored.height;
   if (spec.camera.kind == CameraSpec::Kind::Points) {
@@ -42,7 +44,6 @@ LoadedScene load_scene(const SceneSpec& spec) {
   } else {
     s.camera = build_camera(spec.camera, width, height);
   }
-  s.environment = load_environment(spec.environment, s.warnings, &s.environment_info);
 
   std::vector<Mesh> meshes;
   for (const ObjectSpec& obj : spec.objects) {

@@ -120,6 +120,36 @@ CameraSpec parse_camera(JsonObject o, const fs::path& dir) {
   return c;
 }
 
+// A shot: "file", ["bracket", "bracket", ...], or {"file" | "files", "times", "hfov_deg"}.
+ShotSpec parse_shot(const JsonValue& v, const fs::path& dir) {
+  ShotSpec shot;
+  shot.where = v.where();
+  auto read_list = [&](const JsonValue& list) {
+    if (list.size() < 1) list.fail("expected at least one file");
+    for (std::size_t i = 0; i < list.size(); ++i) shot.files.push_back(existing_file(list.element(i), dir));
+  };
+  if (v.is_string()) {
+    shot.files.push_back(existing_file(v, dir));
+  } else if (v.is_array()) {
+    read_list(v);
+  } else {
+    JsonObject o(v);
+    if (auto f = o.find("file")) {
+      if (o.has("files")) o.fail("give 'file' or 'files', not both");
+      shot.files.push_back(existing_file(*f, dir));
+    } else {
+      read_list(o.get("files"));
+    }
+    if (auto t = o.find("times"))
+      for (std::size_t i = 0; i < t->size(); ++i) shot.times_s.push_back(t->element(i).number(1e-9, 1e6));
+    if (auto h = o.find("hfov_deg")) shot.hfov_deg = h->number(1.0, 170.0);
+    o.finish();
+  }
+  if (!shot.times_s.empty() && shot.times_s.size() != shot.files.size())
+    v.fail(fmt::format("{} times for {} files", shot.times_s.size(), shot.files.size()));
+  return shot;
+}
+
 EnvironmentSpec parse_environment(const JsonValue& v, const fs::path& dir) {
   EnvironmentSpec e;
   e.where = v.where();
@@ -128,21 +158,27 @@ EnvironmentSpec parse_environment(const JsonValue& v, const fs::path& dir) {
     return e;
   }
   JsonObject o(v);
-  if (auto s = o.find("scale")) e.scale = s->number(0.0, 1e12);
+  if (auto x = o.find("exposure")) {
+    if (x->is_number()) {
+      e.exposure = EnvironmentSpec::Exposure::kFactor;
+      e.exposure_factor = x->number(1e-12, 1e12);
+    } else {
+      const std::string s = x->string();
+      if (s == "exif") e.exposure = EnvironmentSpec::Exposure::kExif;
+      else if (s != "auto") x->fail("expected \"auto\", \"exif\" or a factor");
+    }
+  }
   if (auto n = o.find("face_size")) e.face_size = int(n->integer(1, 4096));
   if (auto img = o.find("image")) {
     if (o.has("shots")) o.fail("give 'image' or 'shots', not both");
     e.image = existing_file(*img, dir);
+    if (e.exposure == EnvironmentSpec::Exposure::kExif) o.get("exposure").fail("an HDR image has no exposure to read: give a factor");
     o.finish();
     return e;
   }
   JsonObject s(o.get("shots"));
   if (auto h = s.find("hfov_deg")) e.hfov_deg = h->number(1.0, 170.0);
-  auto shot = [&](int face, const char* key) {
-    const JsonValue p = s.get(key);
-    e.shots[face] = existing_file(p, dir);
-    e.shot_where[face] = p.where();
-  };
+  auto shot = [&](int face, const char* key) { e.shots[std::size_t(face)] = parse_shot(s.get(key), dir); };
   if (s.has("front") || s.has("right") || s.has("back") || s.has("left") || s.has("front_axis")) {
     // front/right/back/left plus which world axis "front" faces; right = front × up.
     const JsonValue fa = s.get("front_axis");

@@ -29,15 +29,25 @@ struct CameraSpec {
   bool bottom_left_origin = false;
 };
 
+// One shot: a single file, or exposure brackets (aligned, 8-bit) with their exposure times.
+struct ShotSpec {
+  std::vector<std::string> files;
+  std::vector<double> times_s;       // empty: from EXIF
+  std::optional<double> hfov_deg;    // empty: the set's, else EXIF 35 mm focal length, else 90°
+  std::string where;
+};
+
 struct EnvironmentSpec {
   std::string where;
   std::string image;                 // equirectangular (2:1) or cube strip (1:6) HDR image
-  std::array<std::string, 6> shots;  // or six shots, by face (+X, −X, +Y, −Y, +Z, −Z)
-  std::array<std::string, 6> shot_where;
+  std::array<ShotSpec, 6> shots;     // or six shots, by face (+X, −X, +Y, −Y, +Z, −Z)
   int faced_face = kNegZ;
-  double hfov_deg = 90.0;
-  int face_size = 0;  // 0: natural size of the input
-  double scale = 1.0;
+  std::optional<double> hfov_deg;    // for every shot that does not give its own
+  int face_size = 0;                 // 0: natural size of the input
+  // How shots are brought into the photo's radiance unit: auto (EXIF when the photo and every
+  // single shot have it, else an estimate that is reported), exif (required), or a factor.
+  enum class Exposure { kAuto, kExif, kFactor } exposure = Exposure::kAuto;
+  double exposure_factor = 1.0;
   bool from_shots() const { return image.empty(); }
 };
 

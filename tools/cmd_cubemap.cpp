@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "commands.h"
 #include "environment.h"
@@ -29,7 +30,11 @@ struct CubemapArgs {
 int run_cubemap(const CubemapArgs& a) {
   Warnings warnings;
   EnvironmentInfo info;
-  const CubeMap cube = load_environment(environment_from_argument(a.env), warnings, &info);
+  std::string photo_path;
+  const EnvironmentSpec spec = environment_from_argument(a.env, &photo_path);
+  std::optional<ImageFile> photo;
+  if (!photo_path.empty()) photo = read_image_file(photo_path);
+  const CubeMap cube = load_environment(spec, warnings, &info, photo ? &*photo : nullptr);
   print_warnings(warnings);
   namespace fs = std::filesystem;
   const fs::path dir(a.out);
@@ -54,9 +59,14 @@ int run_cubemap(const CubemapArgs& a) {
     write_image(out(name + ".exr"), cube_to_strip(e));
     write_image(out(name + ".png"), cube_cross_preview(e_over_pi, exposure));
   }
-  std::printf("%s: face size %d, %zu clamped values; wrote cube.exr, cube.png, equirect.exr and "
-              "irradiance_{gaussian,sh9,exact}.{exr,png} to %s\n",
-              a.env.c_str(), cube.size(), info.clamped_values, a.out.c_str());
+  std::printf("%s: face size %d, %zu clamped values, exposure %s (x%.4g)%s\n", a.env.c_str(), cube.size(),
+              info.clamped_values, info.exposure_source.c_str(), info.exposure_factor,
+              info.response ? ", camera response recovered from brackets" : "");
+  if (spec.from_shots())
+    for (int f = 0; f < 6; ++f)
+      std::printf("  %-3s %-40s coverage %5.1f%%, clipped %5.2f%%\n", face_name(f), spec.shots[std::size_t(f)].files.front().c_str(),
+                  100 * info.coverage[std::size_t(f)], 100 * info.clipped[std::size_t(f)]);
+  std::printf("wrote cube.exr, cube.png, equirect.exr and irradiance_{gaussian,sh9,exact}.{exr,png} to %s\n", a.out.c_str());
   return 0;
 }
 

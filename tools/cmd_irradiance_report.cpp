@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <memory>
+#include <optional>
 
 #include "commands.h"
 #include "environment.h"
@@ -27,10 +28,13 @@ int run_report(const ReportArgs& a) {
   std::printf("| environment | face | mode | precompute (ms) | lookup (ns) | mean rel. error | max rel. error | error facing the brightest texel |\n");
   std::printf("|---|---|---|---|---|---|---|---|\n");
   for (const std::string& env : a.envs) {
-    EnvironmentSpec spec = environment_from_argument(env);
+    std::string photo_path;
+    EnvironmentSpec spec = environment_from_argument(env, &photo_path);
     if (a.face_size > 0) spec.face_size = a.face_size;
     Warnings w;
-    const CubeMap cube = load_environment(spec, w);
+    std::optional<ImageFile> photo;
+    if (!photo_path.empty()) photo = read_image_file(photo_path);
+    const CubeMap cube = load_environment(spec, w, nullptr, photo ? &*photo : nullptr);
     print_warnings(w);
     const IrradianceReport rep = irradiance_report(cube, a.normals, a.exact_size);
     // A scene is named by its folder (scenes/demo/scene.json -> demo), an image by its stem.

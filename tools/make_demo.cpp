@@ -11,7 +11,8 @@
 // under the ceiling. Being convex and empty, it needs no visibility: the radiance of a wall point
 // is (albedo/π)·(E_window + E_lamp + E_ambient), with E_window integrated over the window's area,
 // E_lamp = L·π(R/d)²·cosθ for the spherical lamp, and a constant E_ambient standing in for the
-// interreflections. Photo and shots share one exposure, so the cube is in the photo's unit.
+// interreflections. Photo and shots share one exposure (1/60 s, f/1.8, ISO 100, in their EXIF),
+// so the cube comes out in the photo's unit.
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
@@ -247,7 +248,12 @@ int main(int argc, char** argv) {
       }
       photo.set_rgb(x, y, sum / 4.0f);
     }
-  write_image((out / "photo.jpg").string(), encode_srgb(photo));
+  // One exposure for the photo and the shots, recorded in their EXIF as a phone would.
+  Exposure exif;
+  exif.time_s = 1.0 / 60;
+  exif.f_number = 1.8;
+  exif.iso = 100;
+  write_image((out / "photo.jpg").string(), encode_srgb(photo), &exif);
 
   // Six 90° shots from where the furniture stands, 256 × 256, 3 × 3 samples per pixel
   // (render_shot samples pixel centres; we supersample by rendering larger and shrinking).
@@ -257,7 +263,7 @@ int main(int argc, char** argv) {
   for (int f = 0; f < 6; ++f) {
     auto radiance = [&](const Vec3f& d) { return room_radiance(shot_origin, d); };
     const Image big = render_shot(radiance, f, faced, 90.0, 768, 768);
-    write_image((out / "shots" / (std::string(names[f]) + ".jpg")).string(), encode_srgb(resize(big, 256, 256)));
+    write_image((out / "shots" / (std::string(names[f]) + ".jpg")).string(), encode_srgb(resize(big, 256, 256)), &exif);
   }
 
   write_furniture(out);

@@ -1,0 +1,103 @@
+#include "hdr_merge.h"
+
+#include <opencv2/photo.hpp>
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "colour.h"
+#include "error.h"
+
+namespace insitu {
+
+namespace {
+
+cv::Mat to_8bit(const ImageFile& f) {
+  if (f.bits != 8) throw InputError(f.path, "exposure brackets must be 8-bit images");
+  const Image& img = f.stored;
+  cv::Mat m(img.height, img.width, CV_8UC3);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      for (int c = 0; c < 3; ++c)
+        m.at<cv::Vec3b>(y, x)[c] = static_cast<unsigned char>(std::lround(std::clamp(img.at(x, y)[c], 0.0f, 1.0f) * 255.0f));
+  return m;
+}
+
+std::vector<cv::Mat> to_mats(const std::vector<ImageFile>& brackets) {
+  std::vector<cv::Mat> mats;
+  for (const auto& b : brackets) {
+    if (b.stored.width != brackets[0].stored.width || b.stored.height != brackets[0].stored.height)
+      throw InputError(b.path, fmt::format("bracket is {}x{}, the first ({}) is {}x{}", b.stored.width, b.stored.height,
+                                           brackets[0].path, brackets[0].stored.width, brackets[0].stored.height));
+    mats.push_back(to_8bit(b));
+  }
+  return mats;
+}
+
+std::vector<float> to_floats(const std::vector<double>& v) { return std::vector<float>(v.begin(), v.end()); }
+
+float mid_grey_linear() { return srgb_to_linear(128.0f / 255.0f); }
+
+}  // namespace
+
+ResponseCurve srgb_response() {
+  ResponseCurve r;
+  for (int c = 0; c < 3; ++c)
+    for (int z = 0; z < 256; ++z) r.g[std::size_t(c)][std::size_t(z)] = srgb_to_linear(float(z) / 255.0f);
+  return r;
+}
+
+ResponseCurve recover_response(const std::vector<ImageFile>& brackets, const std::vector<double>& exposures) {
+  const std::vector<cv::Mat> mats = to_mats(brackets);
+  cv::Mat response;
+  cv::createCalibrateDebevec(70, 10.0f, false)->process(mats, response, to_floats(exposures));
+  ResponseCurve r;
+  const float scale = mid_grey_linear();
+  for (int z = 0; z < 256; ++z) {
+    const cv::Vec3f v = response.at<cv::Vec3f>(z, 0);
+    for (int c = 0; c < 3; ++c) r.g[std::size_t(c)][std::size_t(z)] = v[c] / response.at<cv::Vec3f>(128, 0)[c] * scale;
+  }
+  return r;
+}
+
+Image merge_brackets(const std::vector<ImageFile>& brackets, const std::vector<double>& exposures, const ResponseCurve& r) {
+  const std::vector<cv::Mat> mats = to_mats(brackets);
+  // OpenCV wants g in its own scale (any constant factor passes through to the result).
+  cv::Mat response(256, 1, CV_32FC3);
+  for (int z = 0; z < 256; ++z)
+    for (int c = 0; c < 3; ++c) response.at<cv::Vec3f>(z, 0)[c] = std::max(r.g[std::size_t(c)][std::size_t(z)], 1e-12f);
+  cv::Mat hdr;
+  cv::createMergeDebevec()->process(mats, hdr, to_floats(exposures), response);
+  const Image& first = brackets[0].stored;
+  Image out(first.width, first.height, 3);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x)
+      for (int c = 0; c < 3; ++c) out.at(x, y)[c] = hdr.at<cv::Vec3f>(y, x)[c];
+  sanitize(out);
+  return out;
+}
+
+Image linearize_with_response(const ImageFile& file, const ResponseCurve& r) {
+  if (file.bits != 8) throw InputError(file.path, "a recovered response applies to 8-bit images only");
+  Image out(file.stored.width, file.stored.height, 3);
+  for (std::size_t i = 0; i < out.data.size(); ++i) {
+    const int z = int(std::lround(std::clamp(file.stored.data[i], 0.0f, 1.0f) * 255.0f));
+    out.data[i] = r.g[i % 3][std::size_t(z)];
+  }
+  return out;
+}
+
+double clipped_fraction(const ImageFile& file) {
+  if (!file.display_referred) return 0.0;
+  const Image& img = file.stored;
+  const float top = file.bits == 8 ? 254.5f / 255.0f : 65534.5f / 65535.0f;
+  std::size_t clipped = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const float* p = img.at(x, y);
+      clipped += (p[0] >= top || p[1] >= top || p[2] >= top);
+    }
+  return double(clipped) / (double(img.width) * img.height);
+}
+
+}  // namespace insitu
