@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "equirect.h"
+#include "json_reader.h"
 #include "sixshot.h"
 
 namespace insitu {
@@ -13,6 +14,8 @@ EnvironmentSpec environment_from_argument(const std::string& path, std::string* 
   std::string ext = std::filesystem::path(path).extension().string();
   for (auto& c : ext) c = char(std::tolower(c));
   if (ext == ".json") {
+    // A scene file (it has a photo), or a file holding just an environment object.
+    if (!read_json_file(path).contains("photo")) return parse_environment_file(path);
     const SceneSpec scene = parse_scene_file(path);
     if (photo) *photo = scene.photo;
     return scene.environment;

@@ -27,8 +27,9 @@ struct EnvironmentInfo {
   std::string exposure_source = "none";                  // "exif", "factor", "estimate", "none"
 };
 
-// An environment named on the command line: a scene file (its environment) or an HDR image.
-// For a scene file, *photo receives its photo's path.
+// An environment named on the command line: a scene file (its environment), a JSON file holding
+// just an environment object (e.g. {"shots": {...}}), or an HDR image. For a scene file, *photo
+// receives its photo's path.
 EnvironmentSpec environment_from_argument(const std::string& path, std::string* photo = nullptr);
 
 // `photo` (as stored) gives k_photo and the estimate; without it shots keep their own unit.

@@ -261,6 +261,11 @@ Mat4d object_transform(const Vec3d& translate, double rotate_deg, const Vec3d& a
   return M;
 }
 
+EnvironmentSpec parse_environment_file(const std::string& path) {
+  const json doc = read_json_file(path);
+  return parse_environment(JsonValue(doc, path, "$"), fs::path(path).parent_path());
+}
+
 SceneSpec parse_scene_file(const std::string& path) {
   const json doc = read_json_file(path);
   const fs::path dir = fs::path(path).parent_path();

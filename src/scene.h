@@ -81,6 +81,8 @@ struct SceneSpec {
 };
 
 SceneSpec parse_scene_file(const std::string& path);
+// A JSON file holding just an environment object (the scene file's "environment" value).
+EnvironmentSpec parse_environment_file(const std::string& path);
 
 // Builds the camera for a photo of width x height (not for Kind::Points: see pipeline.cpp).
 Camera build_camera(const CameraSpec& spec, int width, int height);
