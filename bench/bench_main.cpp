@@ -77,6 +77,34 @@ void BM_DemoRealtime(benchmark::State& state) {
 }
 BENCHMARK(BM_DemoRealtime)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The demo with `path` (objects only so far), 16 spp, one thread: camera samples per second per
+// core.
+void BM_DemoPath(benchmark::State& state) {
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 1);
+  SceneSpec spec = parse_scene_file(std::string(INSITU_SOURCE_DIR) + "/scenes/demo/scene.json");
+  spec.render.integrator = "path";
+  const LoadedScene scene = load_scene(spec);
+  for (auto _ : state) benchmark::DoNotOptimize(render_scene(scene));
+  state.counters["camera_samples/s"] =
+      benchmark::Counter(double(scene.camera.width) * scene.camera.height * spec.render.spp * double(state.iterations()),
+                         benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_DemoPath)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// A bare Embree rtcIntersect1 loop (through EmbreeScene::intersect) over the same primary rays,
+// one thread: the floor under any integrator's cost per camera sample.
+void BM_DemoPrimaryIntersect(benchmark::State& state) {
+  SceneSpec spec = parse_scene_file(std::string(INSITU_SOURCE_DIR) + "/scenes/demo/scene.json");
+  const LoadedScene scene = load_scene(spec);
+  std::vector<Ray> rays;
+  for (int y = 0; y < scene.camera.height; ++y)
+    for (int x = 0; x < scene.camera.width; ++x) rays.push_back(scene.camera.ray({x + 0.5, y + 0.5}));
+  for (auto _ : state)
+    for (const Ray& r : rays) benchmark::DoNotOptimize(scene.objects->intersect(r));
+  state.counters["rays/s"] = benchmark::Counter(double(rays.size()) * double(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_DemoPrimaryIntersect)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // Loading the demo scene: photo, six shots -> cube, three OBJ files, Embree build.
 void BM_DemoLoad(benchmark::State& state) {
   const SceneSpec spec = parse_scene_file(std::string(INSITU_SOURCE_DIR) + "/scenes/demo/scene.json");

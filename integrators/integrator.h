@@ -19,6 +19,7 @@ struct RenderInputs {
   const EmbreeScene* objects = nullptr;
   const CubeMap* environment = nullptr;
   IrradianceMode irradiance_mode = IrradianceMode::kExact;  // for integrators that use one
+  int max_depth = 5;                                         // bounces, for `path`
 };
 
 // One camera sample: the objects' radiance where they cover the sample, and the coverage (0/1

@@ -7,6 +7,7 @@ namespace insitu {
 
 std::unique_ptr<Integrator> make_realtime_integrator(const RenderInputs& inputs);
 std::unique_ptr<Integrator> make_irradiance_integrator(const RenderInputs& inputs);
+std::unique_ptr<Integrator> make_path_integrator(const RenderInputs& inputs);
 
 const std::vector<IntegratorEntry>& integrator_registry() {
   static const std::vector<IntegratorEntry> table = {
@@ -14,6 +15,8 @@ const std::vector<IntegratorEntry>& integrator_registry() {
        make_realtime_integrator},
       {"irradiance", "Lambertian objects lit by an irradiance mode (render.irradiance), no visibility",
        make_irradiance_integrator},
+      {"path", "path tracing of the objects with environment importance sampling and MIS (shadows between objects)",
+       make_path_integrator},
   };
   return table;
 }

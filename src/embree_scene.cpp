@@ -73,6 +73,22 @@ Hit EmbreeScene::intersect(const Ray& ray, float t_near, float t_far) const {
   return hit;
 }
 
+bool EmbreeScene::occluded(const Ray& ray, float t_near, float t_far) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay r;
+  r.org_x = ray.origin.x(); r.org_y = ray.origin.y(); r.org_z = ray.origin.z();
+  r.dir_x = ray.dir.x(); r.dir_y = ray.dir.y(); r.dir_z = ray.dir.z();
+  r.tnear = t_near;
+  r.tfar = t_far;
+  r.time = 0.0f;
+  r.mask = 0xFFFFFFFFu;
+  r.id = 0;
+  r.flags = 0;
+  rtcOccluded1(impl_->scene, &context, &r);
+  return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
 SurfacePoint EmbreeScene::surface(const Ray& ray, const Hit& hit) const {
   const Mesh& mesh = meshes_[hit.mesh];
   const Triangle& tri = mesh.triangles[hit.triangle];

@@ -34,6 +34,8 @@ class EmbreeScene {
 
   Hit intersect(const Ray& ray, float t_near = 0.0f,
                 float t_far = std::numeric_limits<float>::infinity()) const;
+  // Any hit in (t_near, t_far): a shadow ray.
+  bool occluded(const Ray& ray, float t_near, float t_far) const;
   SurfacePoint surface(const Ray& ray, const Hit& hit) const;
   const std::vector<Mesh>& meshes() const { return meshes_; }
   bool empty() const { return meshes_.empty(); }

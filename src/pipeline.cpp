@@ -68,6 +68,7 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress) 
   inputs.objects = scene.objects.get();
   inputs.environment = &scene.environment;
   inputs.irradiance_mode = scene.spec.render.irradiance;
+  inputs.max_depth = scene.spec.render.max_depth;
   const auto start = std::chrono::steady_clock::now();
   auto integrator = make_integrator(scene.spec.render.integrator, inputs);
   RenderResult r;

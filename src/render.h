@@ -16,6 +16,7 @@ struct RenderSettings {
   std::string integrator = "realtime";
   IrradianceMode irradiance = IrradianceMode::kExact;
   int spp = 16;
+  int max_depth = 5;
   std::uint64_t seed = 1;
 };
 

@@ -324,6 +324,7 @@ SceneSpec parse_scene_file(const std::string& path) {
       if (!mode) irr->fail("expected \"gaussian\", \"sh9\" or \"exact\"");
       scene.render.irradiance = *mode;
     }
+    if (auto d = ro.find("max_depth")) scene.render.max_depth = int(d->integer(1, 1000));
     if (auto spp = ro.find("spp")) scene.render.spp = int(spp->integer(1, 1 << 20));
     if (auto seed = ro.find("seed")) scene.render.seed = std::uint64_t(seed->integer(0, std::numeric_limits<long>::max()));
     ro.finish();

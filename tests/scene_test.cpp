@@ -95,7 +95,7 @@ TEST(SceneFile, OutOfRangeValues) {
   expect_error(fx, j, ":$.camera.look", "look point equals the eye");
   j = fx.scene;
   j["render"]["integrator"] = "raytrace";
-  expect_error(fx, j, ":$.render.integrator", "unknown integrator 'raytrace' (known: realtime, irradiance)");
+  expect_error(fx, j, ":$.render.integrator", "unknown integrator 'raytrace' (known: realtime, irradiance, path)");
 }
 
 TEST(SceneFile, MissingFilesAndKeys) {
