@@ -69,6 +69,8 @@ BENCHMARK(BM_LoadObj)->Unit(benchmark::kMillisecond);
 void BM_DemoRealtime(benchmark::State& state) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(state.range(0)));
   SceneSpec spec = parse_scene_file(std::string(INSITU_SOURCE_DIR) + "/scenes/demo/scene.json");
+  spec.render.integrator = "realtime";
+  spec.render.spp = 16;
   const LoadedScene scene = load_scene(spec);
   for (auto _ : state) benchmark::DoNotOptimize(render_scene(scene));
   state.counters["camera_samples/s"] =
@@ -77,12 +79,13 @@ void BM_DemoRealtime(benchmark::State& state) {
 }
 BENCHMARK(BM_DemoRealtime)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// The demo with `path` (objects only so far), 16 spp, one thread: camera samples per second per
+// The demo with `path` and its floor catcher, 16 spp, one thread: camera samples per second per
 // core.
 void BM_DemoPath(benchmark::State& state) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 1);
   SceneSpec spec = parse_scene_file(std::string(INSITU_SOURCE_DIR) + "/scenes/demo/scene.json");
   spec.render.integrator = "path";
+  spec.render.spp = 16;
   const LoadedScene scene = load_scene(spec);
   for (auto _ : state) benchmark::DoNotOptimize(render_scene(scene));
   state.counters["camera_samples/s"] =

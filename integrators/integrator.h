@@ -15,9 +15,20 @@
 namespace insitu {
 
 // What an integrator may use: the objects, and the room's light as a radiance cube.
+// A plane of the local scene (the real floor): catches the objects' shadows and bounce light.
+struct CatcherPlane {
+  Vec3f point, normal;               // unit normal, on the side the camera sees
+  bool albedo_from_photo = true;
+  Rgb albedo = Rgb::Zero();
+  Rgb irradiance = Rgb::Zero();      // E(normal) of the environment without objects (exact)
+};
+
 struct RenderInputs {
   const EmbreeScene* objects = nullptr;
   const CubeMap* environment = nullptr;
+  std::vector<CatcherPlane> planes;     // the local scene
+  const Image* photo_linear = nullptr;  // the real room as the camera saw it
+  const Camera* camera = nullptr;
   IrradianceMode irradiance_mode = IrradianceMode::kExact;  // for integrators that use one
   int max_depth = 5;                                         // bounces, for `path`
 };
@@ -27,6 +38,9 @@ struct RenderInputs {
 struct CameraSample {
   Rgb radiance = Rgb::Zero();
   float coverage = 0.0f;
+  // Differential rendering: the catcher's radiance with and without the objects, computed with the
+  // same random numbers (identical where no object interferes). Zero unless the sample saw a catcher.
+  Rgb with_objects = Rgb::Zero(), without_objects = Rgb::Zero();
 };
 
 class Integrator {

@@ -1,19 +1,31 @@
-// Integrator `path`: unidirectional path tracing of the objects, lit by the environment cube.
+// Integrator `path`: unidirectional path tracing of the objects, lit by the environment cube, and
+// the shadow catcher by differential rendering (Debevec 1998).
 //
 //   L_o(x, ω_o) = ∫ f(x, ω_o, ω_i) L_i(x, ω_i) cos θ_i dω_i
 //
-// At every vertex: next-event estimation toward the environment (EnvSampler: texels in proportion
-// to luminance × solid angle, with a shadow ray) and a BSDF sample (cosine-weighted), combined by
-// multiple importance sampling with the power heuristic (Veach 1997, §9.2); escaping rays take the
-// environment's radiance as the cube's nearest texel, the same piecewise-constant function the
-// `exact` irradiance integrates. Russian roulette from the third bounce on, survival probability
-// min(0.95, max throughput). Materials: Lambertian, ρ = Kd × map_Kd.
+// Objects. At every vertex: next-event estimation toward the environment (EnvSampler: texels in
+// proportion to luminance × solid angle, with a shadow ray) and a BSDF sample (cosine-weighted),
+// combined by multiple importance sampling with the power heuristic (Veach 1997, §9.2). Escaping
+// rays take the cube's nearest texel, the same piecewise-constant function the `exact` irradiance
+// integrates. A ray that meets a catcher plane sees the real room: the photo's radiance where the
+// point is in the photo's frame (a Lambertian floor looks the same from the object), else the
+// cube; such directions are reached by BSDF sampling only (weight 1; the environment sample
+// toward them counts as occluded). Russian roulette from the third bounce on, survival
+// probability min(0.95, max throughput). Materials: Lambertian, ρ = Kd × map_Kd.
+//
+// Catcher. A camera sample that meets a catcher plane (local_scene) before any object estimates
+// the plane's reflected radiance twice with the same random numbers: with the objects (their
+// shadow on the environment sample, and what the BSDF sample sees of them, traced as above) and
+// without them. Where no object interferes the two are bitwise equal, so the photo there is left
+// exactly as it was. The albedo is the plane's, or, by default, the photo's: ρ = π P / E with E
+// the exact irradiance at the plane's normal. One bounce at the catcher: its own light on the
+// objects and on itself is already in the photo.
 //
 // Rays leave a surface from p + n_g·ε with ε = 10⁻⁵·max(1 mm, |p|_∞): an offset relative to the
 // position's magnitude, so that objects of a millimetre and of a kilometre are treated alike.
 //
 // Parameters: render.max_depth (bounces, default 5), render.spp.
-// Not yet (issue 5): the glossy GGX lobe, the local scene (catcher planes), differential rendering.
+// Not yet (issue 5): the glossy GGX lobe, parallax correction against a room box, catcher meshes.
 #include <algorithm>
 
 #include "env_sampling.h"
@@ -21,6 +33,8 @@
 
 namespace insitu {
 namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 // Cosine-weighted direction about n (Malley's method), pdf = cos θ / π.
 Vec3f cosine_sample(const Vec3f& n, float u1, float u2) {
@@ -40,25 +54,64 @@ Vec3f offset_origin(const Vec3f& p, const Vec3f& ng) {
 class PathIntegrator final : public Integrator {
  public:
   explicit PathIntegrator(const RenderInputs& in)
-      : objects_(in.objects), env_(*in.environment), max_depth_(std::max(1, in.max_depth)) {}
+      : in_(in), objects_(in.objects), env_(*in.environment), max_depth_(std::max(1, in.max_depth)) {}
 
   CameraSample sample(const Ray& camera_ray, Sampler& sampler) const override {
     CameraSample out;
-    Hit hit = objects_->intersect(camera_ray);
+    const Hit hit = objects_->intersect(camera_ray);
+    float t_plane = 0;
+    const int plane = hit_plane(camera_ray, hit.valid() ? hit.t : kInfinity, &t_plane);
+    if (plane >= 0) {
+      catcher(camera_ray, plane, t_plane, sampler, out);
+      return out;
+    }
     if (!hit.valid()) return out;
     out.coverage = 1.0f;
-    Ray ray = camera_ray;
+    out.radiance = trace_from(camera_ray, hit, sampler, 0);
+    return out;
+  }
+
+ private:
+  // The nearest catcher plane the ray meets from its front side within (0, t_max).
+  int hit_plane(const Ray& ray, float t_max, float* t_hit) const {
+    int best = -1;
+    for (std::size_t k = 0; k < in_.planes.size(); ++k) {
+      const CatcherPlane& p = in_.planes[k];
+      const float dn = ray.dir.dot(p.normal);
+      if (!(dn < 0)) continue;
+      const float t = (p.point - ray.origin).dot(p.normal) / dn;
+      if (t > 0 && t < t_max) { t_max = t; best = int(k); }
+    }
+    if (best >= 0) *t_hit = t_max;
+    return best;
+  }
+
+  // Radiance of the real room at a point of a catcher plane seen along `dir`.
+  Rgb room_radiance(const Vec3f& p, const Vec3f& dir) const {
+    if (in_.camera && in_.photo_linear) {
+      double depth = 0;
+      const Vec2d uv = in_.camera->project(p.cast<double>(), &depth);
+      if (depth > 0 && uv.x() >= 0 && uv.y() >= 0 && uv.x() < in_.camera->width && uv.y() < in_.camera->height)
+        return in_.photo_linear->rgb(int(uv.x()), int(uv.y()));
+    }
+    return env_.radiance(dir);
+  }
+
+  // Radiance arriving along `ray` (which has hit an object at `hit`), by path tracing.
+  Rgb trace_from(Ray ray, Hit hit, Sampler& sampler, int depth) const {
     Rgb throughput = Rgb::Ones(), L = Rgb::Zero();
-    for (int depth = 0; depth < max_depth_; ++depth) {
+    for (; depth < max_depth_; ++depth) {
       const SurfacePoint sp = objects_->surface(ray, hit);
       const Rgb albedo = sp.material->base_colour(sp.uv);
       const Vec3f& n = sp.ns_world;
       const Vec3f origin = offset_origin(sp.p_world, sp.ng_world);
-      // Next-event estimation toward the environment.
+      // Next-event estimation toward the environment (catcher planes occlude it).
       const float ue = sampler.next(), us = sampler.next(), ut = sampler.next();
       const EnvSample es = env_.sample(ue, us, ut);
       const float cos_l = n.dot(es.dir);
-      if (cos_l > 0 && es.dir.dot(sp.ng_world) > 0 && !objects_->occluded({origin, es.dir}, 0.0f, kInfinity)) {
+      float t_dummy = 0;
+      if (cos_l > 0 && es.dir.dot(sp.ng_world) > 0 && hit_plane({origin, es.dir}, kInfinity, &t_dummy) < 0 &&
+          !objects_->occluded({origin, es.dir}, 0.0f, kInfinity)) {
         const float pdf_bsdf = cos_l / kPiF;
         L += throughput * albedo / kPiF * es.radiance * (cos_l / es.pdf * power_heuristic(es.pdf, pdf_bsdf));
       }
@@ -69,6 +122,11 @@ class PathIntegrator final : public Integrator {
       throughput *= albedo;
       ray = {origin, wi};
       hit = objects_->intersect(ray);
+      float t_plane = 0;
+      if (hit_plane(ray, hit.valid() ? hit.t : kInfinity, &t_plane) >= 0) {
+        L += throughput * room_radiance(ray.origin + t_plane * wi, wi);
+        break;
+      }
       if (!hit.valid()) {
         L += throughput * env_.radiance(wi) * power_heuristic(pdf_bsdf, env_.pdf(wi));
         break;
@@ -79,12 +137,43 @@ class PathIntegrator final : public Integrator {
         throughput /= q;
       }
     }
-    out.radiance = L;
-    return out;
+    return L;
   }
 
- private:
-  static constexpr float kInfinity = std::numeric_limits<float>::infinity();
+  void catcher(const Ray& camera_ray, int plane_index, float t, Sampler& sampler, CameraSample& out) const {
+    const CatcherPlane& plane = in_.planes[std::size_t(plane_index)];
+    const Vec3f x = camera_ray.origin + t * camera_ray.dir;
+    const Vec3f& n = plane.normal;
+    // ρ/π: the plane's, or the photo's P/E.
+    Rgb rho_over_pi = plane.albedo / kPiF;
+    if (plane.albedo_from_photo) {
+      const Rgb P = room_radiance(x, -camera_ray.dir);
+      for (int c = 0; c < 3; ++c) rho_over_pi[c] = plane.irradiance[c] > 0 ? P[c] / plane.irradiance[c] : 0.0f;
+    }
+    const Vec3f origin = offset_origin(x, n);
+    Rgb with = Rgb::Zero(), without = Rgb::Zero();
+    // Environment sample: blocked by the objects or not.
+    const float ue = sampler.next(), us = sampler.next(), ut = sampler.next();
+    const EnvSample es = env_.sample(ue, us, ut);
+    const float cos_l = n.dot(es.dir);
+    if (cos_l > 0) {
+      const Rgb c = rho_over_pi * es.radiance * (cos_l / es.pdf * power_heuristic(es.pdf, cos_l / kPiF));
+      without += c;
+      if (!objects_->occluded({origin, es.dir}, 0.0f, kInfinity)) with += c;
+    }
+    // BSDF sample: the environment, or what the objects send back.
+    const Vec3f wi = cosine_sample(n, sampler.next(), sampler.next());
+    const float pdf_bsdf = n.dot(wi) / kPiF;
+    const Rgb env_term = kPiF * rho_over_pi * env_.radiance(wi) * power_heuristic(pdf_bsdf, env_.pdf(wi));
+    without += env_term;
+    const Hit hit = objects_->intersect({origin, wi});
+    if (hit.valid()) with += kPiF * rho_over_pi * trace_from({origin, wi}, hit, sampler, 1);
+    else with += env_term;
+    out.with_objects = with;
+    out.without_objects = without;
+  }
+
+  const RenderInputs in_;
   const EmbreeScene* objects_;
   EnvSampler env_;
   int max_depth_;

@@ -1,19 +1,39 @@
-// Compositing the rendered objects over the linearized photo, and encoding the result.
+// Compositing the rendered layers over the linearized photo P (Debevec 1998, differential
+// rendering), and encoding the result.
 //
-//   over:  C = O + (1 − α) P        O: objects premultiplied by coverage α, P: linear photo
+// Per pixel, with O the objects premultiplied by their coverage α, and W, N the catcher's radiance
+// with and without the objects (means over the pixel's samples, 0 where no catcher was seen):
+//   additive:  C = O + (1 − α) P + (W − N)
+//   ratio:     C = O + (1 − α) P · W/N      (per channel; where N = 0 the ratio is taken as 1:
+//                                              nothing lit the catcher, so nothing can be removed)
+// Without a catcher (W = N = 0) both reduce to the alpha-over C = O + (1 − α) P. The ratio form
+// does not depend on the catcher's albedo, so it is robust to errors in it; the additive form is
+// what Debevec wrote. W and N come from the same random numbers, so they are bitwise equal where
+// no object blocks or lights the catcher.
 //
-// Encoding for a display-referred output (PNG, JPEG): pixels with α = 0 are the photo's own
-// stored values, so they are bit-identical to the input; all others are linear_to_srgb(C).
+// Encoding for a display-referred output (PNG, JPEG): pixels the render left untouched (α = 0 and
+// W = N bit for bit) keep the photo's own stored values, so they are bit-identical to the input;
+// all others go through the inverse of the curve that linearized the photo — the response
+// recovered from brackets when there is one, else the sRGB curve — so that a pixel changed only a
+// little is encoded only a little differently.
 #pragma once
+#include "hdr_merge.h"
 #include "image.h"
 #include "render.h"
+#include "scene.h"
 
 namespace insitu {
 
-Image composite_over(const Image& photo_linear, const RenderLayers& layers);
+Image composite(const Image& photo_linear, const RenderLayers& layers, CompositeMode mode);
+// 1 channel: 1 where the render changed the pixel, 0 where it is the photo's.
+Image touched_mask(const RenderLayers& layers);
+// W/N per channel (1 where N = 0): the shadow ratio layer.
+Image shadow_ratio(const RenderLayers& layers);
 
-// `stored` is the photo as read (ImageFile::stored); display_referred says whether it is
-// sRGB-encoded.
-Image encode_composite(const Image& composite_linear, const Image& alpha, const ImageFile& photo);
+Image encode_composite(const Image& composite_linear, const Image& touched, const ImageFile& photo,
+                       const ResponseCurve* response = nullptr);
+// The inverse of a response curve, continuous: the code value (0…1) whose g is `linear`, by
+// interpolation between the two codes around it (g made non-decreasing first).
+float inverse_response(const ResponseCurve& response, int channel, float linear);
 
 }  // namespace insitu

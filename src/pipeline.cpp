@@ -6,6 +6,7 @@
 
 #include "composite.h"
 #include "integrators/integrator.h"
+#include "irradiance.h"
 
 namespace insitu {
 
@@ -56,8 +57,9 @@ LoadedScene load_scene(const SceneSpec& spec) {
     transform_mesh(mesh, obj.M_world_from_object);
     meshes.push_back(std::move(mesh));
   }
-  if (!spec.local_scene.empty() && spec.render.integrator == "realtime")
-    s.warnings.add(spec.path, "local_scene is not used by the realtime integrator (the legacy path draws no shadows)");
+  if (!spec.local_scene.empty() && spec.render.integrator != "path")
+    s.warnings.add(spec.path, "local_scene is used only by the path integrator (" + spec.render.integrator +
+                                  " draws no shadows on it)");
   s.objects = std::make_unique<EmbreeScene>(std::move(meshes));
   s.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return s;
@@ -68,14 +70,28 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress) 
   inputs.objects = scene.objects.get();
   inputs.environment = &scene.environment;
   inputs.irradiance_mode = scene.spec.render.irradiance;
+  inputs.photo_linear = &scene.photo_linear;
+  inputs.camera = &scene.camera;
+  for (const PlaneSpec& p : scene.spec.local_scene) {
+    CatcherPlane c;
+    c.point = p.point.cast<float>();
+    c.normal = p.normal.normalized().cast<float>();
+    // The side the camera sees.
+    if (c.normal.dot(scene.camera.eye_world().cast<float>() - c.point) < 0) c.normal = -c.normal;
+    c.albedo_from_photo = p.albedo_from_photo;
+    c.albedo = p.albedo;
+    c.irradiance = irradiance_reference(scene.environment, c.normal.cast<double>());
+    inputs.planes.push_back(c);
+  }
   inputs.max_depth = scene.spec.render.max_depth;
   const auto start = std::chrono::steady_clock::now();
   auto integrator = make_integrator(scene.spec.render.integrator, inputs);
   RenderResult r;
   r.prepare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.layers = render(scene.camera, *integrator, scene.spec.render, progress);
-  r.composite_linear = composite_over(scene.photo_linear, r.layers);
-  r.composite_encoded = encode_composite(r.composite_linear, r.layers.alpha, scene.photo);
+  r.composite_linear = composite(scene.photo_linear, r.layers, scene.spec.composite);
+  r.composite_encoded = encode_composite(r.composite_linear, touched_mask(r.layers), scene.photo,
+                                         scene.environment_info.response ? &*scene.environment_info.response : nullptr);
   return r;
 }
 
@@ -87,9 +103,14 @@ void write_outputs(const LoadedScene& scene, const RenderResult& r) {
   write_image(image, linear_out ? r.composite_linear : r.composite_encoded);
   if (!scene.spec.output.layers.empty()) {
     const Image &c = r.composite_linear, &o = r.layers.objects, &a = r.layers.alpha;
+    const Image &w = r.layers.with_objects, &n = r.layers.without_objects;
+    const Image ratio = shadow_ratio(r.layers);
     write_exr_channels(scene.spec.output.layers, c.width, c.height,
                        {{"R", &c, 0}, {"G", &c, 1}, {"B", &c, 2},
                         {"objects.R", &o, 0}, {"objects.G", &o, 1}, {"objects.B", &o, 2}, {"objects.A", &a, 0},
+                        {"with.R", &w, 0}, {"with.G", &w, 1}, {"with.B", &w, 2},
+                        {"without.R", &n, 0}, {"without.G", &n, 1}, {"without.B", &n, 2},
+                        {"shadow_ratio.R", &ratio, 0}, {"shadow_ratio.G", &ratio, 1}, {"shadow_ratio.B", &ratio, 2},
                         {"photo.R", &scene.photo_linear, 0}, {"photo.G", &scene.photo_linear, 1},
                         {"photo.B", &scene.photo_linear, 2}});
   }

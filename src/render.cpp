@@ -16,6 +16,8 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
   RenderLayers out;
   out.objects = Image(w, h, 3);
   out.alpha = Image(w, h, 1);
+  out.with_objects = Image(w, h, 3);
+  out.without_objects = Image(w, h, 3);
   int grid = int(std::lround(std::sqrt(double(spp))));
   if (grid * grid != spp) grid = 0;  // not a perfect square: plain jitter
   std::atomic<std::size_t> nonfinite{0};
@@ -29,7 +31,7 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
     for (int y = r.rows().begin(); y < r.rows().end(); ++y)
       for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
         const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(w) + std::uint64_t(x);
-        Rgb sum = Rgb::Zero();
+        Rgb sum = Rgb::Zero(), with = Rgb::Zero(), without = Rgb::Zero();
         double coverage = 0;
         for (int s = 0; s < spp; ++s) {
           Sampler sampler(settings.seed, pixel, std::uint64_t(s));
@@ -39,11 +41,19 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
             jy = (float(s / grid) + jy) / float(grid);
           }
           const CameraSample cs = integrator.sample(camera.ray({double(x) + jx, double(y) + jy}), sampler);
-          if (!cs.radiance.allFinite() || !std::isfinite(cs.coverage)) { ++local_nonfinite; continue; }
+          if (!cs.radiance.allFinite() || !std::isfinite(cs.coverage) || !cs.with_objects.allFinite() ||
+              !cs.without_objects.allFinite()) {
+            ++local_nonfinite;
+            continue;
+          }
           sum += cs.radiance * cs.coverage;
           coverage += cs.coverage;
+          with += cs.with_objects;
+          without += cs.without_objects;
         }
         out.objects.set_rgb(x, y, sum / float(spp));
+        out.with_objects.set_rgb(x, y, with / float(spp));
+        out.without_objects.set_rgb(x, y, without / float(spp));
         *out.alpha.at(x, y) = float(coverage / spp);
       }
     nonfinite += local_nonfinite;

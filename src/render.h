@@ -23,6 +23,7 @@ struct RenderSettings {
 struct RenderLayers {
   Image objects;  // RGB, premultiplied by coverage: mean over samples of radiance × coverage
   Image alpha;    // 1 channel: mean coverage
+  Image with_objects, without_objects;  // RGB: mean over samples of the catcher's radiance (0 off it)
   std::size_t nonfinite_samples = 0;  // zeroed and counted, never propagated
   double seconds = 0;
 };

@@ -329,6 +329,11 @@ SceneSpec parse_scene_file(const std::string& path) {
     if (auto seed = ro.find("seed")) scene.render.seed = std::uint64_t(seed->integer(0, std::numeric_limits<long>::max()));
     ro.finish();
   }
+  if (auto c = root.find("composite")) {
+    const std::string mode = c->string();
+    if (mode == "additive") scene.composite = CompositeMode::kAdditive;
+    else if (mode != "ratio") c->fail("expected \"ratio\" or \"additive\"");
+  }
   scene.output.image = resolve(dir, "out/composite.png");
   scene.output.layers = resolve(dir, "out/layers.exr");
   if (auto out = root.find("output")) {

@@ -68,6 +68,9 @@ struct OutputSpec {
   std::string layers;  // multi-layer EXR
 };
 
+// How the catcher's change is applied to the photo (composite.h).
+enum class CompositeMode { kRatio, kAdditive };
+
 struct SceneSpec {
   std::string path;  // the scene file
   std::string photo;
@@ -77,6 +80,7 @@ struct SceneSpec {
   std::vector<PlaneSpec> local_scene;
   std::vector<ObjectSpec> objects;
   RenderSettings render;
+  CompositeMode composite = CompositeMode::kRatio;
   OutputSpec output;
 };
 

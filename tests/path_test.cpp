@@ -131,7 +131,9 @@ TEST(Path, WhiteFurnaceAtEveryScale) {
   env.update_borders();
   for (double scale : {1e-3, 1.0, 1e3}) {
     const EmbreeScene box = make_box(dir, "1 1 1", scale);
-    RenderInputs in{&box, &env};
+    RenderInputs in;
+    in.objects = &box;
+    in.environment = &env;
     const auto path = make_integrator("path", in);
     const auto irr = make_integrator("irradiance", in);
     const std::vector<Ray> rays = {{Vec3f(0.3f, 0.2f, 5) * float(scale), Vec3f(-0.05f, 0.02f, -1).normalized()},
@@ -152,7 +154,9 @@ TEST(Path, ConvexObjectEqualsExactIrradiance) {
   test::TempDir dir;
   const CubeMap env = cube_from_equirect(linearize(read_image_file(test::shared_data() + "/hdri/sunset.exr")), 16);
   const EmbreeScene box = make_box(dir, "0.5 0.4 0.3", 1.0);
-  RenderInputs in{&box, &env};
+  RenderInputs in;
+  in.objects = &box;
+  in.environment = &env;
   const auto path = make_integrator("path", in);
   const struct { Ray ray; Vec3d normal; } cases[] = {
       {{Vec3f(0.2f, 0.1f, 5), Vec3f(0, 0, -1)}, {0, 0, 1}},

@@ -89,7 +89,10 @@ TEST(Realtime, ConstantEnvironmentGivesBaseColourTimesRadiance) {
     for (int j = 0; j < 8; ++j)
       for (int i = 0; i < 8; ++i) env.set_texel(f, i, j, Rgb(2.0f, 3.0f, 1e4f));
   env.update_borders();
-  const auto integrator = make_integrator("realtime", {&scene, &env});
+  RenderInputs in;
+  in.objects = &scene;
+  in.environment = &env;
+  const auto integrator = make_integrator("realtime", in);
   std::mt19937 rng(2);
   std::normal_distribution<float> g(0, 1);
   for (int k = 0; k < 500; ++k) {

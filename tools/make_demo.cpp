@@ -255,15 +255,24 @@ int main(int argc, char** argv) {
   exif.iso = 100;
   write_image((out / "photo.jpg").string(), encode_srgb(photo), &exif);
 
-  // Six 90° shots from where the furniture stands, 256 × 256, 3 × 3 samples per pixel
-  // (render_shot samples pixel centres; we supersample by rendering larger and shrinking).
+  // Six 90° shots from where the furniture stands, 256 × 256 (rendered at 768² and shrunk), each
+  // as three exposure brackets four stops apart (EXIF 1/960 s, 1/60 s, 1/4 s), so that the window
+  // and the lamp are recorded without clipping in the shortest one.
   const Vec3f shot_origin(-0.2f, 0.9f, -1.2f);
   const int faced = kNegZ;
   const char* names[6] = {"east", "west", "ceiling", "floor", "south", "north"};
+  const double bracket_factor[3] = {1.0 / 16, 1.0, 16.0};
+  const char* bracket_suffix[3] = {"_short", "", "_long"};
   for (int f = 0; f < 6; ++f) {
     auto radiance = [&](const Vec3f& d) { return room_radiance(shot_origin, d); };
-    const Image big = render_shot(radiance, f, faced, 90.0, 768, 768);
-    write_image((out / "shots" / (std::string(names[f]) + ".jpg")).string(), encode_srgb(resize(big, 256, 256)), &exif);
+    const Image shot = resize(render_shot(radiance, f, faced, 90.0, 768, 768), 256, 256);
+    for (int b = 0; b < 3; ++b) {
+      Image exposed = shot;
+      for (float& v : exposed.data) v *= float(bracket_factor[b]);
+      Exposure e = exif;
+      e.time_s = *exif.time_s * bracket_factor[b];
+      write_image((out / "shots" / (std::string(names[f]) + bracket_suffix[b] + ".jpg")).string(), encode_srgb(exposed), &e);
+    }
   }
 
   write_furniture(out);
@@ -296,18 +305,22 @@ int main(int argc, char** argv) {
   }
   write_text(out / "points.json", points.dump(2) + "\n");
 
+  auto brackets = [](const std::string& name) {
+    return nlohmann::ordered_json::array({"shots/" + name + "_short.jpg", "shots/" + name + ".jpg", "shots/" + name + "_long.jpg"});
+  };
   nlohmann::ordered_json scene = {
       {"photo", "photo.jpg"},
       {"camera", {{"points", "points.json"}}},
       {"environment",
        {{"shots",
-         {{"+x", "shots/east.jpg"}, {"-x", "shots/west.jpg"}, {"+z", "shots/south.jpg"}, {"-z", "shots/north.jpg"},
-          {"up", "shots/ceiling.jpg"}, {"down", "shots/floor.jpg"}, {"faced", "-z"}}}}},
+         {{"+x", brackets("east")}, {"-x", brackets("west")}, {"+z", brackets("south")}, {"-z", brackets("north")},
+          {"up", brackets("ceiling")}, {"down", brackets("floor")}, {"faced", "-z"}}}}},
+      {"local_scene", {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}}},
       {"objects",
        {{{"mesh", "table.obj"}, {"translate", {-0.2, 0, -1.2}}, {"rotate", 12}},
         {{"mesh", "sofa.obj"}, {"translate", {0.9, 0, -2.35}}, {"rotate", -8}},
         {{"mesh", "ball.obj"}, {"translate", {0.95, 0, -0.2}}}}},
-      {"render", {{"integrator", "realtime"}, {"spp", 16}}},
+      {"render", {{"integrator", "path"}, {"spp", 64}}},
   };
   write_text(out / "scene.json", scene.dump(2) + "\n");
   std::printf("demo scene written to %s\n", out.string().c_str());

@@ -1,0 +1,104 @@
+#include <gtest/gtest.h>
+
+#include "composite.h"
+#include "integrators/integrator.h"
+#include "mesh.h"
+#include "pipeline.h"
+#include "scene.h"
+#include "scene_fixture.h"
+#include "test_util.h"
+
+namespace insitu {
+namespace {
+
+// A black square occluder [−a, a]² at height h above the catcher y = 0, under an environment
+// whose only light is the +Y face (radiance L). At the point below the occluder's centre
+//   E_total   = L · 2√2 atan(1/√2)                      (the face seen from its axis, Howell)
+//   E_blocked = L · 4 · ½ · 2 · A/√(1+A²) · atan(A/√(1+A²)),  A = a/h  (the square, same formula)
+// so the shadow ratio is 1 − E_blocked/E_total (0.5679 for A = ½). A black occluder sends no
+// light back, so W/N is exactly that ratio in expectation.
+TEST(Catcher, ShadowRatioOfASquareOccluderIsTheAnalyticFormFactor) {
+  test::TempDir dir;
+  dir.write("q.mtl", "newmtl black\nKd 0 0 0\n");
+  const std::string obj = "mtllib q.mtl\nusemtl black\nv -0.5 1 -0.5\nv 0.5 1 -0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\nf 1 2 3 4\n";
+  Warnings w;
+  std::vector<Mesh> meshes;
+  meshes.push_back(load_obj(dir.write("q.obj", obj), w));
+  const EmbreeScene scene(std::move(meshes));
+  const int n = 16;
+  CubeMap env(n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) env.set_texel(kPosY, i, j, Rgb(2, 2, 2));
+  env.update_borders();
+  RenderInputs in;
+  in.objects = &scene;
+  in.environment = &env;
+  CatcherPlane floor;
+  floor.point = Vec3f::Zero();
+  floor.normal = Vec3f(0, 1, 0);
+  floor.albedo_from_photo = false;
+  floor.albedo = Rgb(0.5f, 0.5f, 0.5f);
+  floor.irradiance = irradiance_reference(env, {0, 1, 0});
+  in.planes.push_back(floor);
+  const auto path = make_integrator("path", in);
+  // A camera ray that reaches (0, 0, 0) under the occluder.
+  const Ray ray{{3.0f, 0.5f, 0.0f}, Vec3f(-3.0f, -0.5f, 0.0f).normalized()};
+  double with = 0, without = 0, with2 = 0;
+  const int count = 200000;
+  for (int k = 0; k < count; ++k) {
+    Sampler s(9, 0, std::uint64_t(k));
+    const CameraSample cs = path->sample(ray, s);
+    ASSERT_EQ(cs.coverage, 0.0f);
+    with += cs.with_objects[0];
+    with2 += double(cs.with_objects[0]) * cs.with_objects[0];
+    without += cs.without_objects[0];
+  }
+  const double A = 0.5, s = A / std::sqrt(1 + A * A);
+  const double E_total = 2 * std::sqrt(2.0) * std::atan(1 / std::sqrt(2.0)) * 2.0;
+  const double E_blocked = 4 * 0.5 * 2 * s * std::atan(s) * 2.0;
+  const double expected_ratio = 1 - E_blocked / E_total;
+  EXPECT_NEAR(expected_ratio, 0.5679, 1e-3);
+  // The unoccluded estimate is the exact L = ρ/π·E_total on average; the ratio of means carries
+  // the standard error of `with`.
+  const double mean_with = with / count, se_with = std::sqrt((with2 / count - mean_with * mean_with) / count);
+  const double exact_without = 0.5 / kPi * E_total;
+  EXPECT_NEAR(without / count, exact_without, 0.01 * exact_without);
+  EXPECT_NEAR(mean_with / exact_without, expected_ratio, 4 * se_with / exact_without + 0.005);
+}
+
+// With a catcher plane, no objects (or objects out of view) leave the photo bit for bit, and the
+// ratio and additive composites agree where the albedo comes from the photo.
+TEST(Catcher, DifferentialLeavesUntouchedPixelsAndModesAgree) {
+  test::SceneFixture fx;
+  auto j = fx.scene;
+  j["render"] = {{"integrator", "path"}, {"spp", 4}};
+  j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
+  j["objects"] = nlohmann::json::array();
+  j["output"] = {{"image", "out/c.png"}};
+  for (int variant = 0; variant < 2; ++variant) {
+    if (variant == 1) j["objects"] = {{{"mesh", "good_quad.obj"}, {"translate", {0, 0, 50}}}};
+    const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
+    const RenderResult r = render_scene(s);
+    write_outputs(s, r);
+    EXPECT_EQ(read_image_file(fx.dir.file("out/c.png")).stored.data, read_image_file(fx.dir.file("photo.png")).stored.data)
+        << "variant " << variant;
+  }
+  // A quad floating above the floor in view: the modes agree in expectation; with the albedo
+  // from the photo and E exact, additive = P + P/E·(Ê_with − Ê_without), ratio = P·Ê_with/Ê_without.
+  j["objects"] = {{{"mesh", "good_quad.obj"}, {"translate", {0, 0.3, 0}}}};
+  j["render"]["spp"] = 64;
+  SceneSpec spec = parse_scene_file(fx.write(j));
+  const LoadedScene s = load_scene(spec);
+  const RenderResult r = render_scene(s);
+  const Image additive = composite(s.photo_linear, r.layers, CompositeMode::kAdditive);
+  const Image ratio = composite(s.photo_linear, r.layers, CompositeMode::kRatio);
+  double diff = 0, total = 0;
+  for (std::size_t i = 0; i < ratio.data.size(); ++i) {
+    diff += std::abs(additive.data[i] - ratio.data[i]);
+    total += ratio.data[i];
+  }
+  EXPECT_LT(diff / total, 0.02);
+}
+
+}  // namespace
+}  // namespace insitu
