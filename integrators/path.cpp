@@ -11,7 +11,8 @@
 // point is in the photo's frame (a Lambertian floor looks the same from the object), else the
 // cube; such directions are reached by BSDF sampling only (weight 1; the environment sample
 // toward them counts as occluded). Russian roulette from the third bounce on, survival
-// probability min(0.95, max throughput). Materials: Lambertian, ρ = Kd × map_Kd.
+// probability min(0.95, max throughput). Materials: bsdf.h — Lambertian ρ = Kd × map_Kd, plus a
+// glossy GGX lobe where the MTL gives Ks (roughness from Ns).
 //
 // Catcher. A camera sample that meets a catcher plane (local_scene) before any object estimates
 // the plane's reflected radiance twice with the same random numbers: with the objects (their
@@ -25,9 +26,10 @@
 // position's magnitude, so that objects of a millimetre and of a kilometre are treated alike.
 //
 // Parameters: render.max_depth (bounces, default 5), render.spp.
-// Not yet (issue 5): the glossy GGX lobe, parallax correction against a room box, catcher meshes.
+// Not yet (issue 5): parallax correction against a room box, catcher meshes, MIS compensation.
 #include <algorithm>
 
+#include "bsdf.h"
 #include "env_sampling.h"
 #include "integrators/integrator.h"
 
@@ -102,24 +104,26 @@ class PathIntegrator final : public Integrator {
     Rgb throughput = Rgb::Ones(), L = Rgb::Zero();
     for (; depth < max_depth_; ++depth) {
       const SurfacePoint sp = objects_->surface(ray, hit);
-      const Rgb albedo = sp.material->base_colour(sp.uv);
-      const Vec3f& n = sp.ns_world;
+      const Bsdf bsdf = Bsdf::from_material(*sp.material, sp.material->base_colour(sp.uv));
+      const Frame frame(sp.ns_world);
+      const Vec3f wo = frame.to_local(-ray.dir);
       const Vec3f origin = offset_origin(sp.p_world, sp.ng_world);
       // Next-event estimation toward the environment (catcher planes occlude it).
       const float ue = sampler.next(), us = sampler.next(), ut = sampler.next();
       const EnvSample es = env_.sample(ue, us, ut);
-      const float cos_l = n.dot(es.dir);
+      const Vec3f wl = frame.to_local(es.dir);
       float t_dummy = 0;
-      if (cos_l > 0 && es.dir.dot(sp.ng_world) > 0 && hit_plane({origin, es.dir}, kInfinity, &t_dummy) < 0 &&
+      if (wl.z() > 0 && es.dir.dot(sp.ng_world) > 0 && hit_plane({origin, es.dir}, kInfinity, &t_dummy) < 0 &&
           !objects_->occluded({origin, es.dir}, 0.0f, kInfinity)) {
-        const float pdf_bsdf = cos_l / kPiF;
-        L += throughput * albedo / kPiF * es.radiance * (cos_l / es.pdf * power_heuristic(es.pdf, pdf_bsdf));
+        L += throughput * bsdf.eval(wo, wl) * es.radiance * (wl.z() / es.pdf * power_heuristic(es.pdf, bsdf.pdf(wo, wl)));
       }
-      // BSDF sample: f·cos/pdf = ρ for a Lambertian surface.
-      const Vec3f wi = cosine_sample(n, sampler.next(), sampler.next());
+      // BSDF sample.
+      BsdfSample bs;
+      const float ul = sampler.next(), u1 = sampler.next(), u2 = sampler.next();
+      if (!bsdf.sample(wo, ul, u1, u2, &bs)) break;
+      const Vec3f wi = frame.to_world(bs.wi);
       if (wi.dot(sp.ng_world) <= 0) break;  // below the geometric surface: no light comes from there
-      const float pdf_bsdf = n.dot(wi) / kPiF;
-      throughput *= albedo;
+      throughput *= bs.weight;
       ray = {origin, wi};
       hit = objects_->intersect(ray);
       float t_plane = 0;
@@ -128,7 +132,7 @@ class PathIntegrator final : public Integrator {
         break;
       }
       if (!hit.valid()) {
-        L += throughput * env_.radiance(wi) * power_heuristic(pdf_bsdf, env_.pdf(wi));
+        L += throughput * env_.radiance(wi) * power_heuristic(bs.pdf, env_.pdf(wi));
         break;
       }
       if (depth >= 2) {
