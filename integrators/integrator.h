@@ -41,6 +41,10 @@ struct CameraSample {
   // Differential rendering: the catcher's radiance with and without the objects, computed with the
   // same random numbers (identical where no object interferes). Zero unless the sample saw a catcher.
   Rgb with_objects = Rgb::Zero(), without_objects = Rgb::Zero();
+  // What the camera ray met first (object or catcher), for the AOV layers; depth 0: nothing.
+  Vec3f normal = Vec3f::Zero();
+  Rgb albedo = Rgb::Zero();
+  float depth = 0.0f;
 };
 
 class Integrator {

@@ -69,6 +69,10 @@ class PathIntegrator final : public Integrator {
     }
     if (!hit.valid()) return out;
     out.coverage = 1.0f;
+    const SurfacePoint sp = objects_->surface(camera_ray, hit);
+    out.normal = sp.ns_world;
+    out.albedo = sp.material->base_colour(sp.uv);
+    out.depth = hit.t;
     out.radiance = trace_from(camera_ray, hit, sampler, 0);
     return out;
   }
@@ -175,6 +179,9 @@ class PathIntegrator final : public Integrator {
     else with += env_term;
     out.with_objects = with;
     out.without_objects = without;
+    out.normal = n;
+    out.albedo = kPiF * rho_over_pi;
+    out.depth = t;
   }
 
   const RenderInputs in_;

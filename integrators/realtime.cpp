@@ -26,6 +26,9 @@ class RealtimeIntegrator final : public Integrator {
     if (!hit.valid()) return out;
     const SurfacePoint sp = objects_->surface(ray, hit);
     out.coverage = 1.0f;
+    out.normal = sp.ns_world;
+    out.albedo = sp.material->base_colour(sp.uv);
+    out.depth = hit.t;
     out.radiance = sp.material->base_colour(sp.uv) * blurred_.lookup(sp.ns_world);
     return out;
   }

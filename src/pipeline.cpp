@@ -111,6 +111,9 @@ void write_outputs(const LoadedScene& scene, const RenderResult& r) {
                         {"with.R", &w, 0}, {"with.G", &w, 1}, {"with.B", &w, 2},
                         {"without.R", &n, 0}, {"without.G", &n, 1}, {"without.B", &n, 2},
                         {"shadow_ratio.R", &ratio, 0}, {"shadow_ratio.G", &ratio, 1}, {"shadow_ratio.B", &ratio, 2},
+                        {"normal.X", &r.layers.normal, 0}, {"normal.Y", &r.layers.normal, 1}, {"normal.Z", &r.layers.normal, 2},
+                        {"albedo.R", &r.layers.albedo, 0}, {"albedo.G", &r.layers.albedo, 1}, {"albedo.B", &r.layers.albedo, 2},
+                        {"depth.Z", &r.layers.depth, 0}, {"samples.Y", &r.layers.samples, 0}, {"variance.Y", &r.layers.variance, 0},
                         {"photo.R", &scene.photo_linear, 0}, {"photo.G", &scene.photo_linear, 1},
                         {"photo.B", &scene.photo_linear, 2}});
   }

@@ -18,6 +18,11 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
   out.alpha = Image(w, h, 1);
   out.with_objects = Image(w, h, 3);
   out.without_objects = Image(w, h, 3);
+  out.normal = Image(w, h, 3);
+  out.albedo = Image(w, h, 3);
+  out.depth = Image(w, h, 1);
+  out.samples = Image(w, h, 1, float(spp));
+  out.variance = Image(w, h, 1);
   int grid = int(std::lround(std::sqrt(double(spp))));
   if (grid * grid != spp) grid = 0;  // not a perfect square: plain jitter
   std::atomic<std::size_t> nonfinite{0};
@@ -31,8 +36,10 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
     for (int y = r.rows().begin(); y < r.rows().end(); ++y)
       for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
         const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(w) + std::uint64_t(x);
-        Rgb sum = Rgb::Zero(), with = Rgb::Zero(), without = Rgb::Zero();
-        double coverage = 0;
+        Rgb sum = Rgb::Zero(), with = Rgb::Zero(), without = Rgb::Zero(), albedo = Rgb::Zero();
+        Vec3f normal = Vec3f::Zero();
+        double coverage = 0, depth = 0, y_sum = 0, y_sum2 = 0;
+        int met = 0;
         for (int s = 0; s < spp; ++s) {
           Sampler sampler(settings.seed, pixel, std::uint64_t(s));
           float jx = sampler.next(), jy = sampler.next();
@@ -50,10 +57,26 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
           coverage += cs.coverage;
           with += cs.with_objects;
           without += cs.without_objects;
+          const double lum = luminance(Rgb(cs.radiance * cs.coverage + cs.with_objects - cs.without_objects));
+          y_sum += lum;
+          y_sum2 += lum * lum;
+          if (cs.depth > 0) {
+            ++met;
+            normal += cs.normal;
+            albedo += cs.albedo;
+            depth += cs.depth;
+          }
         }
         out.objects.set_rgb(x, y, sum / float(spp));
         out.with_objects.set_rgb(x, y, with / float(spp));
         out.without_objects.set_rgb(x, y, without / float(spp));
+        if (met > 0) {
+          out.normal.set_rgb(x, y, Rgb(normal.array() / float(met)));
+          out.albedo.set_rgb(x, y, albedo / float(met));
+          *out.depth.at(x, y) = float(depth / met);
+        }
+        // Variance of the mean: (Σy² − (Σy)²/n) / (n (n − 1)).
+        if (spp > 1) *out.variance.at(x, y) = float(std::max(0.0, (y_sum2 - y_sum * y_sum / spp) / (double(spp) * (spp - 1))));
         *out.alpha.at(x, y) = float(coverage / spp);
       }
     nonfinite += local_nonfinite;
@@ -66,6 +89,20 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
     }
   });
   out.nonfinite_samples = nonfinite;
+  // The noise a person would see: over pixels the render changed, √variance relative to the change.
+  double noise = 0;
+  long changed = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float v = *out.variance.at(x, y);
+      if (v <= 0) continue;
+      const double value = std::abs(luminance(Rgb(out.objects.rgb(x, y) + out.with_objects.rgb(x, y) - out.without_objects.rgb(x, y)))) +
+                           luminance(out.without_objects.rgb(x, y));
+      if (value <= 0) continue;
+      noise += std::sqrt(v) / value;
+      ++changed;
+    }
+  out.mean_relative_noise = changed > 0 ? noise / double(changed) : 0.0;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -24,6 +24,11 @@ struct RenderLayers {
   Image objects;  // RGB, premultiplied by coverage: mean over samples of radiance × coverage
   Image alpha;    // 1 channel: mean coverage
   Image with_objects, without_objects;  // RGB: mean over samples of the catcher's radiance (0 off it)
+  Image normal, albedo;  // RGB: mean over the samples that met an object or a catcher
+  Image depth;           // 1 channel: mean distance along the ray to what they met (0: nothing)
+  Image samples;         // 1 channel: samples taken in the pixel
+  Image variance;        // 1 channel: variance of the pixel's mean, luminance of O + W − N
+  double mean_relative_noise = 0;  // mean over changed pixels of √variance / value
   std::size_t nonfinite_samples = 0;  // zeroed and counted, never propagated
   double seconds = 0;
 };

@@ -185,3 +185,46 @@ TEST(Catcher, GrazingRaysAlongTheFloor) {
 
 }  // namespace
 }  // namespace insitu
+
+namespace insitu {
+namespace {
+
+// The variance layer predicts the spread between renders with different seeds: for independent
+// estimates a and b of one pixel, E[(a − b)²] = 2·Var(mean); averaged over the changed pixels.
+TEST(Layers, VariancePredictsTheSpreadAcrossSeeds) {
+  test::SceneFixture fx;
+  auto j = fx.scene;
+  j["render"] = {{"integrator", "path"}, {"spp", 16}};
+  j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
+  j["objects"] = {{{"mesh", "good_quad.obj"}, {"translate", {0, 0.3, 0}}}};
+  SceneSpec spec = parse_scene_file(fx.write(j));
+  const LoadedScene s = load_scene(spec);
+  const RenderResult a = render_scene(s);
+  LoadedScene s2 = load_scene(spec);
+  s2.spec.render.seed = 99;
+  const RenderResult b = render_scene(s2);
+  double diff2 = 0, var = 0;
+  int n = 0;
+  for (int y = 0; y < a.layers.variance.height; ++y)
+    for (int x = 0; x < a.layers.variance.width; ++x) {
+      const float va = *a.layers.variance.at(x, y), vb = *b.layers.variance.at(x, y);
+      if (va <= 0 && vb <= 0) continue;
+      auto value = [&](const RenderLayers& l) {
+        return luminance(Rgb(l.objects.rgb(x, y) + l.with_objects.rgb(x, y) - l.without_objects.rgb(x, y)));
+      };
+      const double d = value(a.layers) - value(b.layers);
+      diff2 += d * d;
+      var += va + vb;
+      ++n;
+    }
+  ASSERT_GT(n, 100);
+  EXPECT_NEAR(diff2 / var, 1.0, 0.25);
+  // Where the camera met the object: its normal (+Y, the quad faces up) and albedo in the layers.
+  const Vec2d uv = s.camera.project({0.5, 0.3, -0.5});
+  EXPECT_NEAR(a.layers.normal.at(int(uv.x()), int(uv.y()))[1], 1.0f, 1e-4f);
+  EXPECT_NEAR(a.layers.albedo.at(int(uv.x()), int(uv.y()))[0], 0.8f, 1e-4f);
+  EXPECT_GT(*a.layers.depth.at(int(uv.x()), int(uv.y())), 0.0f);
+}
+
+}  // namespace
+}  // namespace insitu

@@ -43,7 +43,7 @@ int run_render(const RenderArgs& a) {
   print_warnings(scene.warnings);
   RenderResult result;
   {
-    Progress progress("render");
+    Progress progress(fmt::format("render {} spp", spec.render.spp));
     result = render_scene(scene, [&](double f) { progress.update(f); });
   }
   write_outputs(scene, result);
@@ -52,6 +52,9 @@ int run_render(const RenderArgs& a) {
   std::fprintf(stderr, "insitu: %s, %dx%d, %d spp, integrator %s: load %.2f s, prepare %.2f s, render %.2f s\n",
                spec.path.c_str(), scene.camera.width, scene.camera.height, spec.render.spp,
                spec.render.integrator.c_str(), scene.load_seconds, result.prepare_seconds, result.layers.seconds);
+  if (result.layers.mean_relative_noise > 0)
+    std::fprintf(stderr, "insitu: noise estimate: %.2f%% relative standard error where the render changed the photo\n",
+                 100 * result.layers.mean_relative_noise);
   if (result.layers.nonfinite_samples > 0)
     std::fprintf(stderr, "insitu: warning: %zu non-finite samples zeroed\n", result.layers.nonfinite_samples);
   return 0;
