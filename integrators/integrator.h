@@ -28,6 +28,9 @@ struct RenderInputs {
   const CubeMap* environment = nullptr;
   std::vector<CatcherPlane> planes;     // the local scene
   const Image* photo_linear = nullptr;  // the real room as the camera saw it
+  // Parallax correction of environment lookups (path): the room box and the capture point.
+  bool room_box = false;
+  Vec3f box_min = Vec3f::Zero(), box_max = Vec3f::Zero(), capture = Vec3f::Zero();
   const Camera* camera = nullptr;
   IrradianceMode irradiance_mode = IrradianceMode::kExact;  // for integrators that use one
   int max_depth = 5;                                         // bounces, for `path`

@@ -26,7 +26,9 @@
 // position's magnitude, so that objects of a millimetre and of a kilometre are treated alike.
 //
 // Parameters: render.max_depth (bounces, default 5), render.spp.
-// Not yet (issue 5): parallax correction against a room box, catcher meshes, MIS compensation.
+// Environment lookups are parallax-corrected when the scene gives environment.room_box.
+//
+// Not yet (issue 5): catcher meshes (planes only).
 #include <algorithm>
 
 #include "bsdf.h"
@@ -92,6 +94,23 @@ class PathIntegrator final : public Integrator {
     return best;
   }
 
+  // The environment's radiance seen from p along dir. With a room box (parallax correction, as in
+  // real-time "box-projected" cube maps): the ray meets the box at q, and the cube is looked up
+  // toward q from where it was captured, so a point near a window sees more of it.
+  Rgb env_radiance(const Vec3f& p, const Vec3f& dir) const {
+    if (!in_.room_box) return env_.radiance(dir);
+    // Exit point of the box (p inside): the nearest of the slabs the ray leaves through.
+    float t_exit = kInfinity;
+    for (int k = 0; k < 3; ++k) {
+      if (dir[k] == 0) continue;
+      const float t = ((dir[k] > 0 ? in_.box_max[k] : in_.box_min[k]) - p[k]) / dir[k];
+      t_exit = std::min(t_exit, t);
+    }
+    if (!(t_exit > 0) || !std::isfinite(t_exit)) return env_.radiance(dir);
+    const Vec3f q = p + t_exit * dir - in_.capture;
+    return env_.radiance(q.squaredNorm() > 0 ? Vec3f(q.normalized()) : dir);
+  }
+
   // Radiance of the real room at a point of a catcher plane seen along `dir`.
   Rgb room_radiance(const Vec3f& p, const Vec3f& dir) const {
     if (in_.camera && in_.photo_linear) {
@@ -100,7 +119,7 @@ class PathIntegrator final : public Integrator {
       if (depth > 0 && uv.x() >= 0 && uv.y() >= 0 && uv.x() < in_.camera->width && uv.y() < in_.camera->height)
         return in_.photo_linear->rgb(int(uv.x()), int(uv.y()));
     }
-    return env_.radiance(dir);
+    return env_radiance(p, dir);
   }
 
   // Radiance arriving along `ray` (which has hit an object at `hit`), by path tracing.
@@ -119,7 +138,8 @@ class PathIntegrator final : public Integrator {
       float t_dummy = 0;
       if (wl.z() > 0 && es.dir.dot(sp.ng_world) > 0 && hit_plane({origin, es.dir}, kInfinity, &t_dummy) < 0 &&
           !objects_->occluded({origin, es.dir}, 0.0f, kInfinity)) {
-        L += throughput * bsdf.eval(wo, wl) * es.radiance * (wl.z() / es.pdf * power_heuristic(es.pdf, bsdf.pdf(wo, wl)));
+        L += throughput * bsdf.eval(wo, wl) * env_radiance(origin, es.dir) *
+             (wl.z() / es.pdf * power_heuristic(es.pdf, bsdf.pdf(wo, wl)));
       }
       // BSDF sample.
       BsdfSample bs;
@@ -136,7 +156,7 @@ class PathIntegrator final : public Integrator {
         break;
       }
       if (!hit.valid()) {
-        L += throughput * env_.radiance(wi) * power_heuristic(bs.pdf, env_.pdf(wi));
+        L += throughput * env_radiance(ray.origin, wi) * power_heuristic(bs.pdf, env_.pdf(wi));
         break;
       }
       if (depth >= 2) {
@@ -165,14 +185,14 @@ class PathIntegrator final : public Integrator {
     const EnvSample es = env_.sample(ue, us, ut);
     const float cos_l = n.dot(es.dir);
     if (cos_l > 0) {
-      const Rgb c = rho_over_pi * es.radiance * (cos_l / es.pdf * power_heuristic(es.pdf, cos_l / kPiF));
+      const Rgb c = rho_over_pi * env_radiance(origin, es.dir) * (cos_l / es.pdf * power_heuristic(es.pdf, cos_l / kPiF));
       without += c;
       if (!objects_->occluded({origin, es.dir}, 0.0f, kInfinity)) with += c;
     }
     // BSDF sample: the environment, or what the objects send back.
     const Vec3f wi = cosine_sample(n, sampler.next(), sampler.next());
     const float pdf_bsdf = n.dot(wi) / kPiF;
-    const Rgb env_term = kPiF * rho_over_pi * env_.radiance(wi) * power_heuristic(pdf_bsdf, env_.pdf(wi));
+    const Rgb env_term = kPiF * rho_over_pi * env_radiance(origin, wi) * power_heuristic(pdf_bsdf, env_.pdf(wi));
     without += env_term;
     const Hit hit = objects_->intersect({origin, wi});
     if (hit.valid()) with += kPiF * rho_over_pi * trace_from({origin, wi}, hit, sampler, 1);

@@ -8,15 +8,21 @@ namespace insitu {
 
 EnvSampler::EnvSampler(const CubeMap& radiance) : cube_(&radiance), n_(radiance.size()) {
   const std::size_t count = std::size_t(6) * n_ * n_;
-  std::vector<double> w(count);
-  double total = 0;
+  std::vector<double> w(count), y(count), omega(count);
+  double mean_y = 0;
   for (int f = 0; f < 6; ++f)
     for (int j = 0; j < n_; ++j)
       for (int i = 0; i < n_; ++i) {
         const std::size_t k = (std::size_t(f) * n_ + j) * n_ + i;
-        w[k] = std::max(0.0f, luminance(radiance.texel(f, i, j))) * texel_solid_angle(i, j, n_);
-        total += w[k];
+        y[k] = std::max(0.0f, luminance(radiance.texel(f, i, j)));
+        omega[k] = texel_solid_angle(i, j, n_);
+        mean_y += y[k] * omega[k] / (4 * kPi);
       }
+  double total = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    w[k] = std::max(0.0, y[k] - mean_y) * omega[k];  // MIS compensation
+    total += w[k];
+  }
   // A floor so that every texel can be drawn (also keeps a black environment well defined).
   const double floor = total > 0 ? 1e-3 * total / double(count) : 1.0;
   cdf_.assign(count + 1, 0.0);

@@ -3,9 +3,11 @@
 //
 // The cube is taken as constant per texel (the same piecewise-constant function the `exact`
 // irradiance integrates; radiance() is the nearest-texel lookup). Texel i is chosen with
-// probability P_i = w_i / Σw, w_i = Y(L_i)·ΔΩ_i (plus a floor of 10⁻³ of the mean so that every
-// texel with any radiance can be drawn); within the texel a point is drawn uniformly on the face
-// plane. For the face plane at distance 1, dω = dA / r³ (r = |point|), so the density in solid
+// probability P_i = w_i / Σw, with MIS compensation (Karlík et al. 2019): w_i = max(0, Y(L_i) − Ȳ)·ΔΩ_i,
+// Ȳ the solid-angle mean of the luminance — the BSDF samples already cover the even part of the
+// light, so the environment samples go where it stands out — plus a floor of 10⁻³ of the mean
+// weight so that every texel can be drawn (a constant environment is sampled uniformly); within
+// the texel a point is drawn uniformly on the face plane. For the face plane at distance 1, dω = dA / r³ (r = |point|), so the density in solid
 // angle is
 //   pdf(ω) = P_i · r³ / A_texel,   A_texel = (2/n)².
 #pragma once

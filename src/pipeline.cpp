@@ -71,6 +71,12 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress) 
   inputs.environment = &scene.environment;
   inputs.irradiance_mode = scene.spec.render.irradiance;
   inputs.photo_linear = &scene.photo_linear;
+  if (const auto& box = scene.spec.environment.room_box) {
+    inputs.room_box = true;
+    inputs.box_min = box->min.cast<float>();
+    inputs.box_max = box->max.cast<float>();
+    inputs.capture = box->capture.cast<float>();
+  }
   inputs.camera = &scene.camera;
   for (const PlaneSpec& p : scene.spec.local_scene) {
     CatcherPlane c;

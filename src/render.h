@@ -27,7 +27,9 @@ struct RenderLayers {
   Image normal, albedo;  // RGB: mean over the samples that met an object or a catcher
   Image depth;           // 1 channel: mean distance along the ray to what they met (0: nothing)
   Image samples;         // 1 channel: samples taken in the pixel
-  Image variance;        // 1 channel: variance of the pixel's mean, luminance of O + W − N
+  Image variance;        // 1 channel: variance of the pixel's mean, luminance of O + W − N, estimated
+                         // as if the samples were independent (conservative: their positions are
+                         // stratified)
   double mean_relative_noise = 0;  // mean over changed pixels of √variance / value
   std::size_t nonfinite_samples = 0;  // zeroed and counted, never propagated
   double seconds = 0;

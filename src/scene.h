@@ -44,6 +44,11 @@ struct EnvironmentSpec {
   int faced_face = kNegZ;
   std::optional<double> hfov_deg;    // for every shot that does not give its own
   int face_size = 0;                 // 0: natural size of the input
+  // Optional parallax correction: the room as a box, and where the environment was captured.
+  struct RoomBox {
+    Vec3d min = Vec3d::Zero(), max = Vec3d::Zero(), capture = Vec3d::Zero();
+  };
+  std::optional<RoomBox> room_box;
   // How shots are brought into the photo's radiance unit: auto (EXIF when the photo and every
   // single shot have it, else an estimate that is reported), exif (required), or a factor.
   enum class Exposure { kAuto, kExif, kFactor } exposure = Exposure::kAuto;
