@@ -305,6 +305,7 @@ int main(int argc, char** argv) {
   }
   write_text(out / "points.json", points.dump(2) + "\n");
 
+  auto r3 = [](float v) { return std::round(double(v) * 1000) / 1000; };  // float constants, printed cleanly
   auto brackets = [](const std::string& name) {
     return nlohmann::ordered_json::array({"shots/" + name + "_short.jpg", "shots/" + name + ".jpg", "shots/" + name + "_long.jpg"});
   };
@@ -314,13 +315,16 @@ int main(int argc, char** argv) {
       {"environment",
        {{"shots",
          {{"+x", brackets("east")}, {"-x", brackets("west")}, {"+z", brackets("south")}, {"-z", brackets("north")},
-          {"up", brackets("ceiling")}, {"down", brackets("floor")}, {"faced", "-z"}}}}},
+          {"up", brackets("ceiling")}, {"down", brackets("floor")}, {"faced", "-z"}}},
+        {"room_box", {{"min", {r3(kRoomLo.x()), r3(kRoomLo.y()), r3(kRoomLo.z())}},
+                      {"max", {r3(kRoomHi.x()), r3(kRoomHi.y()), r3(kRoomHi.z())}},
+                      {"capture", {r3(shot_origin.x()), r3(shot_origin.y()), r3(shot_origin.z())}}}}}},
       {"local_scene", {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}}},
       {"objects",
        {{{"mesh", "table.obj"}, {"translate", {-0.2, 0, -1.2}}, {"rotate", 12}},
         {{"mesh", "sofa.obj"}, {"translate", {0.9, 0, -2.35}}, {"rotate", -8}},
         {{"mesh", "ball.obj"}, {"translate", {0.95, 0, -0.2}}}}},
-      {"render", {{"integrator", "path"}, {"spp", 64}}},
+      {"render", {{"integrator", "path"}, {"spp", 144}}},
   };
   write_text(out / "scene.json", scene.dump(2) + "\n");
   std::printf("demo scene written to %s\n", out.string().c_str());
