@@ -1,7 +1,8 @@
 // The render loop: for every pixel, spp camera samples at jittered sub-pixel positions (a
-// stratified jittered grid when spp is a perfect square), each traced by the integrator. Tiles run
-// in parallel on TBB; every sample's random numbers come from the counter-based hash, so the
-// image does not depend on the number of threads.
+// stratified jittered grid when spp is a perfect square), each traced by the integrator, in up to
+// 8 passes over the image so that progress can report the noise reached. Tiles run in parallel on
+// TBB; every sample's random numbers come from the counter-based hash and each pixel adds its
+// samples in index order, so the image does not depend on the number of threads or passes.
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -35,9 +36,15 @@ struct RenderLayers {
   double seconds = 0;
 };
 
-// progress(fraction done) is called once with 0 when the sample loop starts, then from the
-// rendering threads, serialized.
-using ProgressFn = std::function<void(double)>;
+// Progress of a render: called once with fraction 0 when the sample loop starts, then from the
+// rendering threads (serialized) with noise −1, and after each pass of samples with the noise
+// reached (mean relative standard error over the pixels the render changed).
+struct RenderProgress {
+  double fraction = 0;
+  int spp_done = 0;
+  double noise = -1;
+};
+using ProgressFn = std::function<void(const RenderProgress&)>;
 
 RenderLayers render(const Camera& camera, const Integrator& integrator, const RenderSettings& settings,
                     const ProgressFn& progress = {});

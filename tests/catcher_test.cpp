@@ -276,3 +276,26 @@ TEST(Catcher, RoomBoxParallaxFavoursThePointNearTheWindow) {
 
 }  // namespace
 }  // namespace insitu
+
+namespace insitu {
+namespace {
+
+TEST(Layers, ProgressReportsSamplesAndNoisePerPass) {
+  test::SceneFixture fx;
+  auto j = fx.scene;
+  j["render"] = {{"integrator", "path"}, {"spp", 16}};
+  j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
+  j["objects"] = {{{"mesh", "good_quad.obj"}, {"translate", {0, 0.3, 0}}}};
+  const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
+  std::vector<RenderProgress> reports;
+  const RenderResult r = render_scene(s, [&](const RenderProgress& p) {
+    if (p.noise >= 0) reports.push_back(p);
+  });
+  ASSERT_EQ(reports.size(), 8u);  // 8 passes of 2 samples
+  EXPECT_EQ(reports.back().spp_done, 16);
+  EXPECT_DOUBLE_EQ(reports.back().noise, r.layers.mean_relative_noise);
+  EXPECT_GT(reports[1].noise, reports.back().noise);  // more samples, less noise
+}
+
+}  // namespace
+}  // namespace insitu

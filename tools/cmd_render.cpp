@@ -43,8 +43,12 @@ int run_render(const RenderArgs& a) {
   print_warnings(scene.warnings);
   RenderResult result;
   {
-    Progress progress(fmt::format("render {} spp", spec.render.spp));
-    result = render_scene(scene, [&](double f) { progress.update(f); });
+    Progress progress("render");
+    std::string detail;
+    result = render_scene(scene, [&](const RenderProgress& p) {
+      if (p.noise >= 0) detail = fmt::format("{}/{} spp, noise {:.1f}%", p.spp_done, spec.render.spp, 100 * p.noise);
+      progress.update(p.fraction, detail);
+    });
   }
   write_outputs(scene, result);
   std::printf("%s\n", spec.output.image.c_str());

@@ -10,7 +10,7 @@ class Progress {
  public:
   explicit Progress(std::string label);
   ~Progress();
-  void update(double fraction);  // not thread-safe: callers serialize
+  void update(double fraction, const std::string& detail = "");  // not thread-safe: callers serialize
   void finish();
 
  private:
