@@ -23,10 +23,18 @@ struct CatcherPlane {
   Rgb irradiance = Rgb::Zero();      // E(normal) of the environment without objects (exact)
 };
 
+struct CatcherMesh {
+  bool albedo_from_photo = true;
+  Rgb albedo = Rgb::Zero();
+};
+
 struct RenderInputs {
   const EmbreeScene* objects = nullptr;
   const CubeMap* environment = nullptr;
-  std::vector<CatcherPlane> planes;     // the local scene
+  std::vector<CatcherPlane> planes;     // the local scene: planes
+  const EmbreeScene* catcher_meshes = nullptr;           // and meshes
+  std::vector<CatcherMesh> catcher_mesh_info;            // by mesh index
+  const IrradianceField* catcher_irradiance = nullptr;   // E(n) without objects, for the meshes
   const Image* photo_linear = nullptr;  // the real room as the camera saw it
   // Parallax correction of environment lookups (path): the room box and the capture point.
   bool room_box = false;

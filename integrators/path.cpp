@@ -14,7 +14,7 @@
 // probability min(0.95, max throughput). Materials: bsdf.h — Lambertian ρ = Kd × map_Kd, plus a
 // glossy GGX lobe where the MTL gives Ks (roughness from Ns).
 //
-// Catcher. A camera sample that meets a catcher plane (local_scene) before any object estimates
+// Catcher. A camera sample that meets the local scene (a plane or a mesh) before any object estimates
 // the plane's reflected radiance twice with the same random numbers: with the objects (their
 // shadow on the environment sample, and what the BSDF sample sees of them, traced as above) and
 // without them. Where no object interferes the two are bitwise equal, so the photo there is left
@@ -28,7 +28,9 @@
 // Parameters: render.max_depth (bounces, default 5), render.spp.
 // Environment lookups are parallax-corrected when the scene gives environment.room_box.
 //
-// Not yet (issue 5): catcher meshes (planes only).
+// The local scene may hold meshes too (a real table, a step): they catch shadows like the planes
+// (with E(n) from the exact irradiance cube), block the environment for the objects, and show the
+// photo to them.
 #include <algorithm>
 
 #include "bsdf.h"
@@ -63,10 +65,9 @@ class PathIntegrator final : public Integrator {
   CameraSample sample(const Ray& camera_ray, Sampler& sampler) const override {
     CameraSample out;
     const Hit hit = objects_->intersect(camera_ray);
-    float t_plane = 0;
-    const int plane = hit_plane(camera_ray, hit.valid() ? hit.t : kInfinity, &t_plane);
-    if (plane >= 0) {
-      catcher(camera_ray, plane, t_plane, sampler, out);
+    const CatcherHit c = find_catcher(camera_ray, hit.valid() ? hit.t : kInfinity);
+    if (c.valid) {
+      catcher(camera_ray, c, sampler, out);
       return out;
     }
     if (!hit.valid()) return out;
@@ -92,6 +93,36 @@ class PathIntegrator final : public Integrator {
     }
     if (best >= 0) *t_hit = t_max;
     return best;
+  }
+
+  // What a ray meets first of the local scene within (0, t_max): a plane (from its front) or a
+  // catcher mesh (either side; the normal turned toward the ray).
+  struct CatcherHit {
+    bool valid = false;
+    float t = 0;
+    Vec3f x = Vec3f::Zero(), n = Vec3f::Zero();
+    bool albedo_from_photo = true;
+    Rgb albedo = Rgb::Zero(), irradiance = Rgb::Zero();
+  };
+  CatcherHit find_catcher(const Ray& ray, float t_max) const {
+    CatcherHit c;
+    float t = 0;
+    const int k = hit_plane(ray, t_max, &t);
+    if (k >= 0) {
+      const CatcherPlane& p = in_.planes[std::size_t(k)];
+      c = {true, t, ray.origin + t * ray.dir, p.normal, p.albedo_from_photo, p.albedo, p.irradiance};
+      t_max = t;
+    }
+    if (in_.catcher_meshes && !in_.catcher_meshes->empty()) {
+      const Hit h = in_.catcher_meshes->intersect(ray, 0.0f, t_max);
+      if (h.valid()) {
+        const SurfacePoint sp = in_.catcher_meshes->surface(ray, h);
+        const CatcherMesh& info = in_.catcher_mesh_info[std::size_t(h.mesh)];
+        c = {true, h.t, sp.p_world, sp.ng_world, info.albedo_from_photo, info.albedo,
+             in_.catcher_irradiance->irradiance(sp.ng_world)};
+      }
+    }
+    return c;
   }
 
   // The environment's radiance seen from p along dir. With a room box (parallax correction, as in
@@ -135,8 +166,7 @@ class PathIntegrator final : public Integrator {
       const float ue = sampler.next(), us = sampler.next(), ut = sampler.next();
       const EnvSample es = env_.sample(ue, us, ut);
       const Vec3f wl = frame.to_local(es.dir);
-      float t_dummy = 0;
-      if (wl.z() > 0 && es.dir.dot(sp.ng_world) > 0 && hit_plane({origin, es.dir}, kInfinity, &t_dummy) < 0 &&
+      if (wl.z() > 0 && es.dir.dot(sp.ng_world) > 0 && !find_catcher({origin, es.dir}, kInfinity).valid &&
           !objects_->occluded({origin, es.dir}, 0.0f, kInfinity)) {
         L += throughput * bsdf.eval(wo, wl) * env_radiance(origin, es.dir) *
              (wl.z() / es.pdf * power_heuristic(es.pdf, bsdf.pdf(wo, wl)));
@@ -150,9 +180,8 @@ class PathIntegrator final : public Integrator {
       throughput *= bs.weight;
       ray = {origin, wi};
       hit = objects_->intersect(ray);
-      float t_plane = 0;
-      if (hit_plane(ray, hit.valid() ? hit.t : kInfinity, &t_plane) >= 0) {
-        L += throughput * room_radiance(ray.origin + t_plane * wi, wi);
+      if (const CatcherHit c = find_catcher(ray, hit.valid() ? hit.t : kInfinity); c.valid) {
+        L += throughput * room_radiance(c.x, wi);
         break;
       }
       if (!hit.valid()) {
@@ -168,40 +197,45 @@ class PathIntegrator final : public Integrator {
     return L;
   }
 
-  void catcher(const Ray& camera_ray, int plane_index, float t, Sampler& sampler, CameraSample& out) const {
-    const CatcherPlane& plane = in_.planes[std::size_t(plane_index)];
-    const Vec3f x = camera_ray.origin + t * camera_ray.dir;
-    const Vec3f& n = plane.normal;
-    // ρ/π: the plane's, or the photo's P/E.
-    Rgb rho_over_pi = plane.albedo / kPiF;
-    if (plane.albedo_from_photo) {
+  void catcher(const Ray& camera_ray, const CatcherHit& c, Sampler& sampler, CameraSample& out) const {
+    const Vec3f& x = c.x;
+    const Vec3f& n = c.n;
+    // ρ/π: the surface's, or the photo's P/E.
+    Rgb rho_over_pi = c.albedo / kPiF;
+    if (c.albedo_from_photo) {
       const Rgb P = room_radiance(x, -camera_ray.dir);
-      for (int c = 0; c < 3; ++c) rho_over_pi[c] = plane.irradiance[c] > 0 ? P[c] / plane.irradiance[c] : 0.0f;
+      for (int k = 0; k < 3; ++k) rho_over_pi[k] = c.irradiance[k] > 0 ? P[k] / c.irradiance[k] : 0.0f;
     }
     const Vec3f origin = offset_origin(x, n);
     Rgb with = Rgb::Zero(), without = Rgb::Zero();
-    // Environment sample: blocked by the objects or not.
+    // Environment sample: blocked by the local scene for both, by the objects for `with`.
     const float ue = sampler.next(), us = sampler.next(), ut = sampler.next();
     const EnvSample es = env_.sample(ue, us, ut);
     const float cos_l = n.dot(es.dir);
-    if (cos_l > 0) {
-      const Rgb c = rho_over_pi * env_radiance(origin, es.dir) * (cos_l / es.pdf * power_heuristic(es.pdf, cos_l / kPiF));
-      without += c;
-      if (!objects_->occluded({origin, es.dir}, 0.0f, kInfinity)) with += c;
+    if (cos_l > 0 && !find_catcher({origin, es.dir}, kInfinity).valid) {
+      const Rgb contribution =
+          rho_over_pi * env_radiance(origin, es.dir) * (cos_l / es.pdf * power_heuristic(es.pdf, cos_l / kPiF));
+      without += contribution;
+      if (!objects_->occluded({origin, es.dir}, 0.0f, kInfinity)) with += contribution;
     }
-    // BSDF sample: the environment, or what the objects send back.
+    // BSDF sample: what lies behind (the real room, or the environment), or an object in front.
     const Vec3f wi = cosine_sample(n, sampler.next(), sampler.next());
     const float pdf_bsdf = n.dot(wi) / kPiF;
-    const Rgb env_term = kPiF * rho_over_pi * env_radiance(origin, wi) * power_heuristic(pdf_bsdf, env_.pdf(wi));
-    without += env_term;
+    const CatcherHit behind_hit = find_catcher({origin, wi}, kInfinity);
+    const Rgb behind = behind_hit.valid
+                           ? Rgb(kPiF * rho_over_pi * room_radiance(behind_hit.x, wi))
+                           : Rgb(kPiF * rho_over_pi * env_radiance(origin, wi) * power_heuristic(pdf_bsdf, env_.pdf(wi)));
+    without += behind;
     const Hit hit = objects_->intersect({origin, wi});
-    if (hit.valid()) with += kPiF * rho_over_pi * trace_from({origin, wi}, hit, sampler, 1);
-    else with += env_term;
+    if (hit.valid() && (!behind_hit.valid || hit.t < behind_hit.t))
+      with += kPiF * rho_over_pi * trace_from({origin, wi}, hit, sampler, 1);
+    else
+      with += behind;
     out.with_objects = with;
     out.without_objects = without;
     out.normal = n;
     out.albedo = kPiF * rho_over_pi;
-    out.depth = t;
+    out.depth = c.t;
   }
 
   const RenderInputs in_;

@@ -61,6 +61,20 @@ LoadedScene load_scene(const SceneSpec& spec) {
     s.warnings.add(spec.path, "local_scene is used only by the path integrator (" + spec.render.integrator +
                                   " draws no shadows on it)");
   s.objects = std::make_unique<EmbreeScene>(std::move(meshes));
+  std::vector<Mesh> catcher_meshes;
+  for (std::size_t i = 0; i < spec.local_scene.size(); ++i) {
+    const auto& m = spec.local_scene[i].mesh;
+    if (!m) continue;
+    Mesh mesh;
+    try {
+      mesh = load_obj(m->mesh, s.warnings);
+    } catch (const InputError& e) {
+      throw e.with_context(m->where + ".mesh");
+    }
+    transform_mesh(mesh, m->M_world_from_object);
+    catcher_meshes.push_back(std::move(mesh));
+  }
+  s.catcher_meshes = std::make_unique<EmbreeScene>(std::move(catcher_meshes));
   s.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return s;
 }
@@ -78,7 +92,12 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress) 
     inputs.capture = box->capture.cast<float>();
   }
   inputs.camera = &scene.camera;
+  std::unique_ptr<IrradianceField> catcher_irradiance;
   for (const PlaneSpec& p : scene.spec.local_scene) {
+    if (p.mesh) {
+      inputs.catcher_mesh_info.push_back({p.albedo_from_photo, p.albedo});
+      continue;
+    }
     CatcherPlane c;
     c.point = p.point.cast<float>();
     c.normal = p.normal.normalized().cast<float>();
@@ -88,6 +107,11 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress) 
     c.albedo = p.albedo;
     c.irradiance = irradiance_reference(scene.environment, c.normal.cast<double>());
     inputs.planes.push_back(c);
+  }
+  if (!inputs.catcher_mesh_info.empty()) {
+    catcher_irradiance = make_irradiance(IrradianceMode::kExact, scene.environment);
+    inputs.catcher_meshes = scene.catcher_meshes.get();
+    inputs.catcher_irradiance = catcher_irradiance.get();
   }
   inputs.max_depth = scene.spec.render.max_depth;
   const auto start = std::chrono::steady_clock::now();

@@ -24,6 +24,7 @@ struct LoadedScene {
   CubeMap environment;
   EnvironmentInfo environment_info;
   std::unique_ptr<EmbreeScene> objects;
+  std::unique_ptr<EmbreeScene> catcher_meshes;  // meshes of the local scene
   Warnings warnings;
   double load_seconds = 0;
 };

@@ -296,13 +296,6 @@ SceneSpec parse_scene_file(const std::string& path) {
     for (std::size_t i = 0; i < ls->size(); ++i) {
       JsonObject item(ls->element(i));
       PlaneSpec plane;
-      JsonObject pl(item.get("plane"));
-      plane.point = pl.get("point").vec3();
-      const JsonValue n = pl.get("normal");
-      plane.normal = n.vec3();
-      if (!(plane.normal.norm() > 0)) n.fail("the normal is zero");
-      plane.normal.normalize();
-      pl.finish();
       if (auto a = item.find("albedo")) {
         if (a->is_string()) {
           if (a->string() != "from_photo") a->fail("expected \"from_photo\" or [r, g, b]");
@@ -313,7 +306,19 @@ SceneSpec parse_scene_file(const std::string& path) {
           plane.albedo = rgb.cast<float>().array();
         }
       }
-      item.finish();
+      if (item.has("mesh")) {
+        if (item.has("plane")) item.fail("give 'plane' or 'mesh', not both");
+        plane.mesh = parse_object(std::move(item), dir);  // checks the remaining keys
+      } else {
+        JsonObject pl(item.get("plane"));
+        plane.point = pl.get("point").vec3();
+        const JsonValue n = pl.get("normal");
+        plane.normal = n.vec3();
+        if (!(plane.normal.norm() > 0)) n.fail("the normal is zero");
+        plane.normal.normalize();
+        pl.finish();
+        item.finish();
+      }
       scene.local_scene.push_back(plane);
     }
   }

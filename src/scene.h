@@ -56,16 +56,19 @@ struct EnvironmentSpec {
   bool from_shots() const { return image.empty(); }
 };
 
-struct PlaneSpec {
-  Vec3d point = Vec3d::Zero(), normal = Vec3d(0, 1, 0);
-  bool albedo_from_photo = true;
-  Rgb albedo = Rgb::Zero();
-};
-
 struct ObjectSpec {
   std::string where;
   std::string mesh;
   Mat4d M_world_from_object = Mat4d::Identity();
+};
+
+// A surface of the local scene: an infinite plane, or a mesh (the real table, a step) placed
+// like an object.
+struct PlaneSpec {
+  Vec3d point = Vec3d::Zero(), normal = Vec3d(0, 1, 0);
+  std::optional<ObjectSpec> mesh;  // set: a mesh catcher (point and normal unused)
+  bool albedo_from_photo = true;
+  Rgb albedo = Rgb::Zero();
 };
 
 struct OutputSpec {

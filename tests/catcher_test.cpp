@@ -299,3 +299,68 @@ TEST(Layers, ProgressReportsSamplesAndNoisePerPass) {
 
 }  // namespace
 }  // namespace insitu
+
+namespace insitu {
+namespace {
+
+// The same occluder over a floor given as a catcher mesh (a 200 m quad) instead of a plane: the
+// same analytic shadow ratio.
+TEST(Catcher, MeshCatcherGivesTheSameShadowAsAPlane) {
+  test::TempDir dir;
+  dir.write("q.mtl", "newmtl black\nKd 0 0 0\n");
+  Warnings w;
+  std::vector<Mesh> occluder, floor;
+  occluder.push_back(load_obj(dir.write("q.obj", "mtllib q.mtl\nusemtl black\nv -0.5 1 -0.5\nv 0.5 1 -0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\nf 1 2 3 4\n"), w));
+  floor.push_back(load_obj(dir.write("f.obj", "v -100 0 -100\nv 100 0 -100\nv 100 0 100\nv -100 0 100\nf 1 4 3 2\n"), w));
+  const EmbreeScene objects(std::move(occluder)), catchers(std::move(floor));
+  const int n = 16;
+  CubeMap env(n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) env.set_texel(kPosY, i, j, Rgb(2, 2, 2));
+  env.update_borders();
+  const auto field = make_irradiance(IrradianceMode::kExact, env);
+  RenderInputs in;
+  in.objects = &objects;
+  in.environment = &env;
+  in.catcher_meshes = &catchers;
+  in.catcher_mesh_info.push_back({false, Rgb(0.5f, 0.5f, 0.5f)});
+  in.catcher_irradiance = field.get();
+  const auto path = make_integrator("path", in);
+  const Ray ray{{3.0f, 0.5f, 0.0f}, Vec3f(-3.0f, -0.5f, 0.0f).normalized()};
+  double with = 0, with2 = 0, without = 0;
+  const int count = 200000;
+  for (int k = 0; k < count; ++k) {
+    Sampler s(9, 0, std::uint64_t(k));
+    const CameraSample cs = path->sample(ray, s);
+    with += cs.with_objects[0];
+    with2 += double(cs.with_objects[0]) * cs.with_objects[0];
+    without += cs.without_objects[0];
+  }
+  const double s = 0.5 / std::sqrt(1.25);
+  const double E_total = 2 * std::sqrt(2.0) * std::atan(1 / std::sqrt(2.0)) * 2.0;
+  const double expected_ratio = 1 - 4 * 0.5 * 2 * s * std::atan(s) * 2.0 / E_total;
+  const double exact_without = 0.5 / kPi * E_total;
+  const double m = with / count, se = std::sqrt((with2 / count - m * m) / count);
+  EXPECT_NEAR(without / count, exact_without, 0.01 * exact_without);
+  EXPECT_NEAR(m / exact_without, expected_ratio, 4 * se / exact_without + 0.005);
+}
+
+TEST(Catcher, LocalSceneMeshInTheSceneFile) {
+  test::SceneFixture fx;
+  auto j = fx.scene;
+  j["render"] = {{"integrator", "path"}, {"spp", 4}};
+  j["local_scene"] = {{{"mesh", "good_quad.obj"}, {"scale", 4}, {"translate", {-1, 0, 1}}, {"albedo", {0.4, 0.4, 0.4}}}};
+  j["objects"] = {{{"mesh", "good_quad.obj"}, {"translate", {0, 0.3, 0}}}};
+  const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
+  EXPECT_EQ(s.catcher_meshes->meshes().size(), 1u);
+  const RenderResult r = render_scene(s);
+  const Image touched = touched_mask(r.layers);
+  double changed = 0;
+  for (float v : touched.data) changed += v;
+  EXPECT_GT(changed, 0);
+  j["local_scene"] = {{{"mesh", "good_quad.obj"}, {"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
+  EXPECT_THROW(parse_scene_file(fx.write(j)), InputError);
+}
+
+}  // namespace
+}  // namespace insitu
