@@ -130,7 +130,9 @@ void write_outputs(const LoadedScene& scene, const RenderResult& r) {
   std::string ext = std::filesystem::path(image).extension().string();
   for (auto& c : ext) c = char(std::tolower(c));
   const bool linear_out = ext == ".exr" || ext == ".tif" || ext == ".tiff";
-  write_image(image, linear_out ? r.composite_linear : r.composite_encoded);
+  const ToneMapSettings& tm = scene.spec.output.tonemap;
+  write_image(image, linear_out ? r.composite_linear
+                                : tm.op == ToneMap::kPhoto ? r.composite_encoded : tonemap(r.composite_linear, tm));
   if (!scene.spec.output.layers.empty()) {
     const Image &c = r.composite_linear, &o = r.layers.objects, &a = r.layers.alpha;
     const Image &w = r.layers.with_objects, &n = r.layers.without_objects;

@@ -358,6 +358,23 @@ SceneSpec parse_scene_file(const std::string& path) {
     JsonObject oo(*out);
     if (auto img = oo.find("image")) scene.output.image = output_file(*img, dir, {".png", ".jpg", ".jpeg", ".exr", ".tif", ".tiff"});
     if (auto layers = oo.find("layers")) scene.output.layers = output_file(*layers, dir, {".exr"});
+    if (auto tm = oo.find("tonemap")) {
+      // "name", or {"op": "name", "key": k, "bias": b}.
+      auto parse_op = [&](const JsonValue& v) {
+        const auto op = parse_tonemap(v.string());
+        if (!op) v.fail("expected \"photo\", \"adaptive_log\", \"reinhard\" or \"linear\"");
+        scene.output.tonemap.op = *op;
+      };
+      if (tm->is_string()) {
+        parse_op(*tm);
+      } else {
+        JsonObject t(*tm);
+        parse_op(t.get("op"));
+        if (auto k = t.find("key")) scene.output.tonemap.key = k->number(1e-6, 1e6);
+        if (auto b = t.find("bias")) scene.output.tonemap.bias = b->number(0.01, 0.99);
+        t.finish();
+      }
+    }
     oo.finish();
   }
   root.finish();

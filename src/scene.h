@@ -10,6 +10,7 @@
 #include "camera.h"
 #include "cubemap.h"
 #include "render.h"
+#include "tonemap.h"
 
 namespace insitu {
 
@@ -74,6 +75,7 @@ struct PlaneSpec {
 struct OutputSpec {
   std::string image;   // composite (PNG, JPEG, EXR, TIFF)
   std::string layers;  // multi-layer EXR
+  ToneMapSettings tonemap;  // for PNG/JPEG; EXR and TIFF stay linear
 };
 
 // How the catcher's change is applied to the photo (composite.h).

@@ -18,7 +18,8 @@ void print_warnings(const Warnings& w) {
 namespace {
 
 struct RenderArgs {
-  std::string scene, output, integrator, irradiance;
+  std::string scene, output, integrator, irradiance, tonemap;
+  double key = 0;
   int spp = 0;
   long seed = -1;
 };
@@ -39,6 +40,8 @@ int run_render(const RenderArgs& a) {
     spec.render.integrator = a.integrator;
   }
   if (!a.irradiance.empty()) spec.render.irradiance = *parse_irradiance_mode(a.irradiance);
+  if (!a.tonemap.empty()) spec.output.tonemap.op = *parse_tonemap(a.tonemap);
+  if (a.key > 0) spec.output.tonemap.key = a.key;
   LoadedScene scene = load_scene(spec);
   print_warnings(scene.warnings);
   RenderResult result;
@@ -78,6 +81,9 @@ Command add_render_command(CLI::App& app) {
   cmd->add_option("--integrator", a->integrator, help);
   cmd->add_option("--irradiance", a->irradiance, "irradiance mode for the irradiance integrator")
       ->check(CLI::IsMember({"gaussian", "sh9", "exact"}));
+  cmd->add_option("--tonemap", a->tonemap, "photo (default), adaptive_log, reinhard or linear")
+      ->check(CLI::IsMember({"photo", "adaptive_log", "reinhard", "linear"}));
+  cmd->add_option("--key", a->key, "tone-mapping key (adaptive_log 1, reinhard 0.18, linear 1)")->check(CLI::PositiveNumber);
   return [cmd, a] { return cmd->parsed() ? run_render(*a) : -1; };
 }
 
