@@ -6,6 +6,7 @@
 
 #include "composite.h"
 #include "integrators/integrator.h"
+#include "text_file.h"
 #include "irradiance.h"
 
 namespace insitu {
@@ -125,6 +126,53 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress) 
   return r;
 }
 
+std::string report_path(const std::string& image_path) {
+  const std::filesystem::path p(image_path);
+  return (p.parent_path() / (p.stem().string() + ".report.json")).string();
+}
+
+nlohmann::json render_report(const LoadedScene& s, const RenderResult& r) {
+  using nlohmann::json;
+  const auto& info = s.environment_info;
+  json shots = json::array();
+  if (s.spec.environment.from_shots())
+    for (int f = 0; f < 6; ++f)
+      shots.push_back({{"face", face_name(f)},
+                       {"files", s.spec.environment.shots[std::size_t(f)].files},
+                       {"coverage_percent", 100 * info.coverage[std::size_t(f)]},
+                       {"clipped_percent", 100 * info.clipped[std::size_t(f)]}});
+  json calibration = nullptr;
+  if (s.calibration)
+    calibration = {{"model", model_name(s.calibration->model)},
+                   {"rms_px", s.calibration->rms_px},
+                   {"inliers", s.calibration->inliers},
+                   {"insertion_sigma_px", s.calibration->insertion_sigma_px}};
+  return json{
+      {"scene", s.spec.path},
+      {"image", {{"width", s.camera.width}, {"height", s.camera.height}}},
+      {"seconds", {{"load", s.load_seconds}, {"prepare", r.prepare_seconds}, {"render", r.layers.seconds}}},
+      {"calibration", calibration},
+      {"environment",
+       {{"face_size", s.environment.size()},
+        {"exposure", info.exposure_source},
+        {"exposure_factor", info.exposure_factor},
+        {"response_from_brackets", info.response.has_value()},
+        {"clamped_values", info.clamped_values},
+        {"shots", shots}}},
+      {"render",
+       {{"integrator", s.spec.render.integrator},
+        {"irradiance", irradiance_mode_name(s.spec.render.irradiance)},
+        {"spp", s.spec.render.spp},
+        {"max_depth", s.spec.render.max_depth},
+        {"seed", s.spec.render.seed},
+        {"noise_relative", r.layers.mean_relative_noise},
+        {"nonfinite_samples", r.layers.nonfinite_samples}}},
+      {"composite", s.spec.composite == CompositeMode::kRatio ? "ratio" : "additive"},
+      {"tonemap", tonemap_name(s.spec.output.tonemap.op)},
+      {"warnings", s.warnings.items},
+  };
+}
+
 void write_outputs(const LoadedScene& scene, const RenderResult& r) {
   const std::string& image = scene.spec.output.image;
   std::string ext = std::filesystem::path(image).extension().string();
@@ -133,6 +181,7 @@ void write_outputs(const LoadedScene& scene, const RenderResult& r) {
   const ToneMapSettings& tm = scene.spec.output.tonemap;
   write_image(image, linear_out ? r.composite_linear
                                 : tm.op == ToneMap::kPhoto ? r.composite_encoded : tonemap(r.composite_linear, tm));
+  write_text_file(report_path(image), render_report(scene, r).dump(2) + "\n");
   if (!scene.spec.output.layers.empty()) {
     const Image &c = r.composite_linear, &o = r.layers.objects, &a = r.layers.alpha;
     const Image &w = r.layers.with_objects, &n = r.layers.without_objects;

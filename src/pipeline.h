@@ -2,6 +2,7 @@
 // objects), render the layers, composite over the photo, write the outputs.
 #pragma once
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "calibration.h"
 #include "camera.h"
@@ -40,7 +41,13 @@ struct RenderResult {
 
 RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress = {});
 
-// Writes the composite image and the layered EXR, each atomically.
+// Writes the composite image, the layered EXR and the JSON report, each atomically.
 void write_outputs(const LoadedScene& scene, const RenderResult& result);
+
+// The report written next to the image (IMAGE_STEM.report.json): stage timings, the calibration's
+// RMS, the integrator, irradiance mode, samples per pixel, noise estimate, non-finite samples, and
+// per shot the coverage and clipped percentage.
+nlohmann::json render_report(const LoadedScene& scene, const RenderResult& result);
+std::string report_path(const std::string& image_path);
 
 }  // namespace insitu

@@ -92,6 +92,15 @@ TEST(Cli, RendersAScene) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(std::filesystem::exists(fx.dir.file("c.png")));
   EXPECT_TRUE(std::filesystem::exists(fx.dir.file("out/layers.exr")));
+  // The report beside the image.
+  std::ifstream report(fx.dir.file("c.report.json"));
+  ASSERT_TRUE(report.good());
+  const nlohmann::json j = nlohmann::json::parse(report);
+  EXPECT_EQ(j["render"]["spp"], 2);
+  EXPECT_EQ(j["render"]["integrator"], "realtime");
+  EXPECT_EQ(j["render"]["nonfinite_samples"], 0);
+  EXPECT_GE(j["seconds"]["render"].get<double>(), 0.0);
+  EXPECT_EQ(j["environment"]["exposure"], "none");
   // No temporary files are left behind.
   for (const auto& e : std::filesystem::recursive_directory_iterator(fx.dir.path()))
     EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
