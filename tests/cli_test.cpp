@@ -187,3 +187,21 @@ TEST(Cli, IrradianceIntegratorWithGaussianEqualsRealtime) {
 
 }  // namespace
 }  // namespace insitu
+
+namespace insitu {
+namespace {
+
+TEST(Cli, CompareWritesThePictureAndRejectsMismatchedImages) {
+  test::TempDir dir;
+  write_image(dir.file("a.png"), Image(16, 12, 3, 0.5f));
+  write_image(dir.file("b.png"), Image(16, 12, 3, 0.25f));
+  write_image(dir.file("c.png"), Image(8, 12, 3, 0.25f));
+  const CliRun r = run_insitu(dir, "compare " + dir.file("a.png") + " " + dir.file("b.png") + " -o " + dir.file("d.png"));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("| image | 192 |"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("d.png")));
+  expect_one_line_error(run_insitu(dir, "compare " + dir.file("a.png") + " " + dir.file("c.png")), "c.png: 8x12");
+}
+
+}  // namespace
+}  // namespace insitu

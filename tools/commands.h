@@ -16,6 +16,7 @@ Command add_render_command(CLI::App& app);
 Command add_calibrate_command(CLI::App& app);
 Command add_cubemap_command(CLI::App& app);
 Command add_irradiance_report_command(CLI::App& app);
+Command add_compare_command(CLI::App& app);
 
 void print_warnings(const Warnings& warnings);
 
