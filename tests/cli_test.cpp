@@ -205,3 +205,30 @@ TEST(Cli, CompareWritesThePictureAndRejectsMismatchedImages) {
 
 }  // namespace
 }  // namespace insitu
+
+namespace insitu {
+namespace {
+
+TEST(Cli, TradeoffWritesTableCsvPlotAndAb) {
+  test::SceneFixture fx;
+  auto j = fx.scene;
+  j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
+  j["objects"] = {{{"mesh", "good_quad.obj"}, {"translate", {0, 0.3, 0}}}};
+  const CliRun r = run_insitu(fx.dir, "tradeoff " + fx.write(j) + " -o " + fx.dir.file("t") + " --ladder 1,4 --reference-spp 64");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"tradeoff.csv", "tradeoff.png", "ab.png"}) EXPECT_TRUE(std::filesystem::exists(fx.dir.file(std::string("t/") + f))) << f;
+  for (const char* mode : {"| realtime |", "| irradiance/sh9 |", "| path | 4 |"}) EXPECT_NE(r.out.find(mode), std::string::npos) << r.out;
+  // More samples, closer to the reference.
+  std::ifstream csv(fx.dir.file("t/tradeoff.csv"));
+  std::string line;
+  double e1 = -1, e4 = -1;
+  while (std::getline(csv, line)) {
+    if (line.rfind("path,1,", 0) == 0) e1 = std::stod(line.substr(line.rfind(',') + 1));
+    if (line.rfind("path,4,", 0) == 0) e4 = std::stod(line.substr(line.rfind(',') + 1));
+  }
+  EXPECT_GT(e1, e4);
+  EXPECT_GT(e4, 0);
+}
+
+}  // namespace
+}  // namespace insitu

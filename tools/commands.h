@@ -17,6 +17,7 @@ Command add_calibrate_command(CLI::App& app);
 Command add_cubemap_command(CLI::App& app);
 Command add_irradiance_report_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
+Command add_tradeoff_command(CLI::App& app);
 
 void print_warnings(const Warnings& warnings);
 

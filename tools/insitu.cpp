@@ -13,7 +13,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("insitu ") + INSITU_VERSION);
   app.require_subcommand(1);
   const std::vector<Command> commands = {add_render_command(app), add_calibrate_command(app), add_cubemap_command(app),
-                                         add_irradiance_report_command(app), add_compare_command(app)};
+                                         add_irradiance_report_command(app), add_compare_command(app),
+                                         add_tradeoff_command(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {

@@ -1,0 +1,151 @@
+// insitu tradeoff SCENE -o DIR [--ladder 1,4,16,64] [--reference-spp 1024] [--seed N]
+//
+// The speed/accuracy trade of a scene: renders it with `realtime`, with `irradiance` in each mode
+// (16 spp, for anti-aliasing), and with `path` over a ladder of sample counts, and measures each
+// composite against a `path` reference of many samples (a different seed), over the pixels the
+// reference changed — the objects and their shadows. Writes DIR/tradeoff.csv (mode, spp, seconds,
+// relative RMSE), DIR/tradeoff.png (error against time, log–log), and DIR/ab.png (the `realtime`
+// and `path` composites side by side with their difference). Times are precomputation plus
+// rendering, on this machine's cores.
+#include <opencv2/imgproc.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fmt/format.h>
+#include <memory>
+
+#include "commands.h"
+#include "composite.h"
+#include "image_compare.h"
+#include "pipeline.h"
+#include "text_file.h"
+
+namespace insitu {
+namespace {
+
+struct TradeoffArgs {
+  std::string scene, out;
+  std::vector<int> ladder = {1, 4, 16, 64};
+  int reference_spp = 1024;
+  long seed = 7;
+};
+
+struct Row {
+  std::string mode;
+  int spp;
+  double seconds, rel_rmse;
+};
+
+// A log–log scatter of error against time, drawn with OpenCV.
+Image plot(const std::vector<Row>& rows) {
+  const int W = 760, H = 460, left = 70, right = 210, top = 30, bottom = 50;
+  cv::Mat m(H, W, CV_8UC3, cv::Scalar(255, 255, 255));
+  double tmin = 1e30, tmax = 0, emin = 1e30, emax = 0;
+  for (const Row& r : rows) {
+    tmin = std::min(tmin, r.seconds); tmax = std::max(tmax, r.seconds);
+    emin = std::min(emin, std::max(r.rel_rmse, 1e-4)); emax = std::max(emax, r.rel_rmse);
+  }
+  const double lt0 = std::floor(std::log10(tmin)), lt1 = std::ceil(std::log10(tmax));
+  const double le0 = std::floor(std::log10(emin)), le1 = std::ceil(std::log10(emax));
+  auto px = [&](double t) { return left + int((std::log10(t) - lt0) / std::max(1e-9, lt1 - lt0) * (W - left - right)); };
+  auto py = [&](double e) { return H - bottom - int((std::log10(std::max(e, 1e-4)) - le0) / std::max(1e-9, le1 - le0) * (H - top - bottom)); };
+  const cv::Scalar black(0, 0, 0), grey(200, 200, 200);
+  for (double d = lt0; d <= lt1; ++d) {
+    cv::line(m, {px(std::pow(10, d)), top}, {px(std::pow(10, d)), H - bottom}, grey);
+    cv::putText(m, fmt::format("{:g}", std::pow(10, d)), {px(std::pow(10, d)) - 12, H - bottom + 18}, cv::FONT_HERSHEY_SIMPLEX, 0.4, black);
+  }
+  for (double d = le0; d <= le1; ++d) {
+    cv::line(m, {left, py(std::pow(10, d))}, {W - right, py(std::pow(10, d))}, grey);
+    cv::putText(m, fmt::format("{:g}", std::pow(10, d)), {8, py(std::pow(10, d)) + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4, black);
+  }
+  cv::putText(m, "seconds", {W / 2 - 60, H - 12}, cv::FONT_HERSHEY_SIMPLEX, 0.5, black);
+  cv::putText(m, "relative RMSE against the reference (objects and shadows)", {left, 18}, cv::FONT_HERSHEY_SIMPLEX, 0.45, black);
+  const cv::Scalar colours[] = {{40, 40, 200}, {200, 120, 40}, {40, 160, 40}, {160, 60, 160}, {0, 140, 220}};
+  std::vector<std::string> modes;
+  for (const Row& r : rows)
+    if (std::find(modes.begin(), modes.end(), r.mode) == modes.end()) modes.push_back(r.mode);
+  for (std::size_t k = 0; k < modes.size(); ++k) {
+    const cv::Scalar c = colours[k % 5];
+    cv::Point prev(-1, -1);
+    for (const Row& r : rows) {
+      if (r.mode != modes[k]) continue;
+      const cv::Point p(px(r.seconds), py(r.rel_rmse));
+      cv::circle(m, p, 5, c, cv::FILLED);
+      if (prev.x >= 0) cv::line(m, prev, p, c, 2);
+      if (r.mode == "path") cv::putText(m, fmt::format("{}", r.spp), {p.x + 6, p.y - 6}, cv::FONT_HERSHEY_SIMPLEX, 0.35, c);
+      prev = p;
+    }
+    cv::circle(m, {W - right + 20, top + 20 + 20 * int(k)}, 5, c, cv::FILLED);
+    cv::putText(m, modes[k], {W - right + 32, top + 24 + 20 * int(k)}, cv::FONT_HERSHEY_SIMPLEX, 0.45, black);
+  }
+  Image out(W, H, 3);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x)
+      for (int c = 0; c < 3; ++c) out.at(x, y)[c] = m.at<cv::Vec3b>(y, x)[2 - c] / 255.0f;
+  return out;
+}
+
+int run_tradeoff(const TradeoffArgs& a) {
+  SceneSpec spec = parse_scene_file(a.scene);
+  spec.output = {};
+  const LoadedScene base = load_scene(spec);
+  print_warnings(base.warnings);
+  auto run = [&](const std::string& integrator, IrradianceMode mode, int spp, std::uint64_t seed, RenderResult* result) {
+    LoadedScene s = load_scene(spec);  // cheap next to the render; keeps every run alike
+    s.spec.render.integrator = integrator;
+    s.spec.render.irradiance = mode;
+    s.spec.render.spp = spp;
+    s.spec.render.seed = seed;
+    *result = render_scene(s);
+    return result->prepare_seconds + result->layers.seconds;
+  };
+  std::fprintf(stderr, "tradeoff: reference, path at %d spp...\n", a.reference_spp);
+  RenderResult reference;
+  run("path", IrradianceMode::kExact, a.reference_spp, std::uint64_t(a.seed) + 1000, &reference);
+  const Image mask = touched_mask(reference.layers);
+  std::vector<Row> rows;
+  RenderResult realtime_result, best_path;
+  auto measure = [&](const std::string& name, const std::string& integrator, IrradianceMode mode, int spp, RenderResult* keep) {
+    RenderResult r;
+    const double seconds = run(integrator, mode, spp, std::uint64_t(a.seed), &r);
+    const CompareResult c = compare_images(r.composite_linear, reference.composite_linear, &mask);
+    rows.push_back({name, spp, seconds, c.masked->relative_rmse});
+    std::fprintf(stderr, "tradeoff: %-20s %5d spp %8.3f s  rel. RMSE %.4f\n", name.c_str(), spp, seconds, c.masked->relative_rmse);
+    if (keep) *keep = std::move(r);
+  };
+  measure("realtime", "realtime", IrradianceMode::kGaussian, 16, &realtime_result);
+  measure("irradiance/gaussian", "irradiance", IrradianceMode::kGaussian, 16, nullptr);
+  measure("irradiance/sh9", "irradiance", IrradianceMode::kSh9, 16, nullptr);
+  measure("irradiance/exact", "irradiance", IrradianceMode::kExact, 16, nullptr);
+  for (int spp : a.ladder) measure("path", "path", IrradianceMode::kExact, spp, &best_path);
+
+  namespace fs = std::filesystem;
+  const fs::path dir(a.out);
+  std::string csv = "mode,spp,seconds,relative_rmse\n";
+  for (const Row& r : rows) csv += fmt::format("{},{},{:.4f},{:.6f}\n", r.mode, r.spp, r.seconds, r.rel_rmse);
+  write_text_file((dir / "tradeoff.csv").string(), csv);
+  write_image((dir / "tradeoff.png").string(), plot(rows));
+  const CompareResult ab = compare_images(realtime_result.composite_linear, best_path.composite_linear);
+  write_image((dir / "ab.png").string(), comparison_picture(realtime_result.composite_linear, best_path.composite_linear, ab));
+  std::printf("| mode | spp | seconds | relative RMSE |\n|---|---|---|---|\n");
+  for (const Row& r : rows) std::printf("| %s | %d | %.3f | %.4f |\n", r.mode.c_str(), r.spp, r.seconds, r.rel_rmse);
+  std::printf("wrote tradeoff.csv, tradeoff.png and ab.png to %s (reference: path, %d spp, %ld pixels changed)\n",
+              a.out.c_str(), a.reference_spp, long(std::count(mask.data.begin(), mask.data.end(), 1.0f)));
+  return 0;
+}
+
+}  // namespace
+
+Command add_tradeoff_command(CLI::App& app) {
+  auto a = std::make_shared<TradeoffArgs>();
+  CLI::App* cmd = app.add_subcommand("tradeoff", "time and error of every mode against a path-traced reference");
+  cmd->add_option("scene", a->scene, "the scene file")->required();
+  cmd->add_option("-o,--output", a->out, "output folder")->required();
+  cmd->add_option("--ladder", a->ladder, "path sample counts")->delimiter(',')->check(CLI::Range(1, 1 << 16));
+  cmd->add_option("--reference-spp", a->reference_spp, "samples of the reference")->check(CLI::Range(1, 1 << 20));
+  cmd->add_option("--seed", a->seed, "seed of the measured renders (the reference uses another)")->check(CLI::Range(0L, 1L << 40));
+  return [cmd, a] { return cmd->parsed() ? run_tradeoff(*a) : -1; };
+}
+
+}  // namespace insitu
