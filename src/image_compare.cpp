@@ -78,18 +78,21 @@ CompareResult compare_images(const Image& a, const Image& b, const Image* mask) 
   return r;
 }
 
-Image comparison_picture(const Image& a, const Image& b, const CompareResult& r) {
+Image comparison_picture(const Image& a, const Image& b, const CompareResult& r, const Image* a_display,
+                         const Image* b_display) {
   const int w = a.width, h = a.height, bar = std::max(24, w / 16), gap = 4;
   const int total_w = 3 * w + 2 * gap + gap + bar + 90;
   cv::Mat canvas(std::max(h, 120), total_w, CV_8UC3, cv::Scalar(255, 255, 255));
-  auto put = [&](const Image& img, int x0) {
+  auto put = [&](const Image& img, const Image* display, int x0) {
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x)
-        for (int c = 0; c < 3; ++c)
-          canvas.at<cv::Vec3b>(y, x0 + x)[2 - c] = static_cast<unsigned char>(std::lround(255 * linear_to_srgb(img.at(x, y)[c])));
+        for (int c = 0; c < 3; ++c) {
+          const float v = display ? std::clamp(display->at(x, y)[c], 0.0f, 1.0f) : linear_to_srgb(img.at(x, y)[c]);
+          canvas.at<cv::Vec3b>(y, x0 + x)[2 - c] = static_cast<unsigned char>(std::lround(255 * v));
+        }
   };
-  put(a, 0);
-  put(b, w + gap);
+  put(a, a_display, 0);
+  put(b, b_display, w + gap);
   // Heatmap of the error on 0 … max.
   float emax = 0;
   for (float v : r.error_luminance.data) emax = std::max(emax, v);

@@ -18,7 +18,8 @@ struct CompareArgs {
 };
 
 int run_compare(const CompareArgs& args) {
-  const Image a = linearize(read_image_file(args.a)), b = linearize(read_image_file(args.b));
+  const ImageFile fa = read_image_file(args.a), fb = read_image_file(args.b);
+  const Image a = linearize(fa), b = linearize(fb);
   if (a.width != b.width || a.height != b.height)
     throw InputError(args.b, fmt::format("{}x{}, but {} is {}x{}", b.width, b.height, args.a, a.width, a.height));
   Image mask;
@@ -35,7 +36,9 @@ int run_compare(const CompareArgs& args) {
   row("image", r.whole);
   if (r.masked) row("mask", *r.masked);
   if (!args.out.empty()) {
-    write_image(args.out, comparison_picture(a, b, r));
+    // Display-referred files are shown as stored, so the picture looks like the files.
+    write_image(args.out, comparison_picture(a, b, r, fa.display_referred ? &fa.stored : nullptr,
+                                             fb.display_referred ? &fb.stored : nullptr));
     std::printf("wrote %s\n", args.out.c_str());
   }
   return 0;

@@ -127,7 +127,8 @@ int run_tradeoff(const TradeoffArgs& a) {
   write_text_file((dir / "tradeoff.csv").string(), csv);
   write_image((dir / "tradeoff.png").string(), plot(rows));
   const CompareResult ab = compare_images(realtime_result.composite_linear, best_path.composite_linear);
-  write_image((dir / "ab.png").string(), comparison_picture(realtime_result.composite_linear, best_path.composite_linear, ab));
+  write_image((dir / "ab.png").string(), comparison_picture(realtime_result.composite_linear, best_path.composite_linear, ab,
+                                                            &realtime_result.composite_encoded, &best_path.composite_encoded));
   std::printf("| mode | spp | seconds | relative RMSE |\n|---|---|---|---|\n");
   for (const Row& r : rows) std::printf("| %s | %d | %.3f | %.4f |\n", r.mode.c_str(), r.spp, r.seconds, r.rel_rmse);
   std::printf("wrote tradeoff.csv, tradeoff.png and ab.png to %s (reference: path, %d spp, %ld pixels changed)\n",
