@@ -3,6 +3,7 @@
 // a plain table (no static-initialization tricks).
 #pragma once
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,19 @@ struct CameraSample {
   Rgb albedo = Rgb::Zero();
   float depth = 0.0f;
 };
+
+// The camera ray's first object hit for the integrators that shade only that: fills the sample's
+// coverage and AOVs and returns the surface, or nothing on a miss.
+inline std::optional<SurfacePoint> first_hit(const EmbreeScene& objects, const Ray& ray, CameraSample& out) {
+  const Hit hit = objects.intersect(ray);
+  if (!hit.valid()) return std::nullopt;
+  const SurfacePoint sp = objects.surface(ray, hit);
+  out.coverage = 1.0f;
+  out.normal = sp.ns_world;
+  out.albedo = sp.material->base_colour(sp.uv);
+  out.depth = hit.t;
+  return sp;
+}
 
 class Integrator {
  public:

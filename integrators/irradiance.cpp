@@ -21,14 +21,7 @@ class IrradianceIntegrator final : public Integrator {
 
   CameraSample sample(const Ray& ray, Sampler&) const override {
     CameraSample out;
-    const Hit hit = objects_->intersect(ray);
-    if (!hit.valid()) return out;
-    const SurfacePoint sp = objects_->surface(ray, hit);
-    out.coverage = 1.0f;
-    out.normal = sp.ns_world;
-    out.albedo = sp.material->base_colour(sp.uv);
-    out.depth = hit.t;
-    out.radiance = sp.material->base_colour(sp.uv) * field_->irradiance(sp.ns_world) / kPiF;
+    if (const auto sp = first_hit(*objects_, ray, out)) out.radiance = out.albedo * field_->irradiance(sp->ns_world) / kPiF;
     return out;
   }
 

@@ -22,14 +22,7 @@ class RealtimeIntegrator final : public Integrator {
 
   CameraSample sample(const Ray& ray, Sampler&) const override {
     CameraSample out;
-    const Hit hit = objects_->intersect(ray);
-    if (!hit.valid()) return out;
-    const SurfacePoint sp = objects_->surface(ray, hit);
-    out.coverage = 1.0f;
-    out.normal = sp.ns_world;
-    out.albedo = sp.material->base_colour(sp.uv);
-    out.depth = hit.t;
-    out.radiance = sp.material->base_colour(sp.uv) * blurred_.lookup(sp.ns_world);
+    if (const auto sp = first_hit(*objects_, ray, out)) out.radiance = out.albedo * blurred_.lookup(sp->ns_world);
     return out;
   }
 
