@@ -89,15 +89,15 @@ Image plot(const std::vector<Row>& rows) {
 int run_tradeoff(const TradeoffArgs& a) {
   SceneSpec spec = parse_scene_file(a.scene);
   spec.output = {};
-  const LoadedScene base = load_scene(spec);
-  print_warnings(base.warnings);
+  // Loaded once: the runs differ only in their render settings.
+  LoadedScene scene = load_scene(spec);
+  print_warnings(scene.warnings);
   auto run = [&](const std::string& integrator, IrradianceMode mode, int spp, std::uint64_t seed, RenderResult* result) {
-    LoadedScene s = load_scene(spec);  // cheap next to the render; keeps every run alike
-    s.spec.render.integrator = integrator;
-    s.spec.render.irradiance = mode;
-    s.spec.render.spp = spp;
-    s.spec.render.seed = seed;
-    *result = render_scene(s);
+    scene.spec.render.integrator = integrator;
+    scene.spec.render.irradiance = mode;
+    scene.spec.render.spp = spp;
+    scene.spec.render.seed = seed;
+    *result = render_scene(scene);
     return result->prepare_seconds + result->layers.seconds;
   };
   std::fprintf(stderr, "tradeoff: reference, path at %d spp...\n", a.reference_spp);
