@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(
   cmake g++ make pkg-config
-  libembree-dev libopenimageio-dev libopenexr-dev libopencv-dev libceres-dev
+  libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libopencv-dev libceres-dev
   libtinyobjloader-dev libtbb-dev libeigen3-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev libgtest-dev libbenchmark-dev
 )
