@@ -53,7 +53,8 @@ struct CameraSample {
   // Differential rendering: the catcher's radiance with and without the objects, computed with the
   // same random numbers (identical where no object interferes). Zero unless the sample saw a catcher.
   Rgb with_objects = Rgb::Zero(), without_objects = Rgb::Zero();
-  // What the camera ray met first (object or catcher), for the AOV layers; depth 0: nothing.
+  // What the camera ray met first (object or catcher), for the AOV layers: depth is the distance
+  // along the unit ray (the render loop turns it into camera-space z); 0: nothing.
   Vec3f normal = Vec3f::Zero();
   Rgb albedo = Rgb::Zero();
   float depth = 0.0f;
@@ -79,13 +80,25 @@ class Integrator {
   virtual CameraSample sample(const Ray& ray, Sampler& sampler) const = 0;
 };
 
+// What an integrator reads of the scene beyond the objects and the cube: a setting it does not
+// read has no effect, and the pipeline says so when the user gives it.
+struct IntegratorCapabilities {
+  bool local_scene = false;      // catches shadows on local_scene (differential rendering)
+  bool room_box = false;         // uses environment.room_box
+  bool irradiance_mode = false;  // reads render.irradiance
+  bool max_depth = false;        // reads render.max_depth
+};
+
 struct IntegratorEntry {
   const char* name;
   const char* summary;
   std::unique_ptr<Integrator> (*create)(const RenderInputs& inputs);
+  IntegratorCapabilities uses;
 };
 
 const std::vector<IntegratorEntry>& integrator_registry();
+// The entry named `name`, or nullptr.
+const IntegratorEntry* find_integrator(const std::string& name);
 // Throws InputError naming the known integrators when `name` is not one of them.
 std::unique_ptr<Integrator> make_integrator(const std::string& name, const RenderInputs& inputs);
 bool is_integrator(const std::string& name);

@@ -81,7 +81,8 @@ class PathIntegrator final : public Integrator {
   }
 
  private:
-  // The nearest catcher plane the ray meets from its front side within (0, t_max).
+  // The nearest catcher plane the ray meets from its front side within (0, t_max). With a room
+  // box the real floor ends at the room's walls: hits outside the box are not hits.
   int hit_plane(const Ray& ray, float t_max, float* t_hit) const {
     int best = -1;
     for (std::size_t k = 0; k < in_.planes.size(); ++k) {
@@ -89,10 +90,19 @@ class PathIntegrator final : public Integrator {
       const float dn = ray.dir.dot(p.normal);
       if (!(dn < 0)) continue;
       const float t = (p.point - ray.origin).dot(p.normal) / dn;
-      if (t > 0 && t < t_max) { t_max = t; best = int(k); }
+      if (!(t > 0 && t < t_max) || !inside_room(ray.origin + t * ray.dir)) continue;
+      t_max = t;
+      best = int(k);
     }
     if (best >= 0) *t_hit = t_max;
     return best;
+  }
+
+  // Inside the room box, with a tolerance of 10⁻⁴ of its size (a floor plane lies on its face).
+  bool inside_room(const Vec3f& x) const {
+    if (!in_.room_box) return true;
+    const Vec3f slack = 1e-4f * (in_.box_max - in_.box_min);
+    return (x.array() >= (in_.box_min - slack).array()).all() && (x.array() <= (in_.box_max + slack).array()).all();
   }
 
   // What a ray meets first of the local scene within (0, t_max): a plane (from its front) or a

@@ -12,20 +12,22 @@ std::unique_ptr<Integrator> make_path_integrator(const RenderInputs& inputs);
 const std::vector<IntegratorEntry>& integrator_registry() {
   static const std::vector<IntegratorEntry> table = {
       {"realtime", "legacy real-time path: base colour x face-blurred cube at the normal, no shadows",
-       make_realtime_integrator},
+       make_realtime_integrator, {}},
       {"irradiance", "Lambertian objects lit by an irradiance mode (render.irradiance), no visibility",
-       make_irradiance_integrator},
+       make_irradiance_integrator, {/*local_scene*/ false, /*room_box*/ false, /*irradiance_mode*/ true, /*max_depth*/ false}},
       {"path", "path tracing of the objects with environment importance sampling and MIS (shadows between objects)",
-       make_path_integrator},
+       make_path_integrator, {/*local_scene*/ true, /*room_box*/ true, /*irradiance_mode*/ false, /*max_depth*/ true}},
   };
   return table;
 }
 
-bool is_integrator(const std::string& name) {
+const IntegratorEntry* find_integrator(const std::string& name) {
   for (const auto& e : integrator_registry())
-    if (name == e.name) return true;
-  return false;
+    if (name == e.name) return &e;
+  return nullptr;
 }
+
+bool is_integrator(const std::string& name) { return find_integrator(name) != nullptr; }
 
 std::unique_ptr<Integrator> make_integrator(const std::string& name, const RenderInputs& inputs) {
   std::string known;

@@ -564,8 +564,16 @@ std::string calibration_report(const CalibrationResult& r) {
   for (const auto& f : r.fits)
     out += f.fitted ? fmt::format("  {:<6} RMS {:.4g} px{}{}\n", model_name(f.model), f.rms_px, f.note.empty() ? "" : "; ", f.note)
                     : fmt::format("  {:<6} not fitted: {}\n", model_name(f.model), f.note);
-  out += fmt::format("fx, fy       {} px, {} px\n", pm(c.fx, s.fx_px, "{:.2f}"), pm(c.fy, s.fy_px, "{:.2f}"));
-  out += fmt::format("cx, cy       {} px, {} px\n", pm(c.cx, s.cx_px, "{:.2f}"), pm(c.cy, s.cy_px, "{:.2f}"));
+  // A parameter the model does not fit is fixed, not known to ±0: say so, and why.
+  const std::string why = r.selection == "requested" ? "by the requested model" : "not supported by the points";
+  if (r.model == CameraModel::kFCA)
+    out += fmt::format("fx, fy       {} px, {} px\n", pm(c.fx, s.fx_px, "{:.2f}"), pm(c.fy, s.fy_px, "{:.2f}"));
+  else
+    out += fmt::format("fx, fy       {} px, fy = fx (square pixels: fixed, {})\n", pm(c.fx, s.fx_px, "{:.2f}"), why);
+  if (r.model == CameraModel::kF)
+    out += fmt::format("cx, cy       {:.2f} px, {:.2f} px (the image centre: fixed, {})\n", c.cx, c.cy, why);
+  else
+    out += fmt::format("cx, cy       {} px, {} px\n", pm(c.cx, s.cx_px, "{:.2f}"), pm(c.cy, s.cy_px, "{:.2f}"));
   out += fmt::format("fov          {}° horizontal, {:.3f}° vertical\n", pm(c.hfov_deg(), s.hfov_deg, "{:.3f}"), c.vfov_deg());
   const Vec3d eye = c.eye_world(), look = eye + c.forward_world(), up = c.up_world();
   out += fmt::format("eye          ({:.4f}, {:.4f}, {:.4f})", eye.x(), eye.y(), eye.z());

@@ -88,6 +88,12 @@ std::vector<ControlPoint> read_csv_points(const std::string& path) {
 
 }  // namespace
 
+std::optional<bool> parse_bottom_left_origin(const std::string& name) {
+  if (name == "top_left" || name == "top-left") return false;
+  if (name == "bottom_left" || name == "bottom-left") return true;
+  return std::nullopt;
+}
+
 std::vector<ControlPoint> read_control_points(const std::string& path, bool bottom_left_origin, int image_height) {
   if (!fs::exists(path)) throw InputError(path, "file not found");
   const std::string ext = lower_ext(path);

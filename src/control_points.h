@@ -6,6 +6,7 @@
 // With bottom_left_origin, v is measured up from the bottom edge (as in View Correlation files)
 // and converted: v_top_left = height − v.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,11 @@ struct ControlPoint {
   std::string name;               // "#3" when unnamed (1-based)
   std::string where;              // file and place, for messages
 };
+
+// The pixel origin of the points, spelt as in the scene file ("top_left", "bottom_left") or as on
+// the command line ("top-left", "bottom-left"): true for bottom-left, nullopt if neither.
+std::optional<bool> parse_bottom_left_origin(const std::string& name);
+constexpr const char* kOriginNames = "\"top_left\" or \"bottom_left\" (top-left, bottom-left also accepted)";
 
 std::vector<ControlPoint> read_control_points(const std::string& path, bool bottom_left_origin, int image_height);
 

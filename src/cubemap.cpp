@@ -6,7 +6,7 @@
 namespace insitu {
 
 const char* face_name(int face) {
-  static const char* names[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+  static const char* names[6] = {"+x", "-x", "up", "down", "+z", "-z"};  // as the scene file's shots
   return names[face];
 }
 

@@ -21,7 +21,7 @@
 namespace insitu {
 
 enum CubeFace : int { kPosX = 0, kNegX, kPosY, kNegY, kPosZ, kNegZ };
-const char* face_name(int face);  // "+x", "-x", ...
+const char* face_name(int face);  // "+x", "-x", "up", "down", "+z", "-z": the scene file's keys
 
 struct FaceCoord {
   int face;

@@ -26,4 +26,8 @@ inline float luminance(const Rgb& c) { return 0.2126f * c[0] + 0.7152f * c[1] + 
 
 inline bool all_finite(const Vec3d& v) { return v.allFinite(); }
 
+// The rotation nearest to M in the Frobenius norm: the orthogonal polar factor U Vᵀ of the SVD
+// M = U Σ Vᵀ (Higham 1986, "Computing the polar decomposition"). For det M > 0 it is a rotation.
+Mat3d nearest_rotation(const Mat3d& M);
+
 }  // namespace insitu

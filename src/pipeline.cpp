@@ -11,10 +11,46 @@
 
 namespace insitu {
 
+std::string effective_tonemap(const SceneSpec& spec) {
+  return is_linear_output(spec.output.image) ? "none" : tonemap_name(spec.output.tonemap.op);
+}
+
+std::optional<IrradianceMode> effective_irradiance(const SceneSpec& spec) {
+  const IntegratorEntry* e = find_integrator(spec.render.integrator);
+  if (e && e->uses.irradiance_mode) return spec.render.irradiance;
+  return std::nullopt;
+}
+
+void warn_ineffective_settings(const SceneSpec& spec, Warnings& w) {
+  const IntegratorEntry* e = find_integrator(spec.render.integrator);
+  if (!e) return;
+  const std::string by = "the " + spec.render.integrator + " integrator";
+  auto given = [&](const char* name) { return spec.given.count(name) > 0; };
+  if (given("render.irradiance") && !e->uses.irradiance_mode)
+    w.add("render.irradiance", "has no effect: " + by + " does not use an irradiance mode (only irradiance does)");
+  if (given("render.max_depth") && !e->uses.max_depth) w.add("render.max_depth", "has no effect: " + by + " traces no bounces");
+  if (!spec.local_scene.empty() && !e->uses.local_scene)
+    w.add("local_scene", "has no effect: " + by + " draws no shadows on it (only path does)");
+  if (spec.environment.room_box && !e->uses.room_box)
+    w.add("environment.room_box", "has no effect: " + by + " looks the cube up by direction only (only path uses it)");
+  const ToneMap op = spec.output.tonemap.op;
+  if (is_linear_output(spec.output.image)) {
+    for (const char* key : {"output.tonemap", "output.tonemap.key", "output.tonemap.bias"})
+      if (given(key))
+        w.add(key, "has no effect: " + spec.output.image + " is a linear, scene-referred image; tone mapping applies to PNG and JPEG");
+    return;
+  }
+  if (given("output.tonemap.key") && op == ToneMap::kPhoto)
+    w.add("output.tonemap.key", "has no effect with the photo tone map (it re-encodes through the photo's own curve)");
+  if (given("output.tonemap.bias") && op != ToneMap::kAdaptiveLog)
+    w.add("output.tonemap.bias", std::string("has no effect with the ") + tonemap_name(op) + " tone map (only adaptive_log has a bias)");
+}
+
 LoadedScene load_scene(const SceneSpec& spec) {
   const auto start = std::chrono::steady_clock::now();
   LoadedScene s;
   s.spec = spec;
+  s.warnings = spec.warnings;
   try {
     s.photo = read_image_file(spec.photo);
   } catch (const InputError& e) {
@@ -44,7 +80,7 @@ LoadedScene load_scene(const SceneSpec& spec) {
     s.camera = s.calibration->camera;
     for (const auto& w : s.calibration->warnings) s.warnings.add(spec.camera.where, w);
   } else {
-    s.camera = build_camera(spec.camera, width, height);
+    s.camera = build_camera(spec.camera, width, height, &s.warnings);
   }
 
   std::vector<Mesh> meshes;
@@ -58,9 +94,7 @@ LoadedScene load_scene(const SceneSpec& spec) {
     transform_mesh(mesh, obj.M_world_from_object);
     meshes.push_back(std::move(mesh));
   }
-  if (!spec.local_scene.empty() && spec.render.integrator != "path")
-    s.warnings.add(spec.path, "local_scene is used only by the path integrator (" + spec.render.integrator +
-                                  " draws no shadows on it)");
+  warn_ineffective_settings(spec, s.warnings);
   s.objects = std::make_unique<EmbreeScene>(std::move(meshes));
   std::vector<Mesh> catcher_meshes;
   for (std::size_t i = 0; i < spec.local_scene.size(); ++i) {
@@ -126,9 +160,11 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress) 
   return r;
 }
 
-std::string report_path(const std::string& image_path) {
+std::string report_path(const std::string& image_path) { return image_path + ".report.json"; }
+
+std::string layers_path_for(const std::string& image_path) {
   const std::filesystem::path p(image_path);
-  return (p.parent_path() / (p.stem().string() + ".report.json")).string();
+  return (p.parent_path() / (p.stem().string() + ".layers.exr")).string();
 }
 
 nlohmann::json render_report(const LoadedScene& s, const RenderResult& r) {
@@ -161,23 +197,21 @@ nlohmann::json render_report(const LoadedScene& s, const RenderResult& r) {
         {"shots", shots}}},
       {"render",
        {{"integrator", s.spec.render.integrator},
-        {"irradiance", irradiance_mode_name(s.spec.render.irradiance)},
+        {"irradiance", effective_irradiance(s.spec) ? json(irradiance_mode_name(*effective_irradiance(s.spec))) : json(nullptr)},
         {"spp", s.spec.render.spp},
         {"max_depth", s.spec.render.max_depth},
         {"seed", s.spec.render.seed},
         {"noise_relative", r.layers.mean_relative_noise},
         {"nonfinite_samples", r.layers.nonfinite_samples}}},
       {"composite", s.spec.composite == CompositeMode::kRatio ? "ratio" : "additive"},
-      {"tonemap", tonemap_name(s.spec.output.tonemap.op)},
+      {"tonemap", effective_tonemap(s.spec)},
       {"warnings", s.warnings.items},
   };
 }
 
 void write_outputs(const LoadedScene& scene, const RenderResult& r) {
   const std::string& image = scene.spec.output.image;
-  std::string ext = std::filesystem::path(image).extension().string();
-  for (auto& c : ext) c = char(std::tolower(c));
-  const bool linear_out = ext == ".exr" || ext == ".tif" || ext == ".tiff";
+  const bool linear_out = is_linear_output(image);
   const ToneMapSettings& tm = scene.spec.output.tonemap;
   write_image(image, linear_out ? r.composite_linear
                                 : tm.op == ToneMap::kPhoto ? r.composite_encoded : tonemap(r.composite_linear, tm));

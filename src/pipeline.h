@@ -48,6 +48,15 @@ void write_outputs(const LoadedScene& scene, const RenderResult& result);
 // RMS, the integrator, irradiance mode, samples per pixel, noise estimate, non-finite samples, and
 // per shot the coverage and clipped percentage.
 nlohmann::json render_report(const LoadedScene& scene, const RenderResult& result);
+// The report of an image: its whole name + ".report.json" (a.png and a.exr keep their own).
 std::string report_path(const std::string& image_path);
+// The layers that go with an image given by -o: IMAGE_STEM.layers.exr beside it.
+std::string layers_path_for(const std::string& image_path);
+
+// Settings given (SceneSpec::given) that the integrator or the output format does not use, each
+// named in a warning; and what is really done, for the report.
+void warn_ineffective_settings(const SceneSpec& spec, Warnings& warnings);
+std::string effective_tonemap(const SceneSpec& spec);                    // "none" for EXR/TIFF
+std::optional<IrradianceMode> effective_irradiance(const SceneSpec& spec);  // nullopt: not used
 
 }  // namespace insitu

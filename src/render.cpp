@@ -46,6 +46,8 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
                     const ProgressFn& progress) {
   const auto start = std::chrono::steady_clock::now();
   const int w = camera.width, h = camera.height, spp = std::max(1, settings.spp);
+  // The optical axis in the world (the third row of R): z_cam = t · (d · axis) for a unit ray d.
+  const Vec3f axis_world = camera.R_cam_from_world.row(2).transpose().cast<float>();
   int grid = int(std::lround(std::sqrt(double(spp))));
   if (grid * grid != spp) grid = 0;  // not a perfect square: plain jitter
   std::vector<PixelSums> sums(std::size_t(w) * h);
@@ -74,7 +76,8 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
               jx = (float(s % grid) + jx) / float(grid);
               jy = (float(s / grid) + jy) / float(grid);
             }
-            const CameraSample cs = integrator.sample(camera.ray({double(x) + jx, double(y) + jy}), sampler);
+            const Ray ray = camera.ray({double(x) + jx, double(y) + jy});
+            const CameraSample cs = integrator.sample(ray, sampler);
             if (!cs.radiance.allFinite() || !std::isfinite(cs.coverage) || !cs.with_objects.allFinite() ||
                 !cs.without_objects.allFinite()) {
               ++local_nonfinite;
@@ -91,7 +94,7 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
               ++p.met;
               p.normal += cs.normal;
               p.albedo += cs.albedo;
-              p.depth += cs.depth;
+              p.depth += double(cs.depth) * double(ray.dir.dot(axis_world));
             }
           }
         }
@@ -115,7 +118,7 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
   out.without_objects = Image(w, h, 3);
   out.normal = Image(w, h, 3);
   out.albedo = Image(w, h, 3);
-  out.depth = Image(w, h, 1);
+  out.depth = Image(w, h, 1, kNoHitDepth);
   out.samples = Image(w, h, 1, float(spp));
   out.variance = Image(w, h, 1);
   for (int y = 0; y < h; ++y)

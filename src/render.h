@@ -13,6 +13,14 @@
 
 namespace insitu {
 
+// depth.Z where no sample met an object or the local scene: Cycles's background depth, finite so
+// that every layer stays finite.
+constexpr float kNoHitDepth = 1e10f;
+
+// The ranges every verb and the scene file accept for samples per pixel and the seed.
+constexpr int kMaxSpp = 1 << 20;
+constexpr long kMaxSeed = (1L << 62) - 1;
+
 struct RenderSettings {
   std::string integrator = "realtime";
   IrradianceMode irradiance = IrradianceMode::kExact;
@@ -26,7 +34,9 @@ struct RenderLayers {
   Image alpha;    // 1 channel: mean coverage
   Image with_objects, without_objects;  // RGB: mean over samples of the catcher's radiance (0 off it)
   Image normal, albedo;  // RGB: mean over the samples that met an object or a catcher
-  Image depth;           // 1 channel: mean distance along the ray to what they met (0: nothing)
+  Image depth;           // 1 channel: camera-space z (metres along the optical axis, as Cycles's and
+                         // Nuke's Z) of what the samples met, averaged over those that met
+                         // something; kNoHitDepth where none did
   Image samples;         // 1 channel: samples taken in the pixel
   Image variance;        // 1 channel: variance of the pixel's mean, luminance of O + W − N, estimated
                          // as if the samples were independent (conservative: their positions are

@@ -1,6 +1,7 @@
 #include "scene.h"
 
 #include <filesystem>
+#include <tuple>
 #include <fmt/format.h>
 
 #include "calibration.h"
@@ -40,11 +41,28 @@ int parse_axis(const JsonValue& v) {
   const std::string s = v.string();
   static const char* names[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
   for (int f = 0; f < 6; ++f)
-    if (s == names[f]) return f;
-  v.fail(fmt::format("'{}' is not an axis (+x, -x, +y, -y, +z, -z)", s));
+    if (s == names[f] || s == face_name(f)) return f;
+  v.fail(fmt::format("'{}' is not an axis (+x, -x, +z, -z, up or +y, down or -y)", s));
 }
 
-CameraSpec parse_camera(JsonObject o, const fs::path& dir) {
+// A camera rotation R (3 rows of 3) as exporters write it: Blender and most JSON writers round to
+// about 6 decimals, so R Rᵀ is the identity only to ~1e-6. Accepted up to
+// ‖R Rᵀ − I‖_F ≤ kRotationTolerance with det R > 0, and replaced by the nearest rotation (SVD);
+// a warning above 1e-6 says so. Beyond the tolerance, or mirrored, it is an error.
+Mat3d read_rotation(const JsonValue& v, Warnings* warnings) {
+  if (v.size() != 3) v.fail("expected 3 rows of 3 numbers");
+  Mat3d R;
+  for (std::size_t r = 0; r < 3; ++r) R.row(long(r)) = v.element(r).vec3().transpose();
+  const double orth = (R * R.transpose() - Mat3d::Identity()).norm(), det = R.determinant();
+  if (!(orth <= kRotationTolerance) || !(det > 0))
+    v.fail(fmt::format("not a rotation (|R Rᵀ − I| = {:.2g}, det = {:.6g}; at most {:g} is accepted, and det > 0)", orth,
+                       det, kRotationTolerance));
+  if (orth > 1e-6 && warnings)
+    warnings->add(v.where(), fmt::format("R is a rotation only to |R Rᵀ − I| = {:.2g}: the nearest rotation is used", orth));
+  return nearest_rotation(R);
+}
+
+CameraSpec parse_camera(JsonObject o, const fs::path& dir, Warnings& warnings) {
   CameraSpec c;
   c.where = o.where();
   if (auto pts = o.find("points")) {
@@ -58,9 +76,9 @@ CameraSpec parse_camera(JsonObject o, const fs::path& dir) {
       }
     }
     if (auto origin = o.find("origin")) {
-      const std::string s = origin->string();
-      if (s != "top_left" && s != "bottom_left") origin->fail("expected \"top_left\" or \"bottom_left\"");
-      c.bottom_left_origin = s == "bottom_left";
+      const auto bottom_left = parse_bottom_left_origin(origin->string());
+      if (!bottom_left) origin->fail(std::string("expected ") + kOriginNames);
+      c.bottom_left_origin = *bottom_left;
     }
     o.finish();
     return c;
@@ -105,15 +123,7 @@ CameraSpec parse_camera(JsonObject o, const fs::path& dir) {
   if (auto cy = in.find("cy")) c.cy = cy->number();
   in.finish();
   JsonObject pose(o.get("pose"));
-  const JsonValue R = pose.get("R");
-  if (R.size() != 3) R.fail("expected 3 rows of 3 numbers");
-  for (std::size_t r = 0; r < 3; ++r) {
-    const Vec3d row = R.element(r).vec3();
-    c.R_cam_from_world.row(long(r)) = row.transpose();
-  }
-  const double orth = (c.R_cam_from_world * c.R_cam_from_world.transpose() - Mat3d::Identity()).norm();
-  if (orth > 1e-6 || c.R_cam_from_world.determinant() < 0)
-    R.fail(fmt::format("not a rotation (|R Rᵀ − I| = {:.2g}, det = {:.6g})", orth, c.R_cam_from_world.determinant()));
+  c.R_cam_from_world = read_rotation(pose.get("R"), &warnings);
   c.t_cam_from_world = pose.get("t").vec3();
   pose.finish();
   o.finish();
@@ -218,8 +228,11 @@ EnvironmentSpec parse_environment(const JsonValue& v, const fs::path& dir) {
     e.faced_face = parse_axis(s.get("faced"));
   }
   if (e.faced_face == kPosY || e.faced_face == kNegY) s.get("faced").fail("the faced wall must be horizontal");
-  shot(kPosY, "up");
-  shot(kNegY, "down");
+  // The ceiling and floor shots: "up" and "down", or by their axes "+y" and "-y".
+  for (const auto& [face, key, alias] : {std::tuple{kPosY, "up", "+y"}, std::tuple{kNegY, "down", "-y"}}) {
+    if (s.has(key) && s.has(alias)) s.fail(fmt::format("give '{}' or '{}', not both", key, alias));
+    shot(face, s.has(alias) ? alias : key);
+  }
   s.finish();
   o.finish();
   return e;
@@ -289,7 +302,7 @@ SceneSpec parse_scene_file(const std::string& path) {
   const JsonValue photo = root.get("photo");
   scene.photo = existing_file(photo, dir);
   scene.photo_where = photo.where();
-  scene.camera = parse_camera(JsonObject(root.get("camera")), dir);
+  scene.camera = parse_camera(JsonObject(root.get("camera")), dir, scene.warnings);
   scene.environment = parse_environment(root.get("environment"), dir);
 
   if (auto ls = root.find("local_scene")) {
@@ -337,14 +350,16 @@ SceneSpec parse_scene_file(const std::string& path) {
         }
       }
     }
+    for (const char* key : {"irradiance", "max_depth"})
+      if (ro.has(key)) scene.given.insert(std::string("render.") + key);
     if (auto irr = ro.find("irradiance")) {
       const auto mode = parse_irradiance_mode(irr->string());
       if (!mode) irr->fail("expected \"gaussian\", \"sh9\" or \"exact\"");
       scene.render.irradiance = *mode;
     }
     if (auto d = ro.find("max_depth")) scene.render.max_depth = int(d->integer(1, 1000));
-    if (auto spp = ro.find("spp")) scene.render.spp = int(spp->integer(1, 1 << 20));
-    if (auto seed = ro.find("seed")) scene.render.seed = std::uint64_t(seed->integer(0, std::numeric_limits<long>::max()));
+    if (auto spp = ro.find("spp")) scene.render.spp = int(spp->integer(1, kMaxSpp));
+    if (auto seed = ro.find("seed")) scene.render.seed = std::uint64_t(seed->integer(0, kMaxSeed));
     ro.finish();
   }
   if (auto c = root.find("composite")) {
@@ -357,7 +372,9 @@ SceneSpec parse_scene_file(const std::string& path) {
   if (auto out = root.find("output")) {
     JsonObject oo(*out);
     if (auto img = oo.find("image")) scene.output.image = output_file(*img, dir, {".png", ".jpg", ".jpeg", ".exr", ".tif", ".tiff"});
-    if (auto layers = oo.find("layers")) scene.output.layers = output_file(*layers, dir, {".exr"});
+    if (auto layers = oo.find("layers")) {  // a path, or "none"
+      scene.output.layers = layers->is_string() && layers->string() == "none" ? "" : output_file(*layers, dir, {".exr"});
+    }
     if (auto tm = oo.find("tonemap")) {
       // "name", or {"op": "name", "key": k, "bias": b}.
       auto parse_op = [&](const JsonValue& v) {
@@ -365,13 +382,14 @@ SceneSpec parse_scene_file(const std::string& path) {
         if (!op) v.fail("expected \"photo\", \"adaptive_log\", \"reinhard\" or \"linear\"");
         scene.output.tonemap.op = *op;
       };
+      scene.given.insert("output.tonemap");
       if (tm->is_string()) {
         parse_op(*tm);
       } else {
         JsonObject t(*tm);
         parse_op(t.get("op"));
-        if (auto k = t.find("key")) scene.output.tonemap.key = k->number(1e-6, 1e6);
-        if (auto b = t.find("bias")) scene.output.tonemap.bias = b->number(0.01, 0.99);
+        if (auto k = t.find("key")) scene.output.tonemap.key = k->number(1e-6, 1e6), scene.given.insert("output.tonemap.key");
+        if (auto b = t.find("bias")) scene.output.tonemap.bias = b->number(0.01, 0.99), scene.given.insert("output.tonemap.bias");
         t.finish();
       }
     }
@@ -381,7 +399,13 @@ SceneSpec parse_scene_file(const std::string& path) {
   return scene;
 }
 
-Camera build_camera(const CameraSpec& c, int width, int height) {
+bool is_linear_output(const std::string& image_path) {
+  std::string ext = fs::path(image_path).extension().string();
+  for (auto& ch : ext) ch = char(std::tolower(ch));
+  return ext == ".exr" || ext == ".tif" || ext == ".tiff";
+}
+
+Camera build_camera(const CameraSpec& c, int width, int height, Warnings* warnings) {
   if (c.kind == CameraSpec::Kind::LookAt) {
     const double hfov = c.hfov_deg ? *c.hfov_deg
                                    : rad_to_deg(2 * std::atan(std::tan(0.5 * deg_to_rad(*c.vfov_deg)) * width / height));
@@ -405,12 +429,7 @@ Camera build_camera(const CameraSpec& c, int width, int height) {
     cam.cy = in.get("cy").number();
     in.finish();
     JsonObject pose(o.get("pose"));
-    const JsonValue R = pose.get("R");
-    if (R.size() != 3) R.fail("expected 3 rows of 3 numbers");
-    for (std::size_t r = 0; r < 3; ++r) cam.R_cam_from_world.row(long(r)) = R.element(r).vec3().transpose();
-    if ((cam.R_cam_from_world * cam.R_cam_from_world.transpose() - Mat3d::Identity()).norm() > 1e-6 ||
-        cam.R_cam_from_world.determinant() < 0)
-      R.fail("not a rotation");
+    cam.R_cam_from_world = read_rotation(pose.get("R"), warnings);
     cam.t_cam_from_world = pose.get("t").vec3();
     pose.finish();
     for (const char* informational : {"eye", "look", "up", "hfov_deg", "vfov_deg", "calibration"}) o.find(informational);

@@ -4,11 +4,13 @@
 #pragma once
 #include <array>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "camera.h"
 #include "cubemap.h"
+#include "error.h"
 #include "render.h"
 #include "tonemap.h"
 
@@ -74,7 +76,7 @@ struct PlaneSpec {
 
 struct OutputSpec {
   std::string image;   // composite (PNG, JPEG, EXR, TIFF)
-  std::string layers;  // multi-layer EXR
+  std::string layers;  // multi-layer EXR; empty: none
   ToneMapSettings tonemap;  // for PNG/JPEG; EXR and TIFF stay linear
 };
 
@@ -92,14 +94,25 @@ struct SceneSpec {
   RenderSettings render;
   CompositeMode composite = CompositeMode::kRatio;
   OutputSpec output;
+  Warnings warnings;  // found while parsing (a rounded rotation, an option without effect)
+  // The settings the user gave (scene file or command line), by their scene-file name, e.g.
+  // "render.irradiance", "output.tonemap.key": a given setting that has no effect is warned of.
+  std::set<std::string> given;
 };
 
 SceneSpec parse_scene_file(const std::string& path);
+
+// Outputs whose format ignores the tone map: EXR and TIFF stay linear, scene-referred.
+bool is_linear_output(const std::string& image_path);
 // A JSON file holding just an environment object (the scene file's "environment" value).
 EnvironmentSpec parse_environment_file(const std::string& path);
 
 // Builds the camera for a photo of width x height (not for Kind::Points: see pipeline.cpp).
-Camera build_camera(const CameraSpec& spec, int width, int height);
+Camera build_camera(const CameraSpec& spec, int width, int height, Warnings* warnings = nullptr);
+
+// How far a given rotation matrix may be from orthonormal, ‖R Rᵀ − I‖_F, before it is refused;
+// within it the nearest rotation is used (exporters round R to about 6 decimals).
+constexpr double kRotationTolerance = 1e-3;
 
 // The object transform: translate · rotate · scale (scale first), or a 4x4 matrix.
 Mat4d object_transform(const Vec3d& translate, double rotate_deg, const Vec3d& axis, const Vec3d& scale);

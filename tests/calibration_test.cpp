@@ -181,6 +181,23 @@ TEST(Calibration, SixPointsDoNotBuyAFreePrincipalPoint) {
   EXPECT_GE(chose_f, 95);
 }
 
+// A parameter the chosen model does not fit is printed as fixed, with the reason, never as ± 0.
+TEST(Calibration, ReportSaysWhichParametersAreFixedAndWhy) {
+  std::mt19937 rng(17);
+  const Truth t = make_truth(rng, 8, 60, false, 1.0, 640, 480, CameraModel::kF);
+  const std::vector<ControlPoint> noisy = with_noise(t.clean, rng, 1.0);
+  const std::string chosen = calibration_report(calibrate(noisy, 640, 480));
+  EXPECT_NE(chosen.find("cx, cy       320.00 px, 240.00 px (the image centre: fixed, not supported by the points)"),
+            std::string::npos) << chosen;
+  EXPECT_NE(chosen.find("fy = fx (square pixels: fixed, not supported by the points)"), std::string::npos) << chosen;
+  EXPECT_EQ(chosen.find("± 0.00"), std::string::npos) << chosen;
+  CalibrationOptions fc;
+  fc.model = CameraModel::kFC;
+  const std::string requested = calibration_report(calibrate(noisy, 640, 480, fc));
+  EXPECT_NE(requested.find("fy = fx (square pixels: fixed, by the requested model)"), std::string::npos) << requested;
+  EXPECT_EQ(requested.find("(the image centre"), std::string::npos) << requested;
+}
+
 TEST(Calibration, OffCentrePrincipalPointIsDetectedWhenPointsSupportIt) {
   std::mt19937 rng(16);
   const Truth t = make_truth(rng, 40, 60, false, 1.0, 1600, 1200, CameraModel::kFC);

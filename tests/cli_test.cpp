@@ -5,38 +5,13 @@
 #include <sstream>
 
 #include "camera.h"
+#include "pipeline.h"
+#include "cli_util.h"
 #include "scene_fixture.h"
 
 namespace insitu {
 namespace {
-
-struct CliRun {
-  int exit_code;
-  std::string out, err;
-};
-
-// Runs the insitu binary with `args`, stdin closed, capturing stdout and stderr.
-CliRun run_insitu(const test::TempDir& dir, const std::string& args) {
-  const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
-  const std::string cmd = std::string(INSITU_BINARY) + " " + args + " < /dev/null > " + out + " 2> " + err;
-  const int status = std::system(cmd.c_str());
-  auto slurp = [](const std::string& p) {
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-  };
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-}
-
-int count_lines(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
-
-void expect_one_line_error(const CliRun& r, const std::string& contains) {
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_EQ(count_lines(r.err), 1) << r.err;
-  EXPECT_EQ(r.err.rfind("insitu: error: ", 0), 0u) << r.err;
-  EXPECT_NE(r.err.find(contains), std::string::npos) << r.err;
-}
+using namespace test;
 
 TEST(Cli, Version) {
   test::TempDir dir;
@@ -91,9 +66,9 @@ TEST(Cli, RendersAScene) {
   const CliRun r = run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("c.png") + " --spp 2");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(std::filesystem::exists(fx.dir.file("c.png")));
-  EXPECT_TRUE(std::filesystem::exists(fx.dir.file("out/layers.exr")));
+  EXPECT_TRUE(std::filesystem::exists(fx.dir.file("c.layers.exr")));
   // The report beside the image.
-  std::ifstream report(fx.dir.file("c.report.json"));
+  std::ifstream report(fx.dir.file("c.png.report.json"));
   ASSERT_TRUE(report.good());
   const nlohmann::json j = nlohmann::json::parse(report);
   EXPECT_EQ(j["render"]["spp"], 2);
@@ -111,6 +86,7 @@ TEST(Cli, RendersAScene) {
 
 namespace insitu {
 namespace {
+using namespace test;
 
 TEST(Cli, CalibrateWritesACameraFileThatScenesRead) {
   test::SceneFixture fx;
@@ -135,6 +111,33 @@ TEST(Cli, CalibrateWritesACameraFileThatScenesRead) {
   EXPECT_TRUE(std::filesystem::exists(fx.dir.file("camera.vc")));
 }
 
+// The pixel origin is spelt the same on the command line and in the scene file; both spellings
+// work in both places.
+TEST(Cli, OriginSpellingsAgreeBetweenCliAndScene) {
+  test::SceneFixture fx;
+  const Camera truth = Camera::look_at({0.5, 2.0, 1.5}, {0.5, 0.0, -0.5}, {0, 1, 0}, 60, fx.width, fx.height);
+  nlohmann::json pts = nlohmann::json::array();
+  const Vec3d xyz[] = {{0, 0, 0}, {1, 0, 0}, {1, 0, -1}, {0, 0, -1}, {0.5, 0.5, -0.5}, {0.2, 0.8, -0.9}, {0.9, 0.3, -0.2}};
+  for (const auto& p : xyz) {
+    const Vec2d uv = truth.project(p);
+    pts.push_back({{"uv", {uv.x(), fx.height - uv.y()}}, {"xyz", {p.x(), p.y(), p.z()}}});  // bottom-left origin
+  }
+  fx.dir.write("points.json", pts.dump());
+  const std::string base = "calibrate --points " + fx.dir.file("points.json") + " --size 48 32 --origin ";
+  const CliRun dash = run_insitu(fx.dir, base + "bottom-left"), underscore = run_insitu(fx.dir, base + "bottom_left");
+  ASSERT_EQ(dash.exit_code, 0) << dash.err;
+  ASSERT_EQ(underscore.exit_code, 0) << underscore.err;
+  EXPECT_EQ(dash.out, underscore.out);
+  EXPECT_NE(dash.out.find("residuals    RMS"), std::string::npos) << dash.out;
+  expect_one_line_error(run_insitu(fx.dir, base + "bottom"), "top_left");
+  for (const char* spelling : {"bottom_left", "bottom-left"}) {
+    auto j = fx.scene;
+    j["camera"] = {{"points", "points.json"}, {"origin", spelling}};
+    const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
+    EXPECT_LT(s.calibration->rms_px, 1e-3) << spelling;
+  }
+}
+
 TEST(Cli, CalibrateBadInputIsOneLine) {
   test::TempDir dir;
   dir.write("few.json", R"([{"uv": [1, 2], "xyz": [0, 0, 0]}])");
@@ -151,6 +154,7 @@ TEST(Cli, CalibrateBadInputIsOneLine) {
 
 namespace insitu {
 namespace {
+using namespace test;
 
 TEST(Cli, CubemapWritesEveryOutput) {
   test::SceneFixture fx;
@@ -190,6 +194,7 @@ TEST(Cli, IrradianceIntegratorWithGaussianEqualsRealtime) {
 
 namespace insitu {
 namespace {
+using namespace test;
 
 TEST(Cli, CompareWritesThePictureAndRejectsMismatchedImages) {
   test::TempDir dir;
@@ -208,6 +213,7 @@ TEST(Cli, CompareWritesThePictureAndRejectsMismatchedImages) {
 
 namespace insitu {
 namespace {
+using namespace test;
 
 TEST(Cli, TradeoffWritesTableCsvPlotAndAb) {
   test::SceneFixture fx;

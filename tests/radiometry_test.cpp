@@ -108,6 +108,32 @@ struct ShotScene {
   LoadedScene load(const nlohmann::json& j) const { return load_scene(parse_scene_file(dir.write("scene.json", j.dump()))); }
 };
 
+// The ceiling and floor shots may be keyed "up"/"down" (the scene file's words) or "+y"/"-y" (the
+// axes, as the walls are keyed); messages and reports use "up"/"down".
+TEST(ShotSpelling, UpDownAndAxisNamesAreTheSame) {
+  ShotScene s(1.0 / 120, 1.0 / 120, false);
+  auto j = s.scene;
+  j["environment"]["shots"]["+y"] = j["environment"]["shots"]["up"];
+  j["environment"]["shots"]["-y"] = j["environment"]["shots"]["down"];
+  j["environment"]["shots"].erase("up");
+  j["environment"]["shots"].erase("down");
+  const SceneSpec by_axis = parse_scene_file(s.dir.write("scene.json", j.dump()));
+  const SceneSpec by_word = parse_scene_file(s.dir.write("scene.json", s.scene.dump()));
+  EXPECT_EQ(by_axis.environment.shots[kPosY].files, by_word.environment.shots[kPosY].files);
+  EXPECT_EQ(by_axis.environment.shots[kNegY].files, by_word.environment.shots[kNegY].files);
+  j["environment"]["shots"]["up"] = j["environment"]["shots"]["+y"];
+  try {
+    parse_scene_file(s.dir.write("scene.json", j.dump()));
+    ADD_FAILURE() << "both up and +y accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.message().find("give 'up' or '+y', not both"), std::string::npos) << e.what();
+  }
+  EXPECT_STREQ(face_name(kPosY), "up");
+  EXPECT_STREQ(face_name(kNegY), "down");
+  const LoadedScene l = s.load(s.scene);
+  EXPECT_EQ(render_report(l, RenderResult{})["environment"]["shots"][2]["face"], "up");
+}
+
 // Shots at 1/30 s, photo at 1/120 s: the same pixel value means 4× the radiance in the shots'
 // exposure, so in the photo's unit the cube is value × (1/120)/(1/30) = value / 4.
 TEST(Exposure, ExifRatioBringsShotsIntoThePhotosUnit) {

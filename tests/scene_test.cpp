@@ -169,6 +169,47 @@ TEST(SceneFile, ExplicitIntrinsicsAndPose) {
   expect_error(fx, j, ":$.camera.pose.R", "not a rotation");
 }
 
+// Exporters (Blender, most JSON writers) round R to 6 decimals: such an R is accepted with a
+// warning and replaced by the nearest rotation; beyond the documented tolerance, or mirrored, it is
+// refused.
+TEST(SceneFile, RotationRoundedByAnExporterIsAccepted) {
+  SceneFixture fx;
+  const Mat3d exact = Eigen::AngleAxisd(0.7, Vec3d(1, 2, 3).normalized()).toRotationMatrix();
+  for (const double decimals : {6.0, 5.0}) {
+    const double scale = std::pow(10.0, decimals);
+    nlohmann::json rows = nlohmann::json::array();
+    Mat3d rounded;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) rounded(r, c) = std::round(exact(r, c) * scale) / scale;
+    for (int r = 0; r < 3; ++r) rows.push_back({rounded(r, 0), rounded(r, 1), rounded(r, 2)});
+    auto j = fx.scene;
+    j["camera"] = {{"intrinsics", {{"fx", 40.0}}}, {"pose", {{"R", rows}, {"t", {0, 0, 3}}}}};
+    const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
+    const Mat3d& R = s.camera.R_cam_from_world;
+    EXPECT_LT((R * R.transpose() - Mat3d::Identity()).norm(), 1e-12);
+    EXPECT_LT((R - exact).norm(), 3 * 0.5 / scale);  // rounding moved each entry by at most ½·10⁻ᵈ
+    // A warning exactly when R was further than 1e-6 from orthonormal.
+    const double orth = (rounded * rounded.transpose() - Mat3d::Identity()).norm();
+    bool warned = false;
+    for (const auto& w : s.warnings.items) warned |= w.find("nearest rotation") != std::string::npos;
+    EXPECT_EQ(warned, orth > 1e-6) << decimals << " decimals, |R Rᵀ − I| = " << orth;
+    if (decimals == 5.0) {
+      EXPECT_TRUE(warned);
+      // Beyond the tolerance: refused, and the message states the tolerance.
+      j["camera"]["pose"]["R"][0][0] = rounded(0, 0) + 2 * kRotationTolerance;
+      expect_error(fx, j, ":$.camera.pose.R", "not a rotation");
+    }
+  }
+}
+
+TEST(SceneFile, ExactRotationGivesNoWarning) {
+  SceneFixture fx;
+  auto j = fx.scene;
+  j["camera"] = {{"intrinsics", {{"fx", 40.0}}}, {"pose", {{"R", {{1, 0, 0}, {0, -1, 0}, {0, 0, -1}}}, {"t", {0, 0, 3}}}}};
+  const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
+  for (const auto& w : s.warnings.items) EXPECT_EQ(w.find("rotation"), std::string::npos) << w;
+}
+
 // Untouched pixels must come out exactly as they went in: with no objects, and with objects
 // entirely out of view.
 TEST(SceneFile, NoObjectsReproducesThePhotoBitForBit) {

@@ -14,7 +14,7 @@ namespace insitu {
 namespace {
 
 struct CalibrateArgs {
-  std::string points, image, model = "auto", origin = "top-left", output, vc;
+  std::string points, image, model = "auto", origin = "top_left", output, vc;
   std::vector<int> size;
   std::vector<double> at;
 };
@@ -27,7 +27,7 @@ int run_calibrate(const CalibrateArgs& a) {
   CalibrationOptions options;
   if (a.model != "auto") options.model = parse_model(a.model);
   if (!a.at.empty()) options.insertion_world = Vec3d(a.at[0], a.at[1], a.at[2]);
-  const auto points = read_control_points(a.points, a.origin == "bottom-left", height);
+  const auto points = read_control_points(a.points, *parse_bottom_left_origin(a.origin), height);
   CalibrationResult r;
   try {
     r = calibrate(points, width, height, options);
@@ -58,9 +58,10 @@ Command add_calibrate_command(CLI::App& app) {
   auto* image_opt = cmd->add_option("--image", a->image, "the photo (for its size)");
   auto* size_opt = cmd->add_option("--size", a->size, "the photo's size in pixels")->expected(2)->check(CLI::PositiveNumber);
   image_opt->excludes(size_opt);
-  cmd->add_option("--model", a->model, "camera model: auto, f, f+c, f+c+a")->check(CLI::IsMember({"auto", "f", "f+c", "f+c+a"}));
-  cmd->add_option("--origin", a->origin, "pixel origin of the points: top-left or bottom-left")
-      ->check(CLI::IsMember({"top-left", "bottom-left"}));
+  cmd->add_option("--model", a->model, "camera model: auto, f, f+c, f+c+a")->check(CLI::IsMember({"auto", "f", "f+c", "f+c+a"}))->capture_default_str();
+  cmd->add_option("--origin", a->origin, std::string("pixel origin of the points: ") + kOriginNames)
+      ->check([](const std::string& s) { return parse_bottom_left_origin(s) ? "" : std::string("expected ") + kOriginNames; })
+      ->capture_default_str();
   cmd->add_option("--at", a->at, "world point (m) where the uncertainty in pixels is reported")->expected(3);
   cmd->add_option("-o,--output", a->output, "write camera.json");
   cmd->add_option("--vc", a->vc, "also write the View Correlation parameter set");

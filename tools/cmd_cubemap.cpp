@@ -77,7 +77,7 @@ Command add_cubemap_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("cubemap", "assemble the environment into an HDR cube, previews and irradiance cubes");
   cmd->add_option("env", a->env, "a scene file (its environment) or an HDR image")->required();
   cmd->add_option("-o,--output", a->out, "output folder")->required();
-  cmd->add_option("--irradiance-size", a->irradiance_size, "face size of the irradiance cubes")->check(CLI::Range(1, 512));
+  cmd->add_option("--irradiance-size", a->irradiance_size, "face size of the irradiance cubes")->check(CLI::Range(1, 512))->capture_default_str();
   return [cmd, a] { return cmd->parsed() ? run_cubemap(*a) : -1; };
 }
 

@@ -59,9 +59,9 @@ Command add_irradiance_report_command(CLI::App& app) {
   auto a = std::make_shared<ReportArgs>();
   CLI::App* cmd = app.add_subcommand("irradiance-report", "time and error of each irradiance mode against the exact integral");
   cmd->add_option("env", a->envs, "scene files or HDR images")->required();
-  cmd->add_option("--normals", a->normals, "number of test normals (Fibonacci sphere)")->check(CLI::Range(1, 100000));
-  cmd->add_option("--exact-size", a->exact_size, "face size of the exact irradiance cube")->check(CLI::Range(1, 512));
-  cmd->add_option("--face-size", a->face_size, "resample images to this cube face size")->check(CLI::Range(1, 4096));
+  cmd->add_option("--normals", a->normals, "number of test normals (Fibonacci sphere)")->check(CLI::Range(1, 100000))->capture_default_str();
+  cmd->add_option("--exact-size", a->exact_size, "face size of the exact irradiance cube")->check(CLI::Range(1, 512))->capture_default_str();
+  cmd->add_option("--face-size", a->face_size, "resample images to this cube face size [default: the image's own]")->check(CLI::Range(1, 4096));
   cmd->add_option("--csv", a->csv, "also write the rows as CSV");
   return [cmd, a] { return cmd->parsed() ? run_report(*a) : -1; };
 }

@@ -1,4 +1,5 @@
-// insitu render SCENE [-o OUT] [--spp N] [--integrator NAME] [--irradiance MODE] [--seed N]
+// insitu render SCENE [-o OUT] [--layers PATH|none] [--spp N] [--integrator NAME] [--irradiance MODE]
+//                     [--seed N] [--tonemap OP] [--key K]
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
@@ -18,7 +19,7 @@ void print_warnings(const Warnings& w) {
 namespace {
 
 struct RenderArgs {
-  std::string scene, output, integrator, irradiance, tonemap;
+  std::string scene, output, layers, integrator, irradiance, tonemap;
   double key = 0;
   int spp = 0;
   long seed = -1;
@@ -32,6 +33,18 @@ int run_render(const RenderArgs& a) {
     if (ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".exr" && ext != ".tif" && ext != ".tiff")
       throw InputError("-o " + a.output, "unsupported extension '" + ext + "' (use .png, .jpg, .exr, .tif)");
     spec.output.image = a.output;
+    // A quick `-o test.png` must not overwrite the final render's layers and report.
+    spec.output.layers = layers_path_for(a.output);
+  }
+  if (!a.layers.empty()) {
+    if (a.layers == "none") {
+      spec.output.layers.clear();
+    } else {
+      std::string ext = std::filesystem::path(a.layers).extension().string();
+      for (auto& c : ext) c = char(std::tolower(c));
+      if (ext != ".exr") throw InputError("--layers " + a.layers, "the layers are a multi-layer EXR: use .exr, or none");
+      spec.output.layers = a.layers;
+    }
   }
   if (a.spp > 0) spec.render.spp = a.spp;
   if (a.seed >= 0) spec.render.seed = std::uint64_t(a.seed);
@@ -39,9 +52,18 @@ int run_render(const RenderArgs& a) {
     if (!is_integrator(a.integrator)) make_integrator(a.integrator, {});  // throws, naming the known ones
     spec.render.integrator = a.integrator;
   }
-  if (!a.irradiance.empty()) spec.render.irradiance = *parse_irradiance_mode(a.irradiance);
-  if (!a.tonemap.empty()) spec.output.tonemap.op = *parse_tonemap(a.tonemap);
-  if (a.key > 0) spec.output.tonemap.key = a.key;
+  if (!a.irradiance.empty()) {
+    spec.render.irradiance = *parse_irradiance_mode(a.irradiance);
+    spec.given.insert("render.irradiance");
+  }
+  if (!a.tonemap.empty()) {
+    spec.output.tonemap.op = *parse_tonemap(a.tonemap);
+    spec.given.insert("output.tonemap");
+  }
+  if (a.key > 0) {
+    spec.output.tonemap.key = a.key;
+    spec.given.insert("output.tonemap.key");
+  }
   LoadedScene scene = load_scene(spec);
   print_warnings(scene.warnings);
   RenderResult result;
@@ -73,17 +95,23 @@ Command add_render_command(CLI::App& app) {
   auto a = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "render a scene file to a composite image");
   cmd->add_option("scene", a->scene, "the scene file (JSON)")->required();
-  cmd->add_option("-o,--output", a->output, "the composite image (overrides output.image)");
-  cmd->add_option("--spp", a->spp, "samples per pixel")->check(CLI::Range(1, 1 << 20));
-  cmd->add_option("--seed", a->seed, "random seed")->check(CLI::Range(0L, 1L << 62));
+  cmd->add_option("-o,--output", a->output,
+                  "the composite image (overrides output.image; .png, .jpg, .exr, .tif); the layers and the report "
+                  "follow it: OUT_STEM.layers.exr, OUT.report.json");
+  cmd->add_option("--layers", a->layers, "the layered EXR (overrides output.layers and -o's), or none");
+  cmd->add_option("--spp", a->spp, "samples per pixel [default: the scene's render.spp, else 16]")
+      ->check(CLI::Range(1, kMaxSpp));
+  cmd->add_option("--seed", a->seed, "random seed [default: the scene's render.seed, else 1]")->check(CLI::Range(0L, kMaxSeed));
   std::string help = "integrator:";
   for (const auto& e : integrator_registry()) help += fmt::format(" {} ({})", e.name, e.summary);
   cmd->add_option("--integrator", a->integrator, help);
-  cmd->add_option("--irradiance", a->irradiance, "irradiance mode for the irradiance integrator")
+  cmd->add_option("--irradiance", a->irradiance,
+                  "irradiance mode of the irradiance integrator: gaussian, sh9 or exact [default: the scene's, else exact]")
       ->check(CLI::IsMember({"gaussian", "sh9", "exact"}));
-  cmd->add_option("--tonemap", a->tonemap, "photo (default), adaptive_log, reinhard or linear")
+  cmd->add_option("--tonemap", a->tonemap,
+                  "for PNG/JPEG: photo, adaptive_log, reinhard or linear [default: the scene's, else photo]")
       ->check(CLI::IsMember({"photo", "adaptive_log", "reinhard", "linear"}));
-  cmd->add_option("--key", a->key, "tone-mapping key (adaptive_log 1, reinhard 0.18, linear 1)")->check(CLI::PositiveNumber);
+  cmd->add_option("--key", a->key, "tone-mapping key [default: adaptive_log 1, reinhard 0.18, linear 1]")->check(CLI::PositiveNumber);
   return [cmd, a] { return cmd->parsed() ? run_render(*a) : -1; };
 }
 

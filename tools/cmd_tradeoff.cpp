@@ -143,9 +143,14 @@ Command add_tradeoff_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("tradeoff", "time and error of every mode against a path-traced reference");
   cmd->add_option("scene", a->scene, "the scene file")->required();
   cmd->add_option("-o,--output", a->out, "output folder")->required();
-  cmd->add_option("--ladder", a->ladder, "path sample counts")->delimiter(',')->check(CLI::Range(1, 1 << 16));
-  cmd->add_option("--reference-spp", a->reference_spp, "samples of the reference")->check(CLI::Range(1, 1 << 20));
-  cmd->add_option("--seed", a->seed, "seed of the measured renders (the reference uses another)")->check(CLI::Range(0L, 1L << 40));
+  cmd->add_option("--ladder", a->ladder, "path sample counts, comma-separated")
+      ->delimiter(',')
+      ->check(CLI::Range(1, kMaxSpp))
+      ->capture_default_str();
+  cmd->add_option("--reference-spp", a->reference_spp, "samples of the reference")->check(CLI::Range(1, kMaxSpp))->capture_default_str();
+  cmd->add_option("--seed", a->seed, "seed of the measured renders (the reference uses seed + 1000)")
+      ->check(CLI::Range(0L, kMaxSeed - 1000))
+      ->capture_default_str();
   return [cmd, a] { return cmd->parsed() ? run_tradeoff(*a) : -1; };
 }
 

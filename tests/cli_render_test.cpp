@@ -1,0 +1,107 @@
+// insitu render: where its outputs go, and what it says of options that have no effect.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_util.h"
+#include "render.h"
+#include "scene_fixture.h"
+
+namespace insitu {
+namespace {
+
+using namespace test;
+namespace fs = std::filesystem;
+
+nlohmann::json read_json(const std::string& path) { return nlohmann::json::parse(slurp(path)); }
+
+// A quick `-o test.png` leaves the final render's layers and report alone: the layers and the
+// report follow -o. Two formats of one stem keep their own reports.
+TEST(CliRender, OutputMovesTheLayersAndReportWithIt) {
+  SceneFixture fx;
+  auto j = fx.scene;
+  j["output"] = {{"image", "out/final.png"}, {"layers", "out/final.exr"}};
+  const std::string scene = fx.write(j);
+  ASSERT_EQ(run_insitu(fx.dir, "render " + scene).exit_code, 0);
+  const std::string final_layers = slurp(fx.dir.file("out/final.exr"));
+  const std::string final_report = slurp(fx.dir.file("out/final.png.report.json"));
+  ASSERT_FALSE(final_layers.empty());
+
+  ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("x.png") + " --spp 1").exit_code, 0);
+  EXPECT_TRUE(fs::exists(fx.dir.file("x.layers.exr")));
+  EXPECT_TRUE(fs::exists(fx.dir.file("x.png.report.json")));
+  EXPECT_EQ(slurp(fx.dir.file("out/final.exr")), final_layers);
+  EXPECT_EQ(slurp(fx.dir.file("out/final.png.report.json")), final_report);
+
+  ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("x.exr") + " --spp 2").exit_code, 0);
+  EXPECT_EQ(read_json(fx.dir.file("x.png.report.json"))["render"]["spp"], 1);
+  EXPECT_EQ(read_json(fx.dir.file("x.exr.report.json"))["render"]["spp"], 2);
+}
+
+TEST(CliRender, LayersOptionNamesOrDisablesTheLayers) {
+  SceneFixture fx;
+  const std::string scene = fx.write();
+  ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("a.png") + " --layers none").exit_code, 0);
+  EXPECT_TRUE(fs::exists(fx.dir.file("a.png")));
+  EXPECT_FALSE(fs::exists(fx.dir.file("a.layers.exr")));
+  EXPECT_FALSE(fs::exists(fx.dir.file("out/layers.exr")));
+  ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("b.png") + " --layers " + fx.dir.file("l.exr")).exit_code, 0);
+  EXPECT_TRUE(fs::exists(fx.dir.file("l.exr")));
+  EXPECT_FALSE(fs::exists(fx.dir.file("b.layers.exr")));
+  expect_one_line_error(run_insitu(fx.dir, "render " + scene + " --layers " + fx.dir.file("l.png")), "use .exr, or none");
+  auto j = fx.scene;
+  j["output"] = {{"image", "out/c.png"}, {"layers", "none"}};
+  ASSERT_EQ(run_insitu(fx.dir, "render " + fx.write(j)).exit_code, 0);
+  EXPECT_FALSE(fs::exists(fx.dir.file("out/layers.exr")));
+}
+
+// Options that the output or the integrator does not use: a warning naming them, and the report
+// says what was really done. The EXR is the same as without the option.
+TEST(CliRender, OptionsWithoutEffectAreWarnedAndReportedAsDone) {
+  SceneFixture fx;
+  const std::string scene = fx.write();
+  const CliRun plain = run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("p.exr"));
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_EQ(plain.err.find("warning"), std::string::npos) << plain.err;
+  const CliRun r = run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("r.exr") + " --tonemap reinhard --key 0.3");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("insitu: warning: output.tonemap: has no effect"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("insitu: warning: output.tonemap.key: has no effect"), std::string::npos) << r.err;
+  EXPECT_EQ(read_json(fx.dir.file("r.exr.report.json"))["tonemap"], "none");
+  EXPECT_EQ(read_image_file(fx.dir.file("r.exr")).stored.data, read_image_file(fx.dir.file("p.exr")).stored.data);
+
+  const CliRun key = run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("k.png") + " --key 2");
+  EXPECT_NE(key.err.find("output.tonemap.key: has no effect with the photo tone map"), std::string::npos) << key.err;
+  const CliRun reinhard = run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("k2.png") + " --tonemap reinhard --key 2");
+  EXPECT_EQ(reinhard.err.find("warning"), std::string::npos) << reinhard.err;
+  EXPECT_EQ(read_json(fx.dir.file("k2.png.report.json"))["tonemap"], "reinhard");
+
+  const CliRun irr = run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("i.png") + " --integrator path --irradiance sh9");
+  EXPECT_NE(irr.err.find("render.irradiance: has no effect: the path integrator"), std::string::npos) << irr.err;
+  EXPECT_TRUE(read_json(fx.dir.file("i.png.report.json"))["render"]["irradiance"].is_null());
+  const CliRun used = run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("j.png") + " --integrator irradiance --irradiance sh9");
+  EXPECT_EQ(used.err.find("warning"), std::string::npos) << used.err;
+  EXPECT_EQ(read_json(fx.dir.file("j.png.report.json"))["render"]["irradiance"], "sh9");
+
+  auto j = fx.scene;
+  j["render"]["max_depth"] = 3;  // the fixture renders with realtime
+  EXPECT_NE(run_insitu(fx.dir, "render " + fx.write(j)).err.find("render.max_depth: has no effect"), std::string::npos);
+}
+
+// --help shows the defaults, and every verb accepts the same seed range.
+TEST(CliRender, HelpShowsDefaults) {
+  TempDir dir;
+  const CliRun render = run_insitu(dir, "render --help");
+  EXPECT_NE(render.out.find("[default: the scene's render.spp, else 16]"), std::string::npos) << render.out;
+  const CliRun tradeoff = run_insitu(dir, "tradeoff --help");
+  EXPECT_NE(tradeoff.out.find("comma-separated"), std::string::npos) << tradeoff.out;
+  EXPECT_NE(tradeoff.out.find("1024"), std::string::npos) << tradeoff.out;  // --reference-spp's default
+  const CliRun cubemap = run_insitu(dir, "cubemap --help");
+  EXPECT_NE(cubemap.out.find("32"), std::string::npos) << cubemap.out;  // --irradiance-size's default
+  const std::string max_seed = std::to_string(kMaxSeed - 1000);
+  EXPECT_NE(tradeoff.out.find(max_seed), std::string::npos) << tradeoff.out;
+  EXPECT_NE(render.out.find(std::to_string(kMaxSeed)), std::string::npos) << render.out;
+}
+
+}  // namespace
+}  // namespace insitu
