@@ -1,6 +1,6 @@
 #include "composite.h"
 
-#include <cassert>
+#include <stdexcept>
 
 #include "colour.h"
 
@@ -13,14 +13,23 @@ Image shadow_ratio(const RenderLayers& l) {
   return r;
 }
 
+bool ratio_is_reliable(const Image& photo, const RenderLayers& l, int x, int y) {
+  if (l.catcher_samples.data.empty()) return true;  // layers without the statistics: as before
+  if (*l.catcher_samples.at(x, y) < 2) return *l.catcher_samples.at(x, y) == 0;
+  const double scale = (1.0 - *l.alpha.at(x, y)) * luminance(photo.rgb(x, y));
+  return scale * scale * *l.ratio_variance.at(x, y) <= *l.difference_variance.at(x, y);
+}
+
 Image composite(const Image& photo, const RenderLayers& l, CompositeMode mode) {
-  assert(photo.width == l.objects.width && photo.height == l.objects.height);
+  if (photo.width != l.objects.width || photo.height != l.objects.height)
+    throw std::logic_error("composite: the photo and the layers differ in size");
   const Image ratio = shadow_ratio(l);
   Image out(photo.width, photo.height, 3);
   for (int y = 0; y < photo.height; ++y)
     for (int x = 0; x < photo.width; ++x) {
       const float a = *l.alpha.at(x, y);
-      const Rgb background = mode == CompositeMode::kAdditive
+      const bool additive = mode == CompositeMode::kAdditive || !ratio_is_reliable(photo, l, x, y);
+      const Rgb background = additive
                                  ? Rgb((1.0f - a) * photo.rgb(x, y) + l.with_objects.rgb(x, y) - l.without_objects.rgb(x, y))
                                  : Rgb((1.0f - a) * photo.rgb(x, y) * ratio.rgb(x, y));
       out.set_rgb(x, y, (l.objects.rgb(x, y) + background).max(0.0f));

@@ -6,6 +6,13 @@
 //   additive:  C = O + (1 − α) P + (W − N)
 //   ratio:     C = O + (1 − α) P · W/N      (per channel; where N = 0 the ratio is taken as 1:
 //                                              nothing lit the catcher, so nothing can be removed)
+// The ratio of means W̄/N̄ is a ratio estimator: where few samples saw the catcher (a pixel 99 %
+// covered by a table leg) N̄ can sit near 0 and W̄/N̄ explode into a firefly. So the ratio form is
+// used only where its estimated standard error, (1 − α) P · √Var(W̄/N̄) (delta method, with the
+// correlation of W and N), is no larger than that of the additive form, √Var(W̄ − N̄), and at least
+// two samples saw the catcher (one gives no variance at all); elsewhere the additive form, which
+// estimates the same thing when the albedo comes from the photo. Where W = N bit for bit both
+// variances are 0 and the ratio (exactly 1) is kept.
 // Without a catcher (W = N = 0) both reduce to the alpha-over C = O + (1 − α) P. The ratio form
 // does not depend on the catcher's albedo, so it is robust to errors in it; the additive form is
 // what Debevec wrote. W and N come from the same random numbers, so they are bitwise equal where
@@ -29,6 +36,8 @@ Image composite(const Image& photo_linear, const RenderLayers& layers, Composite
 Image touched_mask(const RenderLayers& layers);
 // W/N per channel (1 where N = 0): the shadow ratio layer.
 Image shadow_ratio(const RenderLayers& layers);
+// Whether the ratio form is the less noisy estimator at (x, y) (see above).
+bool ratio_is_reliable(const Image& photo_linear, const RenderLayers& layers, int x, int y);
 
 Image encode_composite(const Image& composite_linear, const Image& touched, const ImageFile& photo,
                        const ResponseCurve* response = nullptr);

@@ -2,6 +2,7 @@
 
 #include <opencv2/photo.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -74,6 +75,20 @@ Image merge_brackets(const std::vector<ImageFile>& brackets, const std::vector<d
     for (int x = 0; x < out.width; ++x)
       for (int c = 0; c < 3; ++c) out.at(x, y)[c] = hdr.at<cv::Vec3f>(y, x)[c];
   sanitize(out);
+  // A value clipped in the shortest bracket is clipped in all of them, and OpenCV's hat weight is 0
+  // at 255: the merge gives 0 (or a value pulled down by the longer brackets) for the brightest
+  // light of all. What is known there is a lower bound, X ≥ g(255)/k_min, which the shortest bracket
+  // gives; such pixels get it (and are counted as clipped: clipped_fraction of the shortest).
+  const std::size_t shortest = std::size_t(std::min_element(exposures.begin(), exposures.end()) - exposures.begin());
+  const cv::Mat& s = mats[shortest];
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        // OpenCV's Mat is BGR-agnostic here: we filled it in our channel order (to_8bit).
+        if (s.at<cv::Vec3b>(y, x)[c] < 255) continue;
+        const float bound = r.g[std::size_t(c)][255] / float(exposures[shortest]);
+        out.at(x, y)[c] = std::max(out.at(x, y)[c], bound);
+      }
   return out;
 }
 

@@ -25,6 +25,8 @@ ResponseCurve srgb_response();
 ResponseCurve recover_response(const std::vector<ImageFile>& brackets, const std::vector<double>& exposures);
 Image merge_brackets(const std::vector<ImageFile>& brackets, const std::vector<double>& exposures,
                      const ResponseCurve& response);
+// Where the shortest bracket is clipped (255) the merged value is the lower bound g(255)/k_min.
+//
 // An 8-bit image through a response curve.
 Image linearize_with_response(const ImageFile& file, const ResponseCurve& response);
 

@@ -17,8 +17,27 @@ struct PixelSums {
   Rgb objects = Rgb::Zero(), with = Rgb::Zero(), without = Rgb::Zero(), albedo = Rgb::Zero();
   Vec3f normal = Vec3f::Zero();
   double coverage = 0, depth = 0, y = 0, y2 = 0;
-  int met = 0;
+  // The catcher's luminance with (w) and without (n) the objects: sums of w, n, w², n², w·n over
+  // all samples, and how many samples saw the catcher, for the composite's choice of estimator.
+  double w = 0, n = 0, w2 = 0, n2 = 0, wn = 0;
+  int met = 0, catcher = 0;
 };
+
+// Variance of the ratio of means R = w̄/n̄ by the delta method, with the correlation of w and n
+// (Cochran 1977, §6.3): Var(R) ≈ Σ(wᵢ − R nᵢ)² / (k (k − 1) n̄²) over k samples.
+double ratio_variance(const PixelSums& p, int k) {
+  if (k < 2 || !(p.n > 0)) return 0.0;
+  const double R = p.w / p.n, n_mean = p.n / k;
+  const double d2 = std::max(0.0, p.w2 - 2 * R * p.wn + R * R * p.n2);
+  return d2 / (double(k) * (k - 1) * n_mean * n_mean);
+}
+
+// Variance of the mean of w − n: (Σ(w − n)² − (Σ(w − n))²/k) / (k (k − 1)).
+double difference_variance(const PixelSums& p, int k) {
+  if (k < 2) return 0.0;
+  const double s = p.w - p.n, s2 = p.w2 - 2 * p.wn + p.n2;
+  return std::max(0.0, (s2 - s * s / k) / (double(k) * (k - 1)));
+}
 
 // Variance of the mean after n samples: (Σy² − (Σy)²/n) / (n (n − 1)).
 double variance_of_mean(const PixelSums& p, int n) {
@@ -90,6 +109,9 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
             const double lum = luminance(Rgb(cs.radiance * cs.coverage + cs.with_objects - cs.without_objects));
             p.y += lum;
             p.y2 += lum * lum;
+            const double wy = luminance(cs.with_objects), ny = luminance(cs.without_objects);
+            p.w += wy, p.n += ny, p.w2 += wy * wy, p.n2 += ny * ny, p.wn += wy * ny;
+            p.catcher += (wy != 0 || ny != 0);
             if (cs.depth > 0) {
               ++p.met;
               p.normal += cs.normal;
@@ -121,6 +143,9 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
   out.depth = Image(w, h, 1, kNoHitDepth);
   out.samples = Image(w, h, 1, float(spp));
   out.variance = Image(w, h, 1);
+  out.ratio_variance = Image(w, h, 1);
+  out.difference_variance = Image(w, h, 1);
+  out.catcher_samples = Image(w, h, 1);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const PixelSums& p = sums[std::size_t(y) * w + x];
@@ -134,6 +159,9 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
         *out.depth.at(x, y) = float(p.depth / p.met);
       }
       *out.variance.at(x, y) = float(variance_of_mean(p, spp));
+      *out.ratio_variance.at(x, y) = float(ratio_variance(p, spp));
+      *out.difference_variance.at(x, y) = float(difference_variance(p, spp));
+      *out.catcher_samples.at(x, y) = float(p.catcher);
     }
   out.nonfinite_samples = nonfinite;
   out.mean_relative_noise = mean_relative_noise(sums, spp);

@@ -41,6 +41,10 @@ struct RenderLayers {
   Image variance;        // 1 channel: variance of the pixel's mean, luminance of O + W − N, estimated
                          // as if the samples were independent (conservative: their positions are
                          // stratified)
+  // For the composite's choice between the ratio and the additive form (composite.h): variance
+  // of the ratio of means W̄/N̄ and of the difference W̄ − N̄ (luminance), and the number of samples
+  // that saw the catcher.
+  Image ratio_variance, difference_variance, catcher_samples;
   double mean_relative_noise = 0;  // mean over changed pixels of √variance / value
   std::size_t nonfinite_samples = 0;  // zeroed and counted, never propagated
   double seconds = 0;

@@ -66,6 +66,41 @@ TEST(HdrMerge, BracketsRecoverAKnownRadianceMap) {
   EXPECT_LT(err[err.size() * 9 / 10], 0.06);
 }
 
+// A lamp brighter than the shortest bracket can hold is clipped in every bracket: it must come out
+// as the lower bound the shortest bracket gives, g(255)/k_min, never as 0 (a black ring) or less;
+// and a pixel clipped in one channel only keeps the bound in that channel.
+TEST(HdrMerge, LightClippedInEveryBracketGetsTheShortestBracketsLowerBound) {
+  const int n = 32;
+  Image radiance(n, n, 3, 0.2f);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      radiance.at(x, y)[0] = 0.02f + 0.5f * float(x) / n;  // a gradient, for the response
+      if ((x - 16) * (x - 16) + (y - 16) * (y - 16) < 36) radiance.set_rgb(x, y, Rgb(500, 400, 300));  // the lamp
+    }
+  radiance.at(2, 2)[1] = 500.0f;  // green alone beyond every bracket
+  const std::vector<double> k = {1.0 / 8, 1.0, 8.0};
+  std::vector<ImageFile> brackets;
+  for (std::size_t b = 0; b < k.size(); ++b) brackets.push_back(expose(radiance, k[b], "b" + std::to_string(b)));
+  // The true response, X = (Z/255)^2.2, in the merge's unit: g(Z)/k recovers X.
+  ResponseCurve g;
+  for (int c = 0; c < 3; ++c)
+    for (int z = 0; z < 256; ++z) g.g[std::size_t(c)][std::size_t(z)] = float(std::pow(z / 255.0, 2.2));
+  const Image merged = merge_brackets(brackets, k, g);
+  const float bound = g.g[0][255] / float(k[0]);  // 8: the most the 1/8 bracket can say
+  EXPECT_FLOAT_EQ(bound, 8.0f);
+  int lamp = 0;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      if (radiance.at(x, y)[2] < 300) continue;
+      ++lamp;
+      for (int c = 0; c < 3; ++c) EXPECT_GE(merged.at(x, y)[c], bound) << x << "," << y << " channel " << c;
+    }
+  EXPECT_EQ(lamp, 109);  // lattice points with d² < 36: 113 with d² ≤ 36, less the 4 at distance 6
+  EXPECT_GE(merged.at(2, 2)[1], bound);
+  EXPECT_NEAR(merged.at(2, 2)[2], 0.2f, 0.03f);  // the unclipped channels keep their value
+  EXPECT_NEAR(clipped_fraction(brackets[0]), (lamp + 1) / double(n * n), 1e-12);
+}
+
 TEST(HdrMerge, MismatchedBracketsAreErrorsNamingTheFile) {
   std::vector<ImageFile> b = {expose(Image(8, 8, 3, 0.5f), 1, "a.jpg"), expose(Image(8, 6, 3, 0.5f), 4, "b.jpg")};
   try {
