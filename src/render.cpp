@@ -44,19 +44,26 @@ double variance_of_mean(const PixelSums& p, int n) {
   return n > 1 ? std::max(0.0, (p.y2 - p.y * p.y / n) / (double(n) * (n - 1))) : 0.0;
 }
 
-// Mean over pixels the render changed of √variance relative to the pixel's value.
+// Mean over pixels the render changed (an object covers them or the catcher's estimates differ)
+// of √variance relative to the pixel's value. Changed pixels of variance 0 count as 0, so that the
+// set of pixels, and with it the figure, does not jump from pass to pass.
 double mean_relative_noise(const std::vector<PixelSums>& sums, int n) {
   double noise = 0;
   long changed = 0;
   for (const PixelSums& p : sums) {
+    if (p.coverage == 0 && p.w == p.n) continue;
     const double v = variance_of_mean(p, n);
-    if (v <= 0) continue;
     const double value = (std::abs(luminance(Rgb(p.objects + p.with - p.without))) + luminance(p.without)) / double(n);
     if (value <= 0) continue;
     noise += std::sqrt(v) / value;
     ++changed;
   }
   return changed > 0 ? noise / double(changed) : 0.0;
+}
+
+// The key of a pixel's order of strata.
+std::uint32_t stratum_key(std::uint64_t pixel) {
+  return std::uint32_t(hash4(0x5354524154ull, pixel, 0, 0) >> 32);  // "STRAT"
 }
 
 }  // namespace
@@ -92,8 +99,11 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
             Sampler sampler(settings.seed, pixel, std::uint64_t(s));
             float jx = sampler.next(), jy = sampler.next();
             if (grid > 0) {
-              jx = (float(s % grid) + jx) / float(grid);
-              jy = (float(s / grid) + jy) / float(grid);
+              // Strata in a per-pixel random order, so that every pass's prefix of samples covers
+              // the pixel evenly (row by row, the first passes would see only its top).
+              const int stratum = int(permute(std::uint32_t(s), std::uint32_t(spp), stratum_key(pixel)));
+              jx = (float(stratum % grid) + jx) / float(grid);
+              jy = (float(stratum / grid) + jy) / float(grid);
             }
             const Ray ray = camera.ray({double(x) + jx, double(y) + jy});
             const CameraSample cs = integrator.sample(ray, sampler);

@@ -24,6 +24,12 @@ inline std::uint64_t hash4(std::uint64_t seed, std::uint64_t pixel, std::uint64_
 // A uniform float in [0, 1): the top 24 bits of the hash.
 inline float hash_to_unit(std::uint64_t h) { return float(h >> 40) * (1.0f / 16777216.0f); }
 
+// A pseudo-random permutation of [0, n) keyed by `key`: Kensler 2013, "Correlated Multi-Jittered
+// Sampling", §3 (a hash that is a bijection on the smallest power-of-two domain holding n — xor
+// with constants, multiplication by odd constants, xor-shifts of the masked value — walked until
+// it lands below n, then rotated by the key). O(1) per index, no storage.
+std::uint32_t permute(std::uint32_t i, std::uint32_t n, std::uint32_t key);
+
 class Sampler {
  public:
   Sampler(std::uint64_t seed, std::uint64_t pixel, std::uint64_t sample)

@@ -71,8 +71,9 @@ int run_render(const RenderArgs& a) {
     Progress progress("render");
     std::string detail;
     result = render_scene(scene, [&](const RenderProgress& p) {
-      if (p.noise >= 0) detail = fmt::format("{}/{} spp, noise {:.1f}%", p.spp_done, spec.render.spp, 100 * p.noise);
-      progress.update(p.fraction, detail);
+      const bool pass_end = p.noise >= 0;
+      if (pass_end) detail = fmt::format("{}/{} spp, noise {:.1f}%", p.spp_done, spec.render.spp, 100 * p.noise);
+      progress.update(p.fraction, detail, pass_end);
     });
   }
   write_outputs(scene, result);
