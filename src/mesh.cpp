@@ -136,6 +136,11 @@ Material convert_material(const tinyobj::material_t& m, const fs::path& base_dir
 }  // namespace
 
 Mesh load_obj(const std::string& path, Warnings& warnings) {
+  std::string ext = fs::path(path).extension().string();
+  for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".obj")
+    throw InputError(path, fmt::format("only OBJ meshes are supported ('{}'): convert it to .obj, e.g. in Blender",
+                                       ext.empty() ? "no extension" : ext));
   const ObjScan scan = scan_obj(path);
   const fs::path base_dir = fs::path(path).parent_path();
 

@@ -1,6 +1,9 @@
 #include "pipeline.h"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
+#include <functional>
 #include <filesystem>
 #include <fmt/format.h>
 
@@ -44,6 +47,27 @@ void warn_ineffective_settings(const SceneSpec& spec, Warnings& w) {
     w.add("output.tonemap.key", "has no effect with the photo tone map (it re-encodes through the photo's own curve)");
   if (given("output.tonemap.bias") && op != ToneMap::kAdaptiveLog)
     w.add("output.tonemap.bias", std::string("has no effect with the ") + tonemap_name(op) + " tone map (only adaptive_log has a bias)");
+}
+
+bool outside_view(const Camera& cam, const Bounds& b) {
+  if (!(b.lo.array() <= b.hi.array()).all()) return true;  // no triangles
+  // The box's corners in camera space; the view is the frustum z > 0, 0 ≤ u ≤ W, 0 ≤ v ≤ H, i.e.
+  // the half-spaces z > 0, fx·x + cx·z ≥ 0, fx·x + (cx − W)·z ≤ 0 and the same in y. The box is
+  // outside when all eight corners lie outside one of them (each is linear in the camera frame).
+  std::array<Vec3d, 8> c;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3d p_world(k & 1 ? b.hi.x() : b.lo.x(), k & 2 ? b.hi.y() : b.lo.y(), k & 4 ? b.hi.z() : b.lo.z());
+    c[std::size_t(k)] = cam.R_cam_from_world * p_world + cam.t_cam_from_world;
+  }
+  const std::array<std::function<double(const Vec3d&)>, 5> inside = {
+      [](const Vec3d& p) { return p.z(); },
+      [&](const Vec3d& p) { return cam.fx * p.x() + cam.cx * p.z(); },
+      [&](const Vec3d& p) { return -(cam.fx * p.x() + (cam.cx - cam.width) * p.z()); },
+      [&](const Vec3d& p) { return cam.fy * p.y() + cam.cy * p.z(); },
+      [&](const Vec3d& p) { return -(cam.fy * p.y() + (cam.cy - cam.height) * p.z()); }};
+  for (const auto& f : inside)
+    if (std::all_of(c.begin(), c.end(), [&](const Vec3d& p) { return f(p) <= 0; })) return true;
+  return false;
 }
 
 LoadedScene load_scene(const SceneSpec& spec) {
@@ -92,6 +116,8 @@ LoadedScene load_scene(const SceneSpec& spec) {
       throw e.with_context(obj.where + ".mesh");
     }
     transform_mesh(mesh, obj.M_world_from_object);
+    if (outside_view(s.camera, mesh_bounds(mesh)))
+      s.warnings.add(obj.where, "the object lies entirely outside the camera's view (it covers no pixel): check translate and the camera");
     meshes.push_back(std::move(mesh));
   }
   warn_ineffective_settings(spec, s.warnings);

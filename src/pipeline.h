@@ -55,6 +55,10 @@ std::string layers_path_for(const std::string& image_path);
 
 // Settings given (SceneSpec::given) that the integrator or the output format does not use, each
 // named in a warning; and what is really done, for the report.
+// Whether a world-space box lies entirely outside the camera's view frustum (conservative: a box
+// that straddles a corner of the frustum may still be out of view).
+bool outside_view(const Camera& camera, const Bounds& box_world);
+
 void warn_ineffective_settings(const SceneSpec& spec, Warnings& warnings);
 std::string effective_tonemap(const SceneSpec& spec);                    // "none" for EXR/TIFF
 std::optional<IrradianceMode> effective_irradiance(const SceneSpec& spec);  // nullopt: not used

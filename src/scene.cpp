@@ -106,8 +106,8 @@ CameraSpec parse_camera(JsonObject o, const fs::path& dir, Warnings& warnings) {
         up->fail("up is parallel to the viewing direction");
     }
     read_fov(o);
+    o.finish();  // an unknown key ("fov") is named before the missing one
     if (!c.hfov_deg && !c.vfov_deg) o.fail("missing hfov_deg or vfov_deg");
-    o.finish();
     return c;
   }
   c.kind = CameraSpec::Kind::Explicit;
@@ -257,6 +257,7 @@ ObjectSpec parse_object(JsonObject o, const fs::path& dir) {
     if (auto t = o.find("translate")) translate = t->vec3();
     if (auto r = o.find("rotate")) {
       if (r->is_number()) angle_deg = r->number();
+      else if (!r->is_object()) r->fail("expected degrees about +Y (\"rotate\": 30) or {\"angle_deg\": 30, \"axis\": [x, y, z]}");
       else {
         JsonObject ro(*r);
         angle_deg = ro.get("angle_deg").number();
@@ -268,6 +269,7 @@ ObjectSpec parse_object(JsonObject o, const fs::path& dir) {
       }
     }
     if (auto s = o.find("scale")) {
+      if (!s->is_number() && !s->is_array()) s->fail("expected a number (uniform: \"scale\": 0.3) or [sx, sy, sz]");
       scale = s->is_number() ? Vec3d::Constant(s->number()) : s->vec3();
       if (!(scale.cwiseAbs().minCoeff() > 0)) s->fail("scale must not be zero");
     }

@@ -206,6 +206,13 @@ TEST(Cli, CompareWritesThePictureAndRejectsMismatchedImages) {
   EXPECT_NE(r.out.find("| image | 192 |"), std::string::npos) << r.out;
   EXPECT_TRUE(std::filesystem::exists(dir.file("d.png")));
   expect_one_line_error(run_insitu(dir, "compare " + dir.file("a.png") + " " + dir.file("c.png")), "c.png: 8x12");
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+  // A linear EXR against an 8-bit PNG: said, since the PNG is clipped and display-referred.
+  write_image(dir.file("e.exr"), Image(16, 12, 3, 0.25f));
+  const CliRun mixed = run_insitu(dir, "compare " + dir.file("e.exr") + " " + dir.file("b.png"));
+  EXPECT_EQ(mixed.exit_code, 0) << mixed.err;
+  EXPECT_NE(mixed.err.find("insitu: warning: " + dir.file("b.png") + " is a display-referred 8-bit image"), std::string::npos)
+      << mixed.err;
 }
 
 }  // namespace

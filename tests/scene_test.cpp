@@ -210,6 +210,48 @@ TEST(SceneFile, ExactRotationGivesNoWarning) {
   for (const auto& w : s.warnings.items) EXPECT_EQ(w.find("rotation"), std::string::npos) << w;
 }
 
+// Messages that name the real mistake: an unknown key before a missing one, the allowed forms of
+// rotate and scale, and a mesh that is not OBJ.
+TEST(SceneFile, MessagesNameTheRealMistake) {
+  SceneFixture fx;
+  auto j = fx.scene;
+  j["camera"] = {{"eye", {0.5, 2.0, 1.5}}, {"look", {0.5, 0.0, -0.5}}, {"fov", 70}};
+  expect_error(fx, j, ":$.camera.fov", "unknown key");
+  j = fx.scene;
+  j["objects"][0]["rotate"] = {0, 20, 0};
+  expect_error(fx, j, ":$.objects[0].rotate", "expected degrees about +Y (\"rotate\": 30) or {\"angle_deg\"");
+  j = fx.scene;
+  j["objects"][0]["scale"] = "0.3";
+  expect_error(fx, j, ":$.objects[0].scale", "expected a number (uniform: \"scale\": 0.3) or [sx, sy, sz]");
+  j = fx.scene;
+  fx.dir.write("chair.ply", "ply\nformat ascii 1.0\nend_header\n");
+  j["objects"][0]["mesh"] = "chair.ply";
+  expect_error(fx, j, ":$.objects[0].mesh: " + fx.dir.file("chair.ply"), "only OBJ meshes are supported ('.ply')");
+}
+
+// An object that covers no pixel is worth a warning; one in view is not.
+TEST(SceneFile, ObjectOutOfViewIsWarned) {
+  SceneFixture fx;
+  auto has_warning = [](const LoadedScene& s) {
+    for (const auto& w : s.warnings.items)
+      if (w.find("outside the camera's view") != std::string::npos) return true;
+    return false;
+  };
+  EXPECT_FALSE(has_warning(load_scene(parse_scene_file(fx.write()))));
+  for (const nlohmann::json& t : {nlohmann::json{0, 0, 50}, nlohmann::json{40, 0, 0}, nlohmann::json{0, -30, 0}}) {
+    auto j = fx.scene;
+    j["objects"][0]["translate"] = t;
+    EXPECT_TRUE(has_warning(load_scene(parse_scene_file(fx.write(j))))) << t.dump();
+  }
+  // The frustum test itself: a box around the look point is inside, one behind the eye outside.
+  const Camera cam = Camera::look_at({0, 1, 3}, {0, 1, 0}, {0, 1, 0}, 60, 64, 48);
+  Bounds in, behind;
+  in.extend({-0.1f, 0.9f, -0.1f}), in.extend({0.1f, 1.1f, 0.1f});
+  behind.extend({-0.1f, 0.9f, 3.5f}), behind.extend({0.1f, 1.1f, 3.7f});
+  EXPECT_FALSE(outside_view(cam, in));
+  EXPECT_TRUE(outside_view(cam, behind));
+}
+
 // Untouched pixels must come out exactly as they went in: with no objects, and with objects
 // entirely out of view.
 TEST(SceneFile, NoObjectsReproducesThePhotoBitForBit) {

@@ -28,6 +28,16 @@ int run_compare(const CompareArgs& args) {
     if (mask.width != a.width || mask.height != a.height)
       throw InputError(args.mask, fmt::format("mask is {}x{}, the images {}x{}", mask.width, mask.height, a.width, a.height));
   }
+  // A linear (scene-referred) image against a display-referred one: the latter is clipped at 1 and
+  // quantized, so its highlights cannot match; the numbers still compare linear values.
+  if (fa.display_referred != fb.display_referred) {
+    const ImageFile& d = fa.display_referred ? fa : fb;
+    const ImageFile& l = fa.display_referred ? fb : fa;
+    std::fprintf(stderr,
+                 "insitu: warning: %s is a display-referred %d-bit image (clipped at 1, sRGB-decoded) and %s is linear "
+                 "(%s): values above 1 cannot agree; compare like with like (the EXR with an EXR)\n",
+                 d.path.c_str(), d.bits, l.path.c_str(), l.format.c_str());
+  }
   const CompareResult r = compare_images(a, b, args.mask.empty() ? nullptr : &mask);
   auto row = [](const char* name, const CompareNumbers& n) {
     std::printf("| %s | %ld | %.6g | %.6g | %.6f | %.6g |\n", name, n.pixels, n.rmse, n.relative_rmse, n.ssim, n.max_error);
