@@ -96,8 +96,10 @@ void commit(const std::string& tmp, const std::string& path) {
   std::error_code ec;
   fs::rename(tmp, path, ec);
   if (ec) {
-    fs::remove(tmp, ec);
-    throw InputError(path, "cannot write: " + ec.message());
+    const std::string why = fs::is_directory(path) ? "is a directory" : "cannot write: " + ec.message();
+    std::error_code ignored;  // the removal's own outcome must not replace the reason
+    fs::remove(tmp, ignored);
+    throw InputError(path, why);
   }
 }
 

@@ -7,25 +7,90 @@
 
 namespace insitu {
 
+namespace {
+
+std::string line_col(const std::string& text, std::size_t byte) {
+  int line = 1, col = 1;
+  for (std::size_t i = 0; i < std::min(byte, text.size()); ++i) {
+    if (text[i] == '\n') { ++line; col = 1; } else { ++col; }
+  }
+  return fmt::format("{}:{}", line, col);
+}
+
+// Rejects duplicate keys during parsing (nlohmann keeps the last one silently), naming the JSON
+// path of the second occurrence. The stack mirrors the containers being parsed.
+class DuplicateKeyCheck {
+ public:
+  explicit DuplicateKeyCheck(const std::string& file) : file_(file) {}
+  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+    using E = json::parse_event_t;
+    switch (event) {
+      case E::object_start: stack_.push_back({true, {}, "", 0}); break;
+      case E::array_start: stack_.push_back({false, {}, "", 0}); break;
+      case E::key: {
+        Level& top = stack_.back();
+        top.key = parsed.get<std::string>();
+        if (!top.keys.insert(top.key).second) throw InputError(file_ + ":" + path(), "duplicate key (the JSON has it twice)");
+        break;
+      }
+      case E::object_end:
+      case E::array_end:
+        stack_.pop_back();
+        element_done();
+        break;
+      case E::value: element_done(); break;
+    }
+    return true;
+  }
+
+ private:
+  struct Level {
+    bool object;
+    std::set<std::string> keys;
+    std::string key;  // objects: the current member
+    long index;       // arrays: the current element
+  };
+  void element_done() {
+    if (!stack_.empty() && !stack_.back().object) ++stack_.back().index;
+  }
+  std::string path() const {
+    std::string p = "$";
+    for (const Level& l : stack_) p += l.object ? "." + l.key : fmt::format("[{}]", l.index);
+    return p;
+  }
+  std::string file_;
+  std::vector<Level> stack_;
+};
+
+}  // namespace
+
 json read_json_file(const std::string& path) {
-  std::ifstream in(path);
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path, "is a directory, not a JSON file");
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec && size > kMaxJsonBytes)
+    throw InputError(path, fmt::format("{} bytes: too large for a scene or points file (at most {} MiB)", size, kMaxJsonBytes >> 20));
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, std::filesystem::exists(path) ? "cannot read file" : "file not found");
   std::stringstream ss;
   ss << in.rdbuf();
   const std::string text = ss.str();
+  if (const auto nul = text.find('\0'); nul != std::string::npos)
+    throw InputError(fmt::format("{}:{}", path, line_col(text, nul)), "a NUL byte: this is not a JSON text file");
   try {
-    return json::parse(text);
+    return json::parse(text, DuplicateKeyCheck(path));
   } catch (const json::parse_error& e) {
     // e.byte is the 1-based offset of the failure; turn it into line:col.
-    const std::size_t byte = e.byte == 0 ? 0 : std::min<std::size_t>(e.byte - 1, text.size());
-    int line = 1, col = 1;
-    for (std::size_t i = 0; i < byte; ++i) {
-      if (text[i] == '\n') { ++line; col = 1; } else { ++col; }
-    }
+    const std::size_t byte = e.byte == 0 ? 0 : e.byte - 1;
     std::string what = e.what();
     // nlohmann's message is "[json.exception.parse_error.101] parse error at line L, column C: ..."
     if (auto p = what.find(": "); p != std::string::npos) what = what.substr(p + 2);
-    throw InputError(fmt::format("{}:{}:{}", path, line, col), "malformed JSON: " + what);
+    throw InputError(fmt::format("{}:{}", path, line_col(text, byte)), "malformed JSON: " + what);
+  } catch (const json::exception& e) {
+    // out_of_range.406 (a number such as 1e400 that no double holds) and the like.
+    std::string what = e.what();
+    if (auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
+    throw InputError(path, "malformed JSON: " + what);
   }
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <cstdint>
 #include <set>
 #include <string>
 
@@ -14,7 +15,12 @@ namespace insitu {
 
 using nlohmann::json;
 
-// Parses a JSON file; syntax errors name file, line and column.
+// Scene and points files are small; a larger file is refused before it is read.
+constexpr std::uintmax_t kMaxJsonBytes = std::uintmax_t(64) << 20;
+
+// Parses a JSON file; syntax errors name file, line and column. Refused too: a directory, a file
+// over kMaxJsonBytes, a NUL byte (line:col), a number no double holds (1e400), and a key given
+// twice in one object (its JSON path).
 json read_json_file(const std::string& path);
 
 class JsonValue {

@@ -34,6 +34,7 @@ namespace {
 
 struct ObjScan {
   std::vector<int> face_lines;  // line of every `f` statement, in file order
+  std::vector<std::string> mtllibs;  // the MTL files it names
 };
 
 std::vector<std::string> split_ws(const std::string& s) {
@@ -91,6 +92,7 @@ ObjScan scan_obj(const std::string& path) {
     if (kw == "v") { check_numbers(path, lineno, tok, 3, 6, "vertex"); ++nv; }
     else if (kw == "vn") { check_numbers(path, lineno, tok, 3, 3, "normal"); ++nvn; }
     else if (kw == "vt") { check_numbers(path, lineno, tok, 1, 3, "texture coordinate"); ++nvt; }
+    else if (kw == "mtllib") { for (std::size_t k = 1; k < tok.size(); ++k) scan.mtllibs.push_back(tok[k]); }
     else if (kw == "f") {
       if (tok.size() < 4) fail(path, lineno, fmt::format("face has {} vertices, needs at least 3", tok.size() - 1));
       for (std::size_t k = 1; k < tok.size(); ++k) {
@@ -161,6 +163,8 @@ Mesh load_obj(const std::string& path, Warnings& warnings) {
   const auto& attrib = reader.GetAttrib();
   Mesh mesh;
   mesh.source = path;
+  mesh.files.push_back(path);
+  for (const auto& m : scan.mtllibs) mesh.files.push_back((base_dir / m).string());
   for (std::size_t i = 0; i + 2 < attrib.vertices.size(); i += 3)
     mesh.positions.emplace_back(attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]);
   for (std::size_t i = 0; i + 2 < attrib.normals.size(); i += 3) {
@@ -169,7 +173,10 @@ Mesh load_obj(const std::string& path, Warnings& warnings) {
   }
   for (std::size_t i = 0; i + 1 < attrib.texcoords.size(); i += 2)
     mesh.uvs.emplace_back(attrib.texcoords[i], attrib.texcoords[i + 1]);
-  for (const auto& m : reader.GetMaterials()) mesh.materials.push_back(convert_material(m, base_dir, path));
+  for (const auto& m : reader.GetMaterials()) {
+    mesh.materials.push_back(convert_material(m, base_dir, path));
+    if (!m.diffuse_texname.empty()) mesh.files.push_back((base_dir / m.diffuse_texname).string());
+  }
   const int default_material = int(mesh.materials.size());
   mesh.materials.push_back(Material{});
 

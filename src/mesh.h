@@ -37,6 +37,7 @@ struct Triangle {
 
 struct Mesh {
   std::string source;  // the OBJ path, for messages
+  std::vector<std::string> files;  // every file it was read from: the OBJ, its MTL files, textures
   std::vector<Vec3f> positions;
   std::vector<Vec3f> normals;
   std::vector<Vec2f> uvs;

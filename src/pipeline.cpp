@@ -9,6 +9,7 @@
 
 #include "composite.h"
 #include "integrators/integrator.h"
+#include "output_paths.h"
 #include "text_file.h"
 #include "irradiance.h"
 
@@ -70,8 +71,31 @@ bool outside_view(const Camera& cam, const Bounds& b) {
   return false;
 }
 
+std::vector<NamedPath> scene_input_files(const SceneSpec& spec) {
+  std::vector<NamedPath> in = {{spec.path, "the scene file"}, {spec.photo, "the photo"}};
+  const EnvironmentSpec& e = spec.environment;
+  if (!e.image.empty()) in.push_back({e.image, "the environment"});
+  for (int f = 0; f < 6; ++f)
+    for (const auto& file : e.shots[std::size_t(f)].files) in.push_back({file, std::string("shot ") + face_name(f)});
+  if (!spec.camera.points.empty()) in.push_back({spec.camera.points, "the control points"});
+  if (!spec.camera.file.empty()) in.push_back({spec.camera.file, "the camera file"});
+  for (const auto& o : spec.objects) in.push_back({o.mesh, "a mesh (" + o.where + ")"});
+  for (const auto& p : spec.local_scene)
+    if (p.mesh) in.push_back({p.mesh->mesh, "a local-scene mesh (" + p.mesh->where + ")"});
+  return in;
+}
+
+std::vector<NamedPath> scene_output_files(const SceneSpec& spec) {
+  if (spec.output.image.empty()) return {{spec.output.layers, "the layers"}};
+  return {{spec.output.image, "the output image"},
+          {spec.output.layers, "the layers"},
+          {report_path(spec.output.image), "the report"}};
+}
+
 LoadedScene load_scene(const SceneSpec& spec) {
   const auto start = std::chrono::steady_clock::now();
+  // Before any work: no output may replace an input or another output.
+  check_outputs(scene_input_files(spec), scene_output_files(spec));
   LoadedScene s;
   s.spec = spec;
   s.warnings = spec.warnings;
@@ -121,6 +145,11 @@ LoadedScene load_scene(const SceneSpec& spec) {
     meshes.push_back(std::move(mesh));
   }
   warn_ineffective_settings(spec, s.warnings);
+  // The files the meshes named (MTL, textures) are inputs too.
+  std::vector<NamedPath> mesh_files;
+  for (const Mesh& m : meshes)
+    for (const auto& f : m.files) mesh_files.push_back({f, "read by " + m.source});
+  check_outputs(mesh_files, scene_output_files(spec));
   s.objects = std::make_unique<EmbreeScene>(std::move(meshes));
   std::vector<Mesh> catcher_meshes;
   for (std::size_t i = 0; i < spec.local_scene.size(); ++i) {
@@ -135,6 +164,10 @@ LoadedScene load_scene(const SceneSpec& spec) {
     transform_mesh(mesh, m->M_world_from_object);
     catcher_meshes.push_back(std::move(mesh));
   }
+  mesh_files.clear();
+  for (const Mesh& m : catcher_meshes)
+    for (const auto& f : m.files) mesh_files.push_back({f, "read by " + m.source});
+  check_outputs(mesh_files, scene_output_files(spec));
   s.catcher_meshes = std::make_unique<EmbreeScene>(std::move(catcher_meshes));
   s.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return s;

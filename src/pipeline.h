@@ -11,6 +11,7 @@
 #include "environment.h"
 #include "error.h"
 #include "image.h"
+#include "output_paths.h"
 #include "render.h"
 #include "scene.h"
 
@@ -30,7 +31,13 @@ struct LoadedScene {
   double load_seconds = 0;
 };
 
+// Refuses (InputError) before reading anything when an output would replace an input or another
+// output (output_paths.h), and again once the meshes have named their MTL files and textures.
 LoadedScene load_scene(const SceneSpec& spec);
+
+// The files a scene reads (before loading its meshes) and writes.
+std::vector<NamedPath> scene_input_files(const SceneSpec& spec);
+std::vector<NamedPath> scene_output_files(const SceneSpec& spec);
 
 struct RenderResult {
   double prepare_seconds = 0;  // the integrator's precomputation (legacy blur, irradiance cube)

@@ -22,13 +22,15 @@ void write_text_file(const std::string& path, const std::string& text) {
     out.close();
     if (!out) {
       fs::remove(tmp, ec);
-      throw InputError(path, "cannot write");
+      throw InputError(path, "cannot write (is its folder writable?)");
     }
   }
   fs::rename(tmp, p, ec);
   if (ec) {
-    fs::remove(tmp, ec);
-    throw InputError(path, "cannot write: " + ec.message());
+    const std::string why = fs::is_directory(p) ? "is a directory" : "cannot write: " + ec.message();
+    std::error_code ignored;  // the removal's own outcome must not replace the reason
+    fs::remove(tmp, ignored);
+    throw InputError(path, why);
   }
 }
 

@@ -7,6 +7,7 @@
 #include "calibration.h"
 #include "commands.h"
 #include "image.h"
+#include "output_paths.h"
 #include "text_file.h"
 #include "view_correlation.h"
 
@@ -21,6 +22,7 @@ struct CalibrateArgs {
 
 int run_calibrate(const CalibrateArgs& a) {
   if (a.image.empty() && a.size.empty()) throw InputError("calibrate", "give --image PHOTO or --size W H");
+  check_outputs({{a.points, "the control points"}, {a.image, "the photo"}}, {{a.output, "-o"}, {a.vc, "--vc"}});
   int width = 0, height = 0;
   if (!a.image.empty()) std::tie(width, height) = read_image_size(a.image);
   else { width = a.size[0]; height = a.size[1]; }

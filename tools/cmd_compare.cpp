@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "image_compare.h"
+#include "output_paths.h"
 
 namespace insitu {
 namespace {
@@ -18,6 +19,7 @@ struct CompareArgs {
 };
 
 int run_compare(const CompareArgs& args) {
+  check_outputs({{args.a, "image A"}, {args.b, "image B"}, {args.mask, "the mask"}}, {{args.out, "-o"}});
   const ImageFile fa = read_image_file(args.a), fb = read_image_file(args.b);
   const Image a = linearize(fa), b = linearize(fb);
   if (a.width != b.width || a.height != b.height)

@@ -17,6 +17,7 @@
 #include "environment.h"
 #include "equirect.h"
 #include "irradiance.h"
+#include "output_paths.h"
 #include "preview.h"
 
 namespace insitu {
@@ -32,6 +33,19 @@ int run_cubemap(const CubemapArgs& a) {
   EnvironmentInfo info;
   std::string photo_path;
   const EnvironmentSpec spec = environment_from_argument(a.env, &photo_path);
+  {  // Before any work: the outputs replace none of the inputs.
+    std::vector<NamedPath> inputs = {{a.env, "the environment argument"}, {spec.image, "the environment image"},
+                                     {photo_path, "the photo"}};
+    for (int f = 0; f < 6; ++f)
+      for (const auto& file : spec.shots[std::size_t(f)].files) inputs.push_back({file, std::string("shot ") + face_name(f)});
+    std::vector<NamedPath> outputs;
+    for (const char* name : {"cube.exr", "cube.png", "equirect.exr"})
+      outputs.push_back({(std::filesystem::path(a.out) / name).string(), "an output"});
+    for (const char* mode : {"gaussian", "sh9", "exact"})
+      for (const char* ext : {".exr", ".png"})
+        outputs.push_back({(std::filesystem::path(a.out) / (std::string("irradiance_") + mode + ext)).string(), "an output"});
+    check_outputs(inputs, outputs);
+  }
   std::optional<ImageFile> photo;
   if (!photo_path.empty()) photo = read_image_file(photo_path);
   const CubeMap cube = load_environment(spec, warnings, &info, photo ? &*photo : nullptr);

@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "commands.h"
+#include "output_paths.h"
 #include "environment.h"
 #include "irradiance_report.h"
 #include "text_file.h"
@@ -24,6 +25,9 @@ struct ReportArgs {
 };
 
 int run_report(const ReportArgs& a) {
+  std::vector<NamedPath> inputs;
+  for (const auto& e : a.envs) inputs.push_back({e, "an environment argument"});
+  check_outputs(inputs, {{a.csv, "--csv"}});
   std::string csv = "environment,face_size,mode,precompute_ms,lookup_ns,mean_rel_error,max_rel_error,brightest_rel_error\n";
   std::printf("| environment | face | mode | precompute (ms) | lookup (ns) | mean rel. error | max rel. error | error facing the brightest texel |\n");
   std::printf("|---|---|---|---|---|---|---|---|\n");

@@ -89,6 +89,10 @@ Image plot(const std::vector<Row>& rows) {
 int run_tradeoff(const TradeoffArgs& a) {
   SceneSpec spec = parse_scene_file(a.scene);
   spec.output = {};
+  std::vector<NamedPath> outputs;
+  for (const char* name : {"tradeoff.csv", "tradeoff.png", "ab.png"})
+    outputs.push_back({(std::filesystem::path(a.out) / name).string(), "an output"});
+  check_outputs(scene_input_files(spec), outputs);
   // Loaded once: the runs differ only in their render settings.
   LoadedScene scene = load_scene(spec);
   print_warnings(scene.warnings);
