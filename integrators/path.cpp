@@ -26,7 +26,9 @@
 // position's magnitude, so that objects of a millimetre and of a kilometre are treated alike.
 //
 // Parameters: render.max_depth (bounces, default 5), render.spp.
-// Environment lookups are parallax-corrected when the scene gives environment.room_box.
+// With environment.room_box the room is an emitting box (room_light.h): its faces carry the cube's
+// radiance projected from the capture point, and next-event estimation samples them as an area
+// light, with the pdf converted to solid angle at the shading point and MIS against the BSDF.
 //
 // The local scene may hold meshes too (a real table, a step): they catch shadows like the planes
 // (with E(n) from the exact irradiance cube), block the environment for the objects, and show the
@@ -35,6 +37,7 @@
 
 #include "bsdf.h"
 #include "env_sampling.h"
+#include "room_light.h"
 #include "integrators/integrator.h"
 
 namespace insitu {
@@ -60,7 +63,11 @@ Vec3f offset_origin(const Vec3f& p, const Vec3f& ng) {
 class PathIntegrator final : public Integrator {
  public:
   explicit PathIntegrator(const RenderInputs& in)
-      : in_(in), objects_(in.objects), env_(*in.environment), max_depth_(std::max(1, in.max_depth)) {}
+      : in_(in),
+        objects_(in.objects),
+        env_(*in.environment),
+        room_(env_, in.room_box, in.box_min, in.box_max, in.capture),
+        max_depth_(std::max(1, in.max_depth)) {}
 
   CameraSample sample(const Ray& camera_ray, Sampler& sampler) const override {
     CameraSample out;
@@ -135,21 +142,19 @@ class PathIntegrator final : public Integrator {
     return c;
   }
 
-  // The environment's radiance seen from p along dir. With a room box (parallax correction, as in
-  // real-time "box-projected" cube maps): the ray meets the box at q, and the cube is looked up
-  // toward q from where it was captured, so a point near a window sees more of it.
-  Rgb env_radiance(const Vec3f& p, const Vec3f& dir) const {
-    if (!in_.room_box) return env_.radiance(dir);
-    // Exit point of the box (p inside): the nearest of the slabs the ray leaves through.
-    float t_exit = kInfinity;
-    for (int k = 0; k < 3; ++k) {
-      if (dir[k] == 0) continue;
-      const float t = ((dir[k] > 0 ? in_.box_max[k] : in_.box_min[k]) - p[k]) / dir[k];
-      t_exit = std::min(t_exit, t);
-    }
-    if (!(t_exit > 0) || !std::isfinite(t_exit)) return env_.radiance(dir);
-    const Vec3f q = p + t_exit * dir - in_.capture;
-    return env_.radiance(q.squaredNorm() > 0 ? Vec3f(q.normalized()) : dir);
+  // The room's light seen from p along dir (room_light.h): with a room box, the box's faces emit
+  // what the capture point saw toward them, so a point near a window sees more of it.
+  Rgb env_radiance(const Vec3f& p, const Vec3f& dir) const { return room_.radiance(p, dir); }
+
+  // Whether the room's light sampled from `origin` reaches it: the local scene blocks it for
+  // everything (its light is reached by BSDF samples only, weight 1; a sample on the floor face
+  // meets the floor plane at its own distance), the objects only `with_objects`.
+  bool blocked_by_catcher(const Vec3f& origin, const RoomSample& rs) const {
+    const float t_max = std::isfinite(rs.distance) ? rs.distance * (1 + 1e-3f) : kInfinity;
+    return find_catcher({origin, rs.dir}, t_max).valid;
+  }
+  bool blocked_by_objects(const Vec3f& origin, const RoomSample& rs) const {
+    return objects_->occluded({origin, rs.dir}, 0.0f, std::isfinite(rs.distance) ? rs.distance : kInfinity);
   }
 
   // Radiance of the real room at a point of a catcher plane seen along `dir`.
@@ -172,14 +177,13 @@ class PathIntegrator final : public Integrator {
       const Frame frame(sp.ns_world);
       const Vec3f wo = frame.to_local(-ray.dir);
       const Vec3f origin = offset_origin(sp.p_world, sp.ng_world);
-      // Next-event estimation toward the environment (catcher planes occlude it).
+      // Next-event estimation toward the room's light (catcher planes occlude it).
       const float ue = sampler.next(), us = sampler.next(), ut = sampler.next();
-      const EnvSample es = env_.sample(ue, us, ut);
-      const Vec3f wl = frame.to_local(es.dir);
-      if (wl.z() > 0 && es.dir.dot(sp.ng_world) > 0 && !find_catcher({origin, es.dir}, kInfinity).valid &&
-          !objects_->occluded({origin, es.dir}, 0.0f, kInfinity)) {
-        L += throughput * bsdf.eval(wo, wl) * env_radiance(origin, es.dir) *
-             (wl.z() / es.pdf * power_heuristic(es.pdf, bsdf.pdf(wo, wl)));
+      const RoomSample rs = room_.sample(origin, ue, us, ut);
+      const Vec3f wl = frame.to_local(rs.dir);
+      if (rs.pdf > 0 && wl.z() > 0 && rs.dir.dot(sp.ng_world) > 0 && !blocked_by_catcher(origin, rs) &&
+          !blocked_by_objects(origin, rs)) {
+        L += throughput * bsdf.eval(wo, wl) * rs.radiance * (wl.z() / rs.pdf * power_heuristic(rs.pdf, bsdf.pdf(wo, wl)));
       }
       // BSDF sample.
       BsdfSample bs;
@@ -195,7 +199,7 @@ class PathIntegrator final : public Integrator {
         break;
       }
       if (!hit.valid()) {
-        L += throughput * env_radiance(ray.origin, wi) * power_heuristic(bs.pdf, env_.pdf(wi));
+        L += throughput * env_radiance(ray.origin, wi) * power_heuristic(bs.pdf, room_.pdf(ray.origin, wi));
         break;
       }
       if (depth >= 2) {
@@ -220,13 +224,12 @@ class PathIntegrator final : public Integrator {
     Rgb with = Rgb::Zero(), without = Rgb::Zero();
     // Environment sample: blocked by the local scene for both, by the objects for `with`.
     const float ue = sampler.next(), us = sampler.next(), ut = sampler.next();
-    const EnvSample es = env_.sample(ue, us, ut);
-    const float cos_l = n.dot(es.dir);
-    if (cos_l > 0 && !find_catcher({origin, es.dir}, kInfinity).valid) {
-      const Rgb contribution =
-          rho_over_pi * env_radiance(origin, es.dir) * (cos_l / es.pdf * power_heuristic(es.pdf, cos_l / kPiF));
+    const RoomSample rs = room_.sample(origin, ue, us, ut);
+    const float cos_l = n.dot(rs.dir);
+    if (rs.pdf > 0 && cos_l > 0 && !blocked_by_catcher(origin, rs)) {
+      const Rgb contribution = rho_over_pi * rs.radiance * (cos_l / rs.pdf * power_heuristic(rs.pdf, cos_l / kPiF));
       without += contribution;
-      if (!objects_->occluded({origin, es.dir}, 0.0f, kInfinity)) with += contribution;
+      if (!blocked_by_objects(origin, rs)) with += contribution;
     }
     // BSDF sample: what lies behind (the real room, or the environment), or an object in front.
     const Vec3f wi = cosine_sample(n, sampler.next(), sampler.next());
@@ -234,7 +237,7 @@ class PathIntegrator final : public Integrator {
     const CatcherHit behind_hit = find_catcher({origin, wi}, kInfinity);
     const Rgb behind = behind_hit.valid
                            ? Rgb(kPiF * rho_over_pi * room_radiance(behind_hit.x, wi))
-                           : Rgb(kPiF * rho_over_pi * env_radiance(origin, wi) * power_heuristic(pdf_bsdf, env_.pdf(wi)));
+                           : Rgb(kPiF * rho_over_pi * env_radiance(origin, wi) * power_heuristic(pdf_bsdf, room_.pdf(origin, wi)));
     without += behind;
     const Hit hit = objects_->intersect({origin, wi});
     if (hit.valid() && (!behind_hit.valid || hit.t < behind_hit.t))
@@ -251,6 +254,7 @@ class PathIntegrator final : public Integrator {
   const RenderInputs in_;
   const EmbreeScene* objects_;
   EnvSampler env_;
+  RoomLight room_;  // refers to env_, declared before it
   int max_depth_;
 };
 

@@ -2,6 +2,7 @@
 
 #include <random>
 
+#include "cube_fixture.h"
 #include "env_sampling.h"
 #include "equirect.h"
 #include "integrators/integrator.h"
@@ -14,16 +15,7 @@
 namespace insitu {
 namespace {
 
-CubeMap random_cube(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0, 1);
-  CubeMap c(n);
-  for (int f = 0; f < 6; ++f)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) c.set_texel(f, i, j, u(rng) < 0.2f ? Rgb(Rgb::Zero()) : Rgb(Rgb(u(rng), u(rng), u(rng)) * (u(rng) < 0.05f ? 50.0f : 1.0f)));
-  c.update_borders();
-  return c;
-}
+using test::random_cube;
 
 // χ² of the texel histogram of 200 000 samples against P_i = pdf integrated over texel i (which
 // the sampler must reproduce); with k − 1 = 95 degrees of freedom the statistic is within
@@ -135,12 +127,21 @@ TEST(Path, WhiteFurnaceAtEveryScale) {
     in.objects = &box;
     in.environment = &env;
     const auto path = make_integrator("path", in);
+    // Inside a uniformly emitting room box (room_light.h), captured off-centre: the same.
+    RenderInputs in_room = in;
+    in_room.room_box = true;
+    in_room.box_min = Vec3f(-6, -6, -6) * float(scale);
+    in_room.box_max = Vec3f(6, 6, 7) * float(scale);
+    in_room.capture = Vec3f(1.5f, 0.5f, -2) * float(scale);
+    const auto path_room = make_integrator("path", in_room);
     const auto irr = make_integrator("irradiance", in);
     const std::vector<Ray> rays = {{Vec3f(0.3f, 0.2f, 5) * float(scale), Vec3f(-0.05f, 0.02f, -1).normalized()},
                                    {Vec3f(3, 4, 2) * float(scale), -Vec3f(3, 4, 2).normalized()}};
     for (std::size_t r = 0; r < rays.size(); ++r) {
       const Estimate e = estimate(*path, rays[r], 4000, r);
       EXPECT_NEAR(e.mean[0], 0.7f, 4 * e.se[0] + 1e-6f) << "scale " << scale;
+      const Estimate e_room = estimate(*path_room, rays[r], 4000, r);
+      EXPECT_NEAR(e_room.mean[0], 0.7f, 4 * e_room.se[0] + 1e-6f) << "room box, scale " << scale;
       Sampler s(1, 0, 0);
       EXPECT_NEAR(irr->sample(rays[r], s).radiance[0], 0.7f, 1e-4f);
     }

@@ -1,0 +1,138 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "cube_fixture.h"
+#include "room_light.h"
+#include "texel_geometry.h"
+
+namespace insitu {
+namespace {
+
+// A mild cube (texels 0.5…1.5, one 5× brighter) for the χ² test, whose expected counts come from
+// a midpoint quadrature of the pdf: with the 50× spikes of random_cube the images of bright texels
+// seen from x are too sharp for it.
+CubeMap mild_cube(int n) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(0.5f, 1.5f);
+  CubeMap c(n);
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) c.set_texel(f, i, j, Rgb::Constant(u(rng)));
+  c.set_texel(kPosY, 1, 2, Rgb::Constant(5.0f));
+  c.update_borders();
+  return c;
+}
+
+struct Room {
+  explicit Room(CubeMap c = test::random_cube(4, 11)) : cube(std::move(c)) {}
+  CubeMap cube;
+  EnvSampler env{cube};
+  RoomLight light{env, true, Vec3f(-2.5f, 0, -3), Vec3f(2.5f, 2.6f, 3), Vec3f(-0.2f, 0.9f, -1.2f)};
+};
+
+// A sample's own pdf is the density pdf() gives its direction, and the radiance it carries is
+// what radiance() finds along it: the sampler and the lookup describe one emitter.
+TEST(RoomLight, SampleAgreesWithPdfAndRadiance) {
+  Room r;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0, 1);
+  for (const Vec3f& x : {Vec3f(1.0f, 0.4f, 1.5f), Vec3f(-2.3f, 2.4f, 2.8f), Vec3f(-0.2f, 0.9f, -1.2f)}) {
+    int checked = 0;
+    for (int k = 0; k < 2000; ++k) {
+      const RoomSample s = r.light.sample(x, u(rng), u(rng), u(rng));
+      if (!(s.pdf > 0)) continue;
+      ++checked;
+      ASSERT_NEAR(s.pdf, r.light.pdf(x, s.dir), 2e-3f * s.pdf) << k;
+      // The sampled point and the box along the direction agree to float precision; a texel
+      // boundary may lie between them, so the radiance is compared where it is well inside.
+      float t = 0;
+      int axis = 0;
+      ASSERT_TRUE(r.light.exit(x, s.dir, &t, &axis));
+      ASSERT_NEAR(t, s.distance, 1e-4f * s.distance);
+    }
+    EXPECT_GT(checked, 1500);
+  }
+}
+
+// χ² of the histogram of sampled directions at a point x against ∫_bin pdf dω (midpoint
+// quadrature, independent of the sampler), bins the 96 texels of a 4² direction cube around x;
+// bins expecting fewer than 5 counts are pooled. (χ² − k)/√(2k) < 4 unless the sampler is wrong.
+// The quadrature's total is ∫ pdf dω = 1.
+TEST(RoomLight, ChiSquareAgainstThePdf) {
+  Room r(mild_cube(4));
+  const Vec3f x(1.0f, 0.4f, 1.5f);
+  // A bin straddles the images of texel edges (the pdf jumps there): q = 192 keeps the midpoint
+  // rule's error (~1/q of a boundary bin) below the sampling noise of 50 000 samples.
+  const int n = 4, q = 192, count = 50000;
+  std::vector<double> hist(6 * n * n, 0.0), expected(6 * n * n, 0.0);
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        double sum = 0;
+        for (int b = 0; b < q; ++b)
+          for (int a = 0; a < q; ++a) {
+            const int ii = i * q + a, jj = j * q + b, nn = n * q;
+            sum += r.light.pdf(x, texel_direction(f, ii, jj, nn)) * texel_solid_angle(ii, jj, nn);
+          }
+        expected[std::size_t((f * n + j) * n + i)] = sum * count;
+      }
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<float> u(0, 1);
+  for (int k = 0; k < count; ++k) {
+    const RoomSample s = r.light.sample(x, u(rng), u(rng), u(rng));
+    if (!(s.pdf > 0)) continue;
+    const FaceCoord fc = direction_to_face(s.dir);
+    hist[std::size_t((fc.face * n + std::min(int(fc.t * n), n - 1)) * n + std::min(int(fc.s * n), n - 1))] += 1;
+  }
+  double chi2 = 0, total = 0, pooled_h = 0, pooled_e = 0;
+  int bins = 0;
+  for (std::size_t b = 0; b < hist.size(); ++b) {
+    total += expected[b];
+    if (expected[b] < 5) {
+      pooled_h += hist[b], pooled_e += expected[b];
+      continue;
+    }
+    chi2 += (hist[b] - expected[b]) * (hist[b] - expected[b]) / expected[b];
+    ++bins;
+  }
+  if (pooled_e > 0) chi2 += (pooled_h - pooled_e) * (pooled_h - pooled_e) / pooled_e, ++bins;
+  EXPECT_NEAR(total, count, 5e-3 * count);
+  const double k = double(bins - 1);
+  std::printf("chi2 %.1f over %d bins\n", chi2, bins);
+  EXPECT_LT((chi2 - k) / std::sqrt(2 * k), 4.0) << "chi2 " << chi2 << " over " << bins << " bins";
+}
+
+// ∫ pdf dω = 1 at points across the room, with the spiky cube: Monte Carlo over uniform directions,
+// E[4π·pdf] = 1 within 4 standard errors.
+TEST(RoomLight, PdfIntegratesToOne) {
+  Room r;
+  for (const Vec3f& x : {Vec3f(1.0f, 0.4f, 1.5f), Vec3f(-0.2f, 0.9f, -1.2f), Vec3f(2.4f, 0.05f, -2.9f)}) {
+    std::mt19937 rng(4);
+    std::normal_distribution<float> g(0, 1);
+    const int count = 400000;
+    double sum = 0, sum2 = 0;
+    for (int k = 0; k < count; ++k) {
+      const double v = 4 * kPi * r.light.pdf(x, Vec3f(g(rng), g(rng), g(rng)).normalized());
+      sum += v;
+      sum2 += v * v;
+    }
+    const double mean = sum / count, se = std::sqrt((sum2 / count - mean * mean) / count);
+    EXPECT_NEAR(mean, 1.0, 4 * se) << x.transpose();
+  }
+}
+
+// Outside the box, and without one, the room is the distant cube.
+TEST(RoomLight, OutsideOrWithoutABoxIsTheDistantCube) {
+  Room r;
+  const RoomLight distant(r.env, false, Vec3f::Zero(), Vec3f::Zero(), Vec3f::Zero());
+  const Vec3f d = Vec3f(0.3f, -0.5f, 0.8f).normalized();
+  for (const RoomLight* l : {&distant, static_cast<const RoomLight*>(&r.light)}) {
+    const Vec3f x = l == &distant ? Vec3f(0.1f, 0.2f, 0.3f) : Vec3f(10, 1, 0);  // outside the box
+    EXPECT_FLOAT_EQ(l->pdf(x, d), r.env.pdf(d));
+    EXPECT_FLOAT_EQ(l->radiance(x, d)[0], r.env.radiance(d)[0]);
+  }
+}
+
+}  // namespace
+}  // namespace insitu
