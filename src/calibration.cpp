@@ -265,6 +265,17 @@ CalibrationResult calibrate(const std::vector<ControlPoint>& points, int width, 
   if (width < 1 || height < 1) throw InputError("", "image size must be positive");
   for (const auto& p : points)
     if (!p.uv_px.allFinite() || !p.p_world.allFinite()) throw InputError(p.where, fmt::format("point {} is not finite", p.name));
+  // Clicked pixels lie in the image: points outside it mean the wrong image size (or origin).
+  std::string outside;
+  int n_outside = 0;
+  for (const auto& p : points)
+    if (p.uv_px.x() < 0 || p.uv_px.y() < 0 || p.uv_px.x() > width || p.uv_px.y() > height)
+      outside += (n_outside++ < 5 ? fmt::format("{}{} ({:.1f}, {:.1f})", outside.empty() ? "" : ", ", p.name, p.uv_px.x(),
+                                                p.uv_px.y())
+                                  : "");
+  if (n_outside > 0)
+    throw InputError("", fmt::format("{} point(s) outside the {}x{} image: {}{} — is the image size (or the origin) right?",
+                                     n_outside, width, height, outside, n_outside > 5 ? ", ..." : ""));
 
   // Normalized frames.
   Frames fr;

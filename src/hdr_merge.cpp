@@ -3,6 +3,7 @@
 #include <opencv2/photo.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -35,6 +36,8 @@ std::vector<cv::Mat> to_mats(const std::vector<ImageFile>& brackets) {
   return mats;
 }
 
+constexpr int kSamples = 70;  // pixels CalibrateDebevec samples
+
 std::vector<float> to_floats(const std::vector<double>& v) { return std::vector<float>(v.begin(), v.end()); }
 
 float mid_grey_linear() { return srgb_to_linear(128.0f / 255.0f); }
@@ -48,10 +51,35 @@ ResponseCurve srgb_response() {
   return r;
 }
 
+// What CalibrateDebevec needs to determine g: its 70 sample pixels, and brackets that differ — an
+// all-white (or all-equal) set of brackets says nothing about the response and would give
+// non-finite curves.
+void check_brackets_determine_a_response(const std::vector<ImageFile>& brackets, const std::vector<cv::Mat>& mats) {
+  if (mats[0].rows * mats[0].cols < kSamples)
+    throw InputError(brackets[0].path, fmt::format("brackets of {}x{} pixels are too small to recover the camera response "
+                                                   "(at least {} pixels)", mats[0].cols, mats[0].rows, kSamples));
+  std::array<bool, 256> seen{};
+  int levels = 0;
+  for (const cv::Mat& m : mats)
+    for (auto it = m.begin<cv::Vec3b>(); it != m.end<cv::Vec3b>(); ++it)
+      for (int c = 0; c < 3; ++c) {
+        const unsigned char z = (*it)[c];
+        if (z > 0 && z < 255 && !seen[z]) seen[z] = true, ++levels;
+      }
+  if (levels < 16)
+    throw InputError(brackets[0].path, fmt::format("the brackets hold {} unclipped grey level(s): too few to recover the camera "
+                                                   "response (every pixel clipped or black?)", levels));
+}
+
 ResponseCurve recover_response(const std::vector<ImageFile>& brackets, const std::vector<double>& exposures) {
   const std::vector<cv::Mat> mats = to_mats(brackets);
+  check_brackets_determine_a_response(brackets, mats);
   cv::Mat response;
-  cv::createCalibrateDebevec(70, 10.0f, false)->process(mats, response, to_floats(exposures));
+  try {
+    cv::createCalibrateDebevec(kSamples, 10.0f, false)->process(mats, response, to_floats(exposures));
+  } catch (const cv::Exception& e) {
+    throw InputError(brackets[0].path, std::string("cannot recover the camera response from these brackets: ") + e.err);
+  }
   ResponseCurve r;
   const float scale = mid_grey_linear();
   for (int z = 0; z < 256; ++z) {
@@ -68,7 +96,11 @@ Image merge_brackets(const std::vector<ImageFile>& brackets, const std::vector<d
   for (int z = 0; z < 256; ++z)
     for (int c = 0; c < 3; ++c) response.at<cv::Vec3f>(z, 0)[c] = std::max(r.g[std::size_t(c)][std::size_t(z)], 1e-12f);
   cv::Mat hdr;
-  cv::createMergeDebevec()->process(mats, hdr, to_floats(exposures), response);
+  try {
+    cv::createMergeDebevec()->process(mats, hdr, to_floats(exposures), response);
+  } catch (const cv::Exception& e) {
+    throw InputError(brackets[0].path, std::string("cannot merge these brackets: ") + e.err);
+  }
   const Image& first = brackets[0].stored;
   Image out(first.width, first.height, 3);
   for (int y = 0; y < out.height; ++y)

@@ -13,18 +13,35 @@
 
 #include "colour.h"
 #include "error.h"
+#include "temp_files.h"
 
 namespace insitu {
 namespace fs = std::filesystem;
 using namespace OIIO;
 
+namespace {
+
+std::string one_line(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s.empty() ? "unknown error" : s;
+}
+
+}  // namespace
+
 ImageFile read_image_file(const std::string& path) {
   if (!fs::exists(path)) throw InputError(path, "file not found");
   auto in = ImageInput::open(path);
-  if (!in) throw InputError(path, "cannot read image: " + geterror());
+  if (!in) throw InputError(path, "cannot read image: " + one_line(geterror()));
   const ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     throw InputError(path, "image has no pixels");
+  // The header's size is checked before anything is allocated: a 100000² header must not cost
+  // memory or minutes.
+  if (std::uint64_t(spec.width) * std::uint64_t(spec.height) > kMaxImagePixels)
+    throw InputError(path, fmt::format("the header declares {}x{} pixels, more than the {} megapixels insitu reads",
+                                       spec.width, spec.height, kMaxImagePixels / 1000000));
   ImageFile file;
   file.path = path;
   file.format = in->format_name();
@@ -41,7 +58,10 @@ ImageFile read_image_file(const std::string& path) {
   const int nc = spec.nchannels;
   std::vector<float> raw(std::size_t(spec.width) * spec.height * nc);
   if (!in->read_image(0, 0, 0, nc, TypeDesc::FLOAT, raw.data()))
-    throw InputError(path, "cannot decode image: " + in->geterror());
+    throw InputError(path, "cannot decode image: " + one_line(in->geterror()));
+  // A truncated file may decode "successfully" with its missing rows grey: the reader's error
+  // says so.
+  if (in->has_error()) throw InputError(path, "truncated or corrupt image: " + one_line(in->geterror()));
   in->close();
   Image& img = file.stored;
   img = Image(spec.width, spec.height, 3);
@@ -123,6 +143,7 @@ void write_atomically(const std::string& path, const std::string& format, const 
   const fs::path p(path);
   make_parent(p);
   const std::string tmp = temporary_name(p);
+  const TempFileGuard guard(tmp);  // removed if the process is interrupted meanwhile
   auto out = ImageOutput::create(format.empty() ? tmp : format);
   if (!out) throw InputError(path, "no image format for '" + p.extension().string() + "'");
   if (!out->open(tmp, spec) || !out->write_image(TypeDesc::FLOAT, pixels) || !out->close()) {

@@ -2,6 +2,7 @@
 // under a temporary name in the same folder and renamed, so no half-written output ever carries
 // the final name (DESIGN.md "Errors").
 #pragma once
+#include <cstdint>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -43,6 +44,11 @@ struct ImageFile {
   Exposure exposure;
 };
 
+// Images larger than this are refused from their header, before decoding (a 16384 × 8192 HDRI is
+// 134 megapixels; phone photos are 12–50).
+constexpr std::uint64_t kMaxImagePixels = std::uint64_t(1) << 27;
+
+// Refuses (InputError naming the file) a missing, unreadable, oversized, truncated or corrupt image.
 ImageFile read_image_file(const std::string& path);
 // Width and height from the header alone.
 std::pair<int, int> read_image_size(const std::string& path);

@@ -104,8 +104,11 @@ double JsonValue::number(double lo, double hi) const {
 
 long JsonValue::integer(long lo, long hi) const {
   if (!j_.is_number_integer()) fail(fmt::format("expected an integer, got {}", j_.dump()));
+  // As written: 18446744073709551615 is unsigned and must not be read back as −1.
+  if (j_.is_number_unsigned() && j_.get<unsigned long>() > static_cast<unsigned long>(hi))
+    fail(fmt::format("{} is out of range [{}, {}]", j_.dump(), lo, hi));
   const long x = j_.get<long>();
-  if (x < lo || x > hi) fail(fmt::format("{} is out of range [{}, {}]", x, lo, hi));
+  if (x < lo || x > hi) fail(fmt::format("{} is out of range [{}, {}]", j_.dump(), lo, hi));
   return x;
 }
 

@@ -111,6 +111,31 @@ ObjScan scan_obj(const std::string& path) {
   return scan;
 }
 
+// The MTL values insitu uses, checked line by line before tinyobjloader (which reads "nan" and
+// negative values silently): Kd and Ks are reflectances in [0, 1], Ns a finite exponent ≥ 0,
+// d an opacity in [0, 1].
+void scan_mtl(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return;  // a missing MTL is tinyobjloader's warning
+  std::string line;
+  for (int lineno = 1; std::getline(in, line); ++lineno) {
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+    const auto tok = split_ws(line);
+    if (tok.empty()) continue;
+    const std::string& kw = tok[0];
+    const bool colour = kw == "Kd" || kw == "Ks" || kw == "Ka" || kw == "Ke";
+    if (!colour && kw != "Ns" && kw != "d") continue;
+    if (colour && tok.size() > 1 && tok[1] == "spectral") continue;
+    check_numbers(path, lineno, tok, colour ? (tok.size() == 2 ? 1 : 3) : 1, 3, kw.c_str());
+    for (std::size_t k = 1; k < tok.size() && k <= 3; ++k) {
+      const double v = std::strtod(tok[k].c_str(), nullptr);
+      if ((kw == "Kd" || kw == "Ks" || kw == "d") && (v < 0 || v > 1))
+        fail(path, lineno, fmt::format("{} {} is outside [0, 1] ({})", kw, tok[k], kw == "d" ? "an opacity" : "a reflectance"));
+      if ((kw == "Ka" || kw == "Ke" || kw == "Ns") && v < 0) fail(path, lineno, fmt::format("{} {} is negative", kw, tok[k]));
+    }
+  }
+}
+
 // ---- Conversion from tinyobjloader ----------------------------------------------------------
 
 Material convert_material(const tinyobj::material_t& m, const fs::path& base_dir,
@@ -145,6 +170,7 @@ Mesh load_obj(const std::string& path, Warnings& warnings) {
                                        ext.empty() ? "no extension" : ext));
   const ObjScan scan = scan_obj(path);
   const fs::path base_dir = fs::path(path).parent_path();
+  for (const auto& m : scan.mtllibs) scan_mtl((base_dir / m).string());
 
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;  // we fan polygons ourselves so each triangle keeps its line
@@ -225,7 +251,17 @@ void transform_mesh(Mesh& mesh, const Mat4d& M) {
   const Eigen::Matrix3d A = M.topLeftCorner<3, 3>();
   const Vec3d t = M.topRightCorner<3, 1>();
   const Eigen::Matrix3d N = A.inverse().transpose();
-  for (Vec3f& p : mesh.positions) p = (A * p.cast<double>() + t).cast<float>();
+  // Rays and positions are float: a transform (scale 1e300, translate 1e300) that takes a vertex
+  // beyond float range, or one whose inverse transpose overflows (scale 1e-300), is refused.
+  if (!M.allFinite() || !N.allFinite())
+    throw InputError("", "the transform is not finite, or not invertible in double precision (scale too small or too large)");
+  for (Vec3f& p : mesh.positions) {
+    const Vec3d q = A * p.cast<double>() + t;
+    if (!(q.cwiseAbs().maxCoeff() < 1e30))
+      throw InputError("", fmt::format("the transform takes vertex ({}, {}, {}) to ({:.3g}, {:.3g}, {:.3g}): beyond the range "
+                                       "insitu renders (1e30 m)", p.x(), p.y(), p.z(), q.x(), q.y(), q.z()));
+    p = q.cast<float>();
+  }
   for (Vec3f& n : mesh.normals) {
     const Vec3d m = N * n.cast<double>();
     n = (m.norm() > 0 ? m.normalized() : m).cast<float>();

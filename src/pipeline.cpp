@@ -50,6 +50,13 @@ void warn_ineffective_settings(const SceneSpec& spec, Warnings& w) {
     w.add("output.tonemap.bias", std::string("has no effect with the ") + tonemap_name(op) + " tone map (only adaptive_log has a bias)");
 }
 
+// A transform that shrinks a mesh below float resolution (scale 1e-30) leaves nothing to render.
+void warn_if_collapsed(const Mesh& mesh, const std::string& where, Warnings& warnings) {
+  const Bounds b = mesh_bounds(mesh);
+  if ((b.lo.array() <= b.hi.array()).all() && !((b.hi - b.lo).maxCoeff() > 0))
+    warnings.add(where, "the transform shrinks the mesh to a point: it covers nothing (is the scale right?)");
+}
+
 bool outside_view(const Camera& cam, const Bounds& b) {
   if (!(b.lo.array() <= b.hi.array()).all()) return true;  // no triangles
   // The box's corners in camera space; the view is the frustum z > 0, 0 ≤ u ≤ W, 0 ≤ v ≤ H, i.e.
@@ -139,7 +146,12 @@ LoadedScene load_scene(const SceneSpec& spec) {
     } catch (const InputError& e) {
       throw e.with_context(obj.where + ".mesh");
     }
-    transform_mesh(mesh, obj.M_world_from_object);
+    try {
+      transform_mesh(mesh, obj.M_world_from_object);
+    } catch (const InputError& e) {
+      throw e.with_context(obj.where);
+    }
+    warn_if_collapsed(mesh, obj.where, s.warnings);
     if (outside_view(s.camera, mesh_bounds(mesh)))
       s.warnings.add(obj.where, "the object lies entirely outside the camera's view (it covers no pixel): check translate and the camera");
     meshes.push_back(std::move(mesh));
@@ -161,7 +173,12 @@ LoadedScene load_scene(const SceneSpec& spec) {
     } catch (const InputError& e) {
       throw e.with_context(m->where + ".mesh");
     }
-    transform_mesh(mesh, m->M_world_from_object);
+    try {
+      transform_mesh(mesh, m->M_world_from_object);
+    } catch (const InputError& e) {
+      throw e.with_context(m->where);
+    }
+    warn_if_collapsed(mesh, m->where, s.warnings);
     catcher_meshes.push_back(std::move(mesh));
   }
   mesh_files.clear();
@@ -276,20 +293,28 @@ void write_outputs(const LoadedScene& scene, const RenderResult& r) {
                                 : tm.op == ToneMap::kPhoto ? r.composite_encoded : tonemap(r.composite_linear, tm));
   write_text_file(report_path(image), render_report(scene, r).dump(2) + "\n");
   if (!scene.spec.output.layers.empty()) {
-    const Image &c = r.composite_linear, &o = r.layers.objects, &a = r.layers.alpha;
-    const Image &w = r.layers.with_objects, &n = r.layers.without_objects;
-    const Image ratio = shadow_ratio(r.layers);
+    // Every layer is finite, always (sanitize: non-finite and negative values to 0; depth and the
+    // others are non-negative by construction).
+    auto finite = [](Image img) {
+      for (float& v : img.data)
+        if (!std::isfinite(v)) v = 0.0f;
+      return img;
+    };
+    const Image c = finite(r.composite_linear), o = finite(r.layers.objects), a = finite(r.layers.alpha);
+    const Image w = finite(r.layers.with_objects), n = finite(r.layers.without_objects);
+    const Image ratio = finite(shadow_ratio(r.layers));
+    const Image normal = finite(r.layers.normal), albedo = finite(r.layers.albedo), depth = finite(r.layers.depth);
+    const Image variance = finite(r.layers.variance), photo = finite(scene.photo_linear);
     write_exr_channels(scene.spec.output.layers, c.width, c.height,
                        {{"R", &c, 0}, {"G", &c, 1}, {"B", &c, 2},
                         {"objects.R", &o, 0}, {"objects.G", &o, 1}, {"objects.B", &o, 2}, {"objects.A", &a, 0},
                         {"with.R", &w, 0}, {"with.G", &w, 1}, {"with.B", &w, 2},
                         {"without.R", &n, 0}, {"without.G", &n, 1}, {"without.B", &n, 2},
                         {"shadow_ratio.R", &ratio, 0}, {"shadow_ratio.G", &ratio, 1}, {"shadow_ratio.B", &ratio, 2},
-                        {"normal.X", &r.layers.normal, 0}, {"normal.Y", &r.layers.normal, 1}, {"normal.Z", &r.layers.normal, 2},
-                        {"albedo.R", &r.layers.albedo, 0}, {"albedo.G", &r.layers.albedo, 1}, {"albedo.B", &r.layers.albedo, 2},
-                        {"depth.Z", &r.layers.depth, 0}, {"samples.Y", &r.layers.samples, 0}, {"variance.Y", &r.layers.variance, 0},
-                        {"photo.R", &scene.photo_linear, 0}, {"photo.G", &scene.photo_linear, 1},
-                        {"photo.B", &scene.photo_linear, 2}});
+                        {"normal.X", &normal, 0}, {"normal.Y", &normal, 1}, {"normal.Z", &normal, 2},
+                        {"albedo.R", &albedo, 0}, {"albedo.G", &albedo, 1}, {"albedo.B", &albedo, 2},
+                        {"depth.Z", &depth, 0}, {"samples.Y", &r.layers.samples, 0}, {"variance.Y", &variance, 0},
+                        {"photo.R", &photo, 0}, {"photo.G", &photo, 1}, {"photo.B", &photo, 2}});
   }
 }
 

@@ -99,6 +99,8 @@ CameraSpec parse_camera(JsonObject o, const fs::path& dir, Warnings& warnings) {
     c.eye = o.get("eye").vec3();
     const JsonValue look = o.get("look");
     c.look = look.vec3();
+    if (!(c.look - c.eye).allFinite() || !std::isfinite((c.look - c.eye).squaredNorm()))
+      look.fail("look − eye overflows a double: the camera's coordinates are too large (use metres near the room)");
     if ((c.look - c.eye).norm() <= 1e-12 * std::max(1.0, c.eye.norm())) look.fail("look point equals the eye");
     if (auto up = o.find("up")) {
       c.up = up->vec3();
@@ -119,8 +121,9 @@ CameraSpec parse_camera(JsonObject o, const fs::path& dir, Warnings& warnings) {
     c.fx = in.get("fx").number(1e-9, 1e12);
     c.fy = in.find("fy") ? in.get("fy").number(1e-9, 1e12) : *c.fx;
   }
-  if (auto cx = in.find("cx")) c.cx = cx->number();
-  if (auto cy = in.find("cy")) c.cy = cy->number();
+  // The principal point may lie outside the image (a shifted lens), but not absurdly far.
+  if (auto cx = in.find("cx")) c.cx = cx->number(-1e7, 1e7);
+  if (auto cy = in.find("cy")) c.cy = cy->number(-1e7, 1e7);
   in.finish();
   JsonObject pose(o.get("pose"));
   c.R_cam_from_world = read_rotation(pose.get("R"), &warnings);

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "error.h"
+#include "temp_files.h"
 
 namespace insitu {
 namespace fs = std::filesystem;
@@ -16,6 +17,7 @@ void write_text_file(const std::string& path, const std::string& text) {
   std::error_code ec;
   if (!p.parent_path().empty()) fs::create_directories(p.parent_path(), ec);
   const fs::path tmp = p.parent_path() / fmt::format(".{}.tmp-{}", p.filename().string(), ::getpid());
+  const TempFileGuard guard(tmp.string());  // removed if the process is interrupted meanwhile
   {
     std::ofstream out(tmp);
     out << text;

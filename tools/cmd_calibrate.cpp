@@ -58,7 +58,7 @@ Command add_calibrate_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("calibrate", "recover the camera from 2D-3D control points");
   cmd->add_option("--points", a->points, "control points: .json, .csv or a View Correlation .vc file")->required();
   auto* image_opt = cmd->add_option("--image", a->image, "the photo (for its size)");
-  auto* size_opt = cmd->add_option("--size", a->size, "the photo's size in pixels")->expected(2)->check(CLI::PositiveNumber);
+  auto* size_opt = cmd->add_option("--size", a->size, "the photo's size in pixels")->expected(2)->check(CLI::Range(1, 1 << 20));
   image_opt->excludes(size_opt);
   cmd->add_option("--model", a->model, "camera model: auto, f, f+c, f+c+a")->check(CLI::IsMember({"auto", "f", "f+c", "f+c+a"}))->capture_default_str();
   cmd->add_option("--origin", a->origin, std::string("pixel origin of the points: ") + kOriginNames)

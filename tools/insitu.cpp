@@ -6,9 +6,11 @@
 #include <cstdio>
 
 #include "commands.h"
+#include "temp_files.h"
 
 int main(int argc, char** argv) {
   using namespace insitu;
+  install_interrupt_cleanup();  // an interrupted write leaves no temporary file
   CLI::App app{"insitu: physically based insertion of 3D furniture into a photograph of a room"};
   app.set_version_flag("--version", std::string("insitu ") + INSITU_VERSION);
   app.require_subcommand(1);

@@ -1,0 +1,173 @@
+#!/usr/bin/env python3
+"""Writes the bad-input matrix (tests/bad_input/<case>/): each case holds the files that differ from
+_base/ and case.json = {"args": [...insitu arguments...], "exit": 2, "message": "<regex for the one
+stderr line>", "unchanged": [files that must be byte-identical afterwards]}. The runner
+(tests/bad_input_test.cpp) copies _base/, then the case, into a temporary folder and runs insitu
+there. Rerun this script after changing it; it rewrites every case folder it knows."""
+import json, os, shutil, struct, subprocess, zlib
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+BASE_SCENE = json.load(open(os.path.join(HERE, "_base", "scene.json")))
+
+
+def case(name, args, message, unchanged=(), files=None, scene=None, exit_code=2, links=None):
+    d = os.path.join(HERE, name)
+    shutil.rmtree(d, ignore_errors=True)
+    os.makedirs(d)
+    for rel, content in (files or {}).items():
+        p = os.path.join(d, rel)
+        os.makedirs(os.path.dirname(p), exist_ok=True)
+        with open(p, "wb") as f:
+            f.write(content if isinstance(content, bytes) else content.encode())
+    for rel, target in (links or {}).items():
+        os.symlink(target, os.path.join(d, rel))
+    if scene is not None:
+        with open(os.path.join(d, "scene.json"), "w") as f:
+            f.write(scene if isinstance(scene, str) else json.dumps(scene, indent=1))
+    with open(os.path.join(d, "case.json"), "w") as f:
+        json.dump({"args": args, "exit": exit_code, "message": message, "unchanged": list(unchanged)}, f, indent=1)
+        f.write("\n")
+
+
+def scene_with(**changes):
+    s = json.loads(json.dumps(BASE_SCENE))
+    for path, value in changes.items():
+        keys = path.split("__")
+        node = s
+        for k in keys[:-1]:
+            node = node[int(k)] if isinstance(node, list) else node[k]
+        last = keys[-1]
+        if isinstance(node, list):
+            node[int(last)] = value
+        else:
+            node[last] = value
+    return s
+
+
+def png_chunk(kind, data):
+    return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+
+def png_declaring(width, height):
+    """A PNG whose header (with a valid CRC) declares width x height, followed by one tiny IDAT."""
+    ihdr = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)
+    return b"\x89PNG\r\n\x1a\n" + png_chunk(b"IHDR", ihdr) + png_chunk(b"IDAT", zlib.compress(b"\0" * 4)) + png_chunk(b"IEND", b"")
+
+
+def oiio_image(path_in_case, args):
+    """An image made by oiiotool (which install-deps.sh installs)."""
+    tmp = os.path.join(HERE, "_tmp" + os.path.splitext(path_in_case)[1])
+    subprocess.check_call(["oiiotool"] + args + ["-o", tmp])
+    data = open(tmp, "rb").read()
+    os.remove(tmp)
+    return data
+
+
+SHOTS = {k: "s%d.png" % i for i, k in enumerate(["+x", "-x", "+z", "-z", "up", "down"])}
+
+
+def six_shots(size=8, value="0.4,0.4,0.4"):
+    img = oiio_image("x.png", ["--pattern", "constant:color=" + value, "%dx%d" % (size, size), "3", "-d", "uint8"])
+    return {f: img for f in SHOTS.values()}
+
+
+def main():
+    for d in os.listdir(HERE):
+        if os.path.isfile(os.path.join(HERE, d, "case.json")):
+            shutil.rmtree(os.path.join(HERE, d))
+    # --- Outputs that would destroy an input (issue 10, "fix first") ---
+    case("render_o_is_photo", ["render", "scene.json", "-o", "photo.png"], r"-o|is the photo", ["photo.png"])
+    case("render_o_is_photo_through_dotdot", ["render", "scene.json", "-o", "sub/../photo.png"], "is the photo",
+         ["photo.png"], files={"sub/.keep": ""})
+    case("render_o_is_photo_through_symlink", ["render", "scene.json", "-o", "link.png"], "is the photo", ["photo.png"],
+         links={"link.png": "photo.png"})
+    case("render_output_image_is_photo", ["render", "scene.json"], "is the photo", ["photo.png"],
+         scene=scene_with(output={"image": "photo.png"}))
+    shots_scene = scene_with(environment={"shots": dict(SHOTS, faced="-z")})
+    case("render_o_is_a_shot", ["render", "scene.json", "-o", "s0.png"], r"is shot \+x", ["s0.png"], files=six_shots(),
+         scene=shots_scene)
+    tex = oiio_image("t.png", ["--pattern", "checker", "8x8", "3", "-d", "uint8"])
+    case("render_o_is_a_texture", ["render", "scene.json", "-o", "tex.png"], "read by .*quad.obj", ["tex.png"],
+         files={"tex.png": tex, "quad.mtl": "newmtl red\nKd 1 1 1\nmap_Kd tex.png\n"})
+    case("render_layers_is_the_image", ["render", "scene.json"], "is also the output image", ["photo.png"],
+         scene=scene_with(output={"image": "out/c.exr", "layers": "out/c.exr"}))
+    case("render_layers_is_the_environment", ["render", "scene.json", "--layers", "env.exr"], "is the environment", ["env.exr"])
+    case("render_o_is_the_scene_file", ["render", "scene.json", "-o", "scene.json"], "unsupported extension", ["scene.json"])
+    points = json.dumps([{"uv": [10 + 5 * i, 8 + 3 * i], "xyz": [i, 0, -i]} for i in range(6)])
+    case("calibrate_o_is_the_photo", ["calibrate", "--points", "p.json", "--image", "photo.png", "-o", "photo.png"],
+         "is the photo", ["photo.png"], files={"p.json": points})
+    case("calibrate_vc_is_the_points", ["calibrate", "--points", "p.json", "--size", "48", "32", "--vc", "p.json"],
+         "is the control points", ["p.json"], files={"p.json": points})
+    case("compare_o_is_image_a", ["compare", "photo.png", "photo.png", "-o", "photo.png"], "is image A", ["photo.png"])
+    case("cubemap_writes_over_its_input", ["cubemap", "cube.exr", "-o", "."], "is the environment argument", ["cube.exr"],
+         files={"cube.exr": open(os.path.join(HERE, "_base", "env.exr"), "rb").read()})
+    # --- Once exit 1 (internal error) on bad input ---
+    case("json_number_overflows_a_double", ["render", "scene.json"], "1e400",
+         scene='{"photo": "photo.png", "camera": {"eye": [0, 1, 1e400], "look": [0, 0, 0], "hfov_deg": 60}}')
+    case("points_number_overflows_a_double", ["calibrate", "--points", "p.json", "--size", "48", "32"], "p.json.*1e400",
+         files={"p.json": '[{"uv": [1e400, 2], "xyz": [0, 0, 0]}]'})
+    case("png_header_declares_100000_squared", ["render", "scene.json"], "100000x100000.*megapixels", ["photo.png"],
+         files={"photo.png": png_declaring(100000, 100000)})
+    case("png_header_declares_20000_squared", ["render", "scene.json"], "20000x20000.*megapixels",
+         files={"photo.png": png_declaring(20000, 20000)})
+    one = oiio_image("o.png", ["--pattern", "constant:color=0.5,0.5,0.5", "1x1", "3", "-d", "uint8"])
+    brackets = {"shots": {k: {"files": ["b%d_a.png" % i, "b%d_b.png" % i], "times": [0.01, 0.04]} for i, k in
+                          enumerate(["+x", "-x", "+z", "-z", "up", "down"])}}
+    brackets["shots"]["faced"] = "-z"
+    files = {}
+    for i in range(6):
+        files["b%d_a.png" % i] = one
+        files["b%d_b.png" % i] = one
+    case("brackets_of_1x1_pixel", ["render", "scene.json"], "too small to recover the camera response", files=files,
+         scene=scene_with(environment=brackets))
+    white = oiio_image("w.png", ["--pattern", "constant:color=1,1,1", "16x16", "3", "-d", "uint8"])
+    files = {k: white for k in files}
+    case("brackets_all_white", ["render", "scene.json"], "unclipped grey level", files=files,
+         scene=scene_with(environment=brackets))
+    case("o_names_a_directory", ["render", "scene.json", "-o", "d.png"], "d.png: is a directory", files={"d.png/.keep": ""})
+    # --- Accepted silently, but wrong ---
+    jpeg = oiio_image("p.jpg", ["--pattern", "checker", "48x32", "3", "-d", "uint8"])
+    case("truncated_jpeg_photo", ["render", "scene.json"], "photo.jpg.*(truncated|corrupt|Premature|cannot)",
+         files={"photo.jpg": jpeg[: len(jpeg) // 2]}, scene=scene_with(photo="photo.jpg"))
+    case("duplicate_json_key", ["render", "scene.json"], r"\$\.render\.spp: duplicate key",
+         scene='{"photo": "photo.png", "camera": {"eye": [0.5, 2, 1.5], "look": [0.5, 0, -0.5], "hfov_deg": 60},'
+               ' "environment": "env.exr", "render": {"spp": 1, "spp": 2}}')
+    case("nul_byte_after_the_json", ["render", "scene.json"], r"scene.json:1:\d+: a NUL byte",
+         scene=json.dumps(BASE_SCENE) + "\0garbage")
+    case("kd_nan", ["render", "scene.json"], r"quad.mtl:2: Kd", files={"quad.mtl": "newmtl red\nKd nan 0 0\n"})
+    case("ks_out_of_range", ["render", "scene.json"], r"quad.mtl:3: Ks -5 is outside \[0, 1\]",
+         files={"quad.mtl": "newmtl red\nKd 0.5 0.5 0.5\nKs -5 1e30 -1\n"})
+    case("ns_negative", ["render", "scene.json"], r"quad.mtl:2: Ns -2 is negative", files={"quad.mtl": "newmtl red\nNs -2\n"})
+    case("scale_1e300", ["render", "scene.json"], r"\$\.objects\[0\].*(beyond|not finite)", scene=scene_with(objects__0__scale=1e300))
+    case("scale_1e-300", ["render", "scene.json"], r"\$\.objects\[0\].*not invertible", scene=scene_with(objects__0__scale=1e-300))
+    case("translate_1e300", ["render", "scene.json"], r"\$\.objects\[0\].*beyond",
+         scene=scene_with(objects__0__translate=[1e300, 0, 0]))
+    case("principal_point_1e300", ["render", "scene.json"], r"\$\.camera\.intrinsics\.cx: 1e\+300 is out of range",
+         scene=scene_with(camera={"intrinsics": {"fx": 40, "cx": 1e300}, "pose": {"R": [[1, 0, 0], [0, -1, 0], [0, 0, -1]], "t": [0, 0, 3]}}))
+    far_points = json.dumps([{"uv": [100 + 60 * i, 50 + 40 * i], "xyz": [i, 0, -i], "name": "p%d" % i} for i in range(6)])
+    case("points_outside_the_given_size", ["calibrate", "--points", "p.json", "--size", "64", "48"],
+         r"6 point\(s\) outside the 64x48 image: p0 \(100.0, 50.0\), p1 \(160.0, 90.0\)", files={"p.json": far_points})
+    case("eye_and_look_overflow", ["render", "scene.json"], "overflows a double",
+         scene=scene_with(camera={"eye": [1e300, 0, 0], "look": [-1e300, 0, 0], "hfov_deg": 60}))
+    case("spp_two_to_the_64_minus_1", ["render", "scene.json"], "18446744073709551615 is out of range",
+         scene=json.dumps(BASE_SCENE).replace('"spp": 1', '"spp": 18446744073709551615'))
+    case("size_zero", ["calibrate", "--points", "p.json", "--size", "0", "0"], r"--size: Value 0 not in range 1 to 1048576",
+         files={"p.json": points})
+    case("scene_is_a_directory", ["render", "sub"], "sub: is a directory", files={"sub/.keep": ""})
+    # --- Messages that name the real mistake (issue 9) ---
+    case("camera_fov_key", ["render", "scene.json"], r"\$\.camera\.fov: unknown key",
+         scene=scene_with(camera={"eye": [0.5, 2, 1.5], "look": [0.5, 0, -0.5], "fov": 70}))
+    case("rotate_as_an_array", ["render", "scene.json"], r"\$\.objects\[0\]\.rotate: expected degrees about \+Y",
+         scene=scene_with(objects__0__rotate=[0, 20, 0]))
+    case("scale_as_a_string", ["render", "scene.json"], r"\$\.objects\[0\]\.scale: expected a number",
+         scene=scene_with(objects__0__scale="0.3"))
+    case("mesh_is_ply", ["render", "scene.json"], r"only OBJ meshes are supported \('\.ply'\)",
+         files={"chair.ply": "ply\nformat ascii 1.0\nend_header\n"}, scene=scene_with(objects__0__mesh="chair.ply"))
+    case("rotation_not_orthonormal", ["render", "scene.json"], r"\$\.camera\.pose\.R: not a rotation",
+         scene=scene_with(camera={"intrinsics": {"fx": 40}, "pose": {"R": [[1.01, 0, 0], [0, -1, 0], [0, 0, -1]], "t": [0, 0, 3]}}))
+    case("layers_not_exr", ["render", "scene.json", "--layers", "l.png"], "use .exr, or none")
+    print("wrote", sum(1 for d in os.listdir(HERE) if os.path.isfile(os.path.join(HERE, d, "case.json"))), "cases")
+
+
+if __name__ == "__main__":
+    main()
