@@ -21,6 +21,40 @@ using namespace OIIO;
 
 namespace {
 
+// Holds what C libraries print to stderr while an image is read (libpng writes "libpng error: ..."
+// itself before OpenImageIO reports the same failure): on failure it is dropped, since the one-line
+// InputError carries the reader's message; otherwise it is written back unchanged.
+class StderrCapture {
+ public:
+  StderrCapture() {
+    std::fflush(stderr);
+    file_ = std::tmpfile();
+    saved_ = file_ ? ::dup(STDERR_FILENO) : -1;
+    if (saved_ >= 0) ::dup2(::fileno(file_), STDERR_FILENO);
+  }
+  ~StderrCapture() {
+    if (saved_ < 0) {
+      if (file_) std::fclose(file_);
+      return;
+    }
+    std::fflush(stderr);
+    ::dup2(saved_, STDERR_FILENO);
+    ::close(saved_);
+    if (!failed_) {
+      std::rewind(file_);
+      char buf[4096];
+      for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, file_)) > 0;) std::fwrite(buf, 1, n, stderr);
+    }
+    std::fclose(file_);
+  }
+  void failed() { failed_ = true; }
+
+ private:
+  std::FILE* file_ = nullptr;
+  int saved_ = -1;
+  bool failed_ = false;
+};
+
 std::string one_line(std::string s) {
   for (char& c : s)
     if (c == '\n' || c == '\r') c = ' ';
@@ -28,10 +62,25 @@ std::string one_line(std::string s) {
   return s.empty() ? "unknown error" : s;
 }
 
+// Reads the image; read_image_file() wraps it in a StderrCapture.
+ImageFile read_image_file_quietly(const std::string& path);
+
 }  // namespace
 
 ImageFile read_image_file(const std::string& path) {
   if (!fs::exists(path)) throw InputError(path, "file not found");
+  StderrCapture capture;
+  try {
+    return read_image_file_quietly(path);
+  } catch (...) {
+    capture.failed();
+    throw;
+  }
+}
+
+namespace {
+
+ImageFile read_image_file_quietly(const std::string& path) {
   auto in = ImageInput::open(path);
   if (!in) throw InputError(path, "cannot read image: " + one_line(geterror()));
   const ImageSpec& spec = in->spec();
@@ -70,6 +119,8 @@ ImageFile read_image_file(const std::string& path) {
     for (int c = 0; c < 3; ++c) img.data[i * 3 + c] = raw[i * nc + std::min(c, nc < 3 ? 0 : c)];
   return file;
 }
+
+}  // namespace
 
 std::optional<double> Exposure::relative() const {
   if (!time_s) return std::nullopt;
