@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -25,10 +26,18 @@ inline std::string slurp(const std::string& path) {
   return ss.str();
 }
 
+// Under the sanitizer leg, the insitu processes the tests start take full stacks at every
+// allocation, so that tests/sanitizer/lsan.supp can name a third-party frame (these runs are short;
+// the in-process tests keep the fast unwinder).
+inline std::string child_environment() {
+  const char* asan = std::getenv("ASAN_OPTIONS");
+  return asan && *asan ? "ASAN_OPTIONS='" + std::string(asan) + ":fast_unwind_on_malloc=0' " : "";
+}
+
 // Runs the insitu binary with `args`, stdin closed, capturing stdout and stderr.
 inline CliRun run_insitu(const TempDir& dir, const std::string& args) {
   const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
-  const std::string cmd = std::string(INSITU_BINARY) + " " + args + " < /dev/null > " + out + " 2> " + err;
+  const std::string cmd = child_environment() + INSITU_BINARY + " " + args + " < /dev/null > " + out + " 2> " + err;
   const int status = std::system(cmd.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
 }

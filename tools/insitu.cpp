@@ -17,6 +17,19 @@ int main(int argc, char** argv) {
   const std::vector<Command> commands = {add_render_command(app), add_calibrate_command(app), add_cubemap_command(app),
                                          add_irradiance_report_command(app), add_compare_command(app),
                                          add_tradeoff_command(app)};
+  // An unknown verb is named (CLI11 would say only that a subcommand is required).
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string verbs;
+    bool known = false;
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+      known |= sub->get_name() == argv[1];
+      verbs += (verbs.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!known) {
+      std::fprintf(stderr, "insitu: error: unknown verb '%s' (one of: %s; see insitu --help)\n", argv[1], verbs.c_str());
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {

@@ -4,7 +4,7 @@ _base/ and case.json = {"args": [...insitu arguments...], "exit": 2, "message": 
 stderr line>", "unchanged": [files that must be byte-identical afterwards]}. The runner
 (tests/bad_input_test.cpp) copies _base/, then the case, into a temporary folder and runs insitu
 there. Rerun this script after changing it; it rewrites every case folder it knows."""
-import json, os, shutil, struct, subprocess, zlib
+import json, os, re, shutil, struct, subprocess, zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 BASE_SCENE = json.load(open(os.path.join(HERE, "_base", "scene.json")))
@@ -170,7 +170,140 @@ def main():
     png = oiio_image("t.png", ["--pattern", "checker", "64x64", "3", "-d", "uint8"])
     case("truncated_png_texture", ["render", "scene.json"], r"quad.obj: material 'red': map_Kd: .*tex.png",
          files={"tex.png": png[: len(png) // 2], "quad.mtl": "newmtl red\nKd 1 1 1\nmap_Kd tex.png\n"})
+    systematic_cases()
+    more_cases()
     print("wrote", sum(1 for d in os.listdir(HERE) if os.path.isfile(os.path.join(HERE, d, "case.json"))), "cases")
+
+
+def systematic_cases():
+    """Families of cases over the scene file's keys: a missing file for every key that names one, a
+    wrong JSON type for every key, a non-finite or out-of-range number, an unknown key in every
+    object, and a missing required key."""
+    shots = dict(SHOTS, faced="-z")
+    full = scene_with(environment={"shots": shots})
+    full["local_scene"] = [{"plane": {"point": [0, 0, 0], "normal": [0, 1, 0]}}]
+    full["render"] = {"integrator": "path", "spp": 1, "max_depth": 2, "seed": 1}
+    full["composite"] = "ratio"
+    full["output"] = {"image": "out/c.png", "layers": "out/l.exr", "tonemap": {"op": "adaptive_log", "key": 1, "bias": 0.85}}
+    shot_files = six_shots()
+
+    def variant(name, path, value, message, delete=False):
+        s = json.loads(json.dumps(full))
+        node = s
+        for k in path[:-1]:
+            node = node[k]
+        if delete:
+            del node[path[-1]]
+        else:
+            node[path[-1]] = value
+        where = "$" + "".join("[%d]" % k if isinstance(k, int) else "." + k for k in path)
+        case(name, ["render", "scene.json"], message.replace("WHERE", re.escape(where)),
+             files=shot_files, scene=s)
+
+    # Missing files, one for each key that names a file.
+    file_keys = [(("photo",), "photo"), (("environment", "shots", "+x"), "+x"), (("environment", "shots", "up"), "up"),
+                 (("objects", 0, "mesh"), "mesh")]
+    for path, tag in file_keys:
+        variant("missing_file_" + tag.replace("+", "p"), path, "nowhere.png", r"WHERE: file not found")
+    variant("missing_file_points", ("camera",), {"points": "nowhere.json"}, r"\$\.camera\.points: file not found")
+    variant("missing_file_camera_file", ("camera",), {"file": "nowhere.json"}, r"\$\.camera\.file: file not found")
+    variant("missing_file_environment_image", ("environment",), "nowhere.exr", r"\$\.environment: file not found")
+    # Wrong JSON types.
+    typed = [(("photo",), 3, "string"), (("camera",), "eye", "object"), (("camera", "eye"), "far", "array"),
+             (("camera", "hfov_deg"), "60", "number"), (("environment", "shots", "faced"), 5, "string"),
+             (("objects",), {"mesh": "quad.obj"}, "array"), (("objects", 0), "quad.obj", "object"),
+             (("objects", 0, "translate"), [1, 2], "3"), (("local_scene", 0, "plane", "normal"), "up", "array"),
+             (("render",), [], "object"), (("render", "spp"), 1.5, "integer"), (("render", "spp"), "4", "integer"),
+             (("render", "integrator"), 1, "string"), (("render", "seed"), -1, "range"),
+             (("render", "max_depth"), 0, "range"), (("composite",), "multiply", "ratio"),
+             (("output", "image"), "out/c.bmp", "extension"), (("output", "layers"), "out/l.png", "extension"),
+             (("output", "tonemap", "op"), "filmic", "photo"), (("output", "tonemap", "bias"), 2, "range"),
+             (("output", "tonemap", "key"), 0, "range")]
+    for i, (path, value, word) in enumerate(typed):
+        variant("wrong_type_%02d_%s" % (i, "_".join(str(k) for k in path).replace("+", "p")), path, value, r"WHERE: .*")
+    # Numbers that are not finite or not sensible.
+    for i, (path, value) in enumerate([(("camera", "eye"), [0, "NaN", 0]), (("camera", "look"), [0, 1e309, 0]),
+                                       (("camera", "hfov_deg"), 0), (("camera", "hfov_deg"), 180),
+                                       (("camera", "hfov_deg"), -30), (("objects", 0, "scale"), 0),
+                                       (("objects", 0, "scale"), [1, 0, 1]), (("objects", 0, "rotate"), 1e400),
+                                       (("local_scene", 0, "plane", "normal"), [0, 0, 0]),
+                                       (("render", "spp"), 0), (("render", "spp"), 1 << 40)]):
+        variant("bad_number_%02d_%s" % (i, "_".join(str(k) for k in path)), path, value, r"scene.json.*")
+    # Unknown keys, in every object of the file.
+    for i, path in enumerate([("typo",), ("camera", "typo"), ("environment", "typo"), ("environment", "shots", "typo"),
+                              ("objects", 0, "typo"), ("local_scene", 0, "typo"), ("local_scene", 0, "plane", "typo"),
+                              ("render", "typo"), ("output", "typo"), ("output", "tonemap", "typo")]):
+        variant("unknown_key_%02d_%s" % (i, "_".join(str(k) for k in path[:-1]) or "root"), path, 1, r"WHERE: unknown key")
+    # Missing required keys.
+    for path in [("photo",), ("camera",), ("environment",), ("camera", "look"), ("environment", "shots", "faced"),
+                 ("environment", "shots", "down"), ("objects", 0, "mesh"), ("local_scene", 0, "plane", "point")]:
+        variant("missing_key_" + "_".join(str(k) for k in path), path, None, r"scene.json.*(missing|required)", delete=True)
+
+
+def more_cases():
+    """Meshes, points, images, command lines, environments and camera files."""
+    data = os.path.join(HERE, "..", "data")
+    for f in sorted(os.listdir(data)):
+        if f.startswith("bad_") and f.endswith(".obj"):
+            case("obj_" + f[4:-4], ["render", "scene.json"], r"quad.obj:\d+: ",
+                 files={"quad.obj": open(os.path.join(data, f), "rb").read()})
+    for name, text in [("empty", ""), ("no_faces", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"), ("binary", "\x00\xff\x13garbage\n"),
+                       ("face_of_text", "v 0 0 0\nf a b c\n"), ("vertex_inf", "v inf 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+                       ("huge_index", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n"),
+                       ("negative_past_start", "v 0 0 0\nv 1 0 0\nf -1 -2 -3\n")]:
+        case("obj_" + name, ["render", "scene.json"], r"quad.obj", files={"quad.obj": text})
+    for name, text in [("kd_text", "newmtl red\nKd red\n"), ("kd_missing", "newmtl red\nKd\n"), ("d_2", "newmtl red\nd 2\n"),
+                       ("ka_negative", "newmtl red\nKa -1 0 0\n"), ("ns_inf", "newmtl red\nNs inf\n"),
+                       ("kd_above_one", "newmtl red\nKd 1.5 0.5 0.5\n")]:
+        case("mtl_" + name, ["render", "scene.json"], r"quad.mtl:2: ", files={"quad.mtl": text})
+    good = [{"uv": [10 + 5 * i, 8 + 3 * i], "xyz": [i, 0, -i]} for i in range(6)]
+    for name, fname, text in [("empty_json", "p.json", ""), ("object_not_list", "p.json", '{"uv": [1, 2]}'),
+                              ("four_points", "p.json", json.dumps(good[:4])), ("uv_of_one", "p.json", json.dumps([{"uv": [1], "xyz": [0, 0, 0]}] * 6)),
+                              ("xyz_nan", "p.json", json.dumps(good).replace("[0, 0, 0]", '[0, "NaN", 0]')),
+                              ("unknown_key", "p.json", json.dumps([dict(p, color="red") for p in good])),
+                              ("csv_text", "p.csv", "a,b,c,d,e\n1,2,x,4,5\n"), ("csv_four_columns", "p.csv", "1,2,3,4\n" * 6),
+                              ("vc_truncated", "p.vc", "1 2 3\n0 0 0\n"), ("unknown_extension", "p.xml", "<points/>"),
+                              ("all_one_point", "p.json", json.dumps([{"uv": [10, 10], "xyz": [1, 1, 1]}] * 6)),
+                              ("collinear", "p.json", json.dumps([{"uv": [10 + i, 10 + i], "xyz": [i, i, i]} for i in range(6)]))]:
+        case("points_" + name, ["calibrate", "--points", fname, "--size", "640", "480"], re.escape(fname), files={fname: text})
+    for name, content in [("zero_bytes", b""), ("text", b"not an image at all\n"), ("bad_crc", png_declaring(48, 32)[:-4] + b"\0\0\0\0")]:
+        case("photo_" + name, ["render", "scene.json"], r"photo.png", files={"photo.png": content})
+    case("photo_is_a_directory", ["render", "scene.json"], r"photo", files={"dir.png/.keep": ""}, scene=scene_with(photo="dir.png"))
+    case("environment_garbage_exr", ["render", "scene.json"], r"env.exr", files={"env.exr": b"\x76\x2f\x31\x01garbage"})
+    wide = oiio_image("e.exr", ["--pattern", "constant:color=1,1,1", "30x7", "3", "-d", "float"])
+    case("environment_wrong_aspect", ["render", "scene.json"], r"env.exr", files={"env.exr": wide})
+    for name, args, message in [
+            ("render_without_scene", ["render"], "scene"), ("calibrate_without_points", ["calibrate", "--size", "4", "4"], "points"),
+            ("compare_one_image", ["compare", "photo.png"], "b"), ("cubemap_without_output", ["cubemap", "env.exr"], "output"),
+            ("irradiance_report_missing", ["irradiance-report", "none.exr"], "none.exr"),
+            ("tradeoff_ladder_zero", ["tradeoff", "scene.json", "-o", "t", "--ladder", "0"], "ladder"),
+            ("spp_negative", ["render", "scene.json", "--spp", "-1"], "spp"), ("seed_negative", ["render", "scene.json", "--seed", "-5"], "seed"),
+            ("tonemap_unknown", ["render", "scene.json", "--tonemap", "filmic"], "tonemap"),
+            ("key_negative", ["render", "scene.json", "--key", "-1"], "key"),
+            ("irradiance_unknown", ["render", "scene.json", "--irradiance", "sh4"], "irradiance"),
+            ("integrator_unknown", ["render", "scene.json", "--integrator", "bdpt"], "unknown integrator 'bdpt'"),
+            ("model_unknown", ["calibrate", "--points", "p.json", "--size", "4", "4", "--model", "g"], "model"),
+            ("at_two_numbers", ["calibrate", "--points", "p.json", "--size", "4", "4", "--at", "1", "2"], "at"),
+            ("size_one_number", ["calibrate", "--points", "p.json", "--size", "10"], "size"),
+            ("verb_unknown", ["paint", "scene.json"], "unknown verb .paint. \\(one of: render, calibrate"), ("output_extension", ["render", "scene.json", "-o", "x.bmp"], "x.bmp")]:
+        case("cli_" + name, args, message, files={"p.json": json.dumps(good)})
+    shots = dict(SHOTS, faced="-z")
+    for name, env, message in [
+            ("faced_up", dict(shots, faced="up"), "faced"), ("front_axis_up", {k: v for k, v in dict(shots, front="s2.png", right="s0.png", back="s3.png", left="s1.png", front_axis="+y").items() if k not in ("+x", "-x", "+z", "-z")}, "front_axis"),
+            ("times_count", dict(shots, **{"+x": {"files": ["s0.png"], "times": [0.1, 0.2]}}), "times"),
+            ("hfov_zero", dict(shots, hfov_deg=0), "hfov_deg"), ("exposure_word", {"shots": shots, "exposure": "manual"}, "exposure"),
+            ("room_box_inverted", {"shots": shots, "room_box": {"min": [1, 1, 1], "max": [0, 0, 0], "capture": [0.5, 0.5, 0.5]}}, "max"),
+            ("capture_outside", {"shots": shots, "room_box": {"min": [0, 0, 0], "max": [1, 1, 1], "capture": [2, 0.5, 0.5]}}, "capture"),
+            ("image_and_shots", {"image": "env.exr", "shots": shots}, "not both"), ("exif_for_image", {"image": "env.exr", "exposure": "exif"}, "factor")]:
+        e = env if ("shots" in env or "image" in env) else {"shots": env}
+        case("environment_" + name, ["render", "scene.json"], message, files=six_shots(), scene=scene_with(environment=e))
+    cam_ok = {"width": 48, "height": 32, "intrinsics": {"fx": 40, "fy": 40, "cx": 24, "cy": 16},
+              "pose": {"R": [[1, 0, 0], [0, -1, 0], [0, 0, -1]], "t": [0, 0, 3]}}
+    for name, cam, message in [("other_size", dict(cam_ok, width=640, height=480), "640x480"),
+                               ("no_intrinsics", {k: v for k, v in cam_ok.items() if k != "intrinsics"}, "intrinsics"),
+                               ("mirrored", dict(cam_ok, pose={"R": [[1, 0, 0], [0, 1, 0], [0, 0, -1]], "t": [0, 0, 3]}), "not a rotation")]:
+        case("camera_file_" + name, ["render", "scene.json"], message, files={"cam.json": json.dumps(cam)},
+             scene=scene_with(camera={"file": "cam.json"}))
 
 
 if __name__ == "__main__":
