@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <functional>
 #include <filesystem>
 #include <fmt/format.h>
@@ -293,11 +295,12 @@ void write_outputs(const LoadedScene& scene, const RenderResult& r) {
                                 : tm.op == ToneMap::kPhoto ? r.composite_encoded : tonemap(r.composite_linear, tm));
   write_text_file(report_path(image), render_report(scene, r).dump(2) + "\n");
   if (!scene.spec.output.layers.empty()) {
-    // Every layer is finite, always (sanitize: non-finite and negative values to 0; depth and the
-    // others are non-negative by construction).
+    // Every layer is finite, always: ±inf (a variance that overflowed float) becomes the largest
+    // float of its sign, so that it still reads as huge, and NaN becomes 0.
     auto finite = [](Image img) {
+      constexpr float kMax = std::numeric_limits<float>::max();
       for (float& v : img.data)
-        if (!std::isfinite(v)) v = 0.0f;
+        if (!std::isfinite(v)) v = std::isnan(v) ? 0.0f : std::copysign(kMax, v);
       return img;
     };
     const Image c = finite(r.composite_linear), o = finite(r.layers.objects), a = finite(r.layers.alpha);

@@ -453,6 +453,10 @@ Camera build_camera(const CameraSpec& c, int width, int height, Warnings* warnin
   cam.cy = c.cy ? *c.cy : 0.5 * height;
   cam.R_cam_from_world = c.R_cam_from_world;
   cam.t_cam_from_world = c.t_cam_from_world;
+  // Finite, but almost surely not meant: a focal length that opens the view to nearly 180°.
+  if (warnings && cam.hfov_deg() > 170.0)
+    warnings->add(c.where + ".intrinsics", fmt::format("fx = {:g} px gives a horizontal field of view of {:.1f}°: is fx in "
+                                                       "pixels (not millimetres)?", cam.fx, cam.hfov_deg()));
   return cam;
 }
 

@@ -115,3 +115,38 @@ TEST(Sampler, PermuteIsABijection) {
 
 }  // namespace
 }  // namespace insitu
+
+#include <OpenImageIO/imageio.h>
+
+namespace insitu {
+namespace {
+
+// Every channel of the layered EXR is finite, always: here the environment holds NaN, −inf and the
+// largest finite float (3.4e38, which overflows as soon as it is scaled), the scene has a floor
+// catcher and the path integrator. Every channel is read back and checked.
+TEST(Render, EveryLayerIsFiniteAtTheExtremes) {
+  test::SceneFixture fx;
+  Image env(16, 8, 3, 0.5f);
+  env.set_rgb(3, 1, Rgb(std::numeric_limits<float>::max(), 1, 1));
+  env.set_rgb(9, 2, Rgb(std::nanf(""), -std::numeric_limits<float>::infinity(), 2));
+  write_image(fx.dir.file("env.exr"), env);
+  auto j = fx.scene;
+  j["render"] = {{"integrator", "path"}, {"spp", 4}};
+  j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
+  j["objects"][0]["translate"] = {0, 0.3, 0};
+  j["output"] = {{"image", "out/c.exr"}, {"layers", "out/layers.exr"}};
+  const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
+  write_outputs(s, render_scene(s));
+  auto in = OIIO::ImageInput::open(fx.dir.file("out/layers.exr"));
+  ASSERT_TRUE(in);
+  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<float> pixels(std::size_t(spec.width) * spec.height * spec.nchannels);
+  ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()));
+  ASSERT_EQ(spec.nchannels, 28);
+  for (std::size_t i = 0; i < pixels.size(); ++i)
+    ASSERT_TRUE(std::isfinite(pixels[i])) << "channel " << spec.channelnames[i % std::size_t(spec.nchannels)] << ", pixel "
+                                          << i / std::size_t(spec.nchannels);
+}
+
+}  // namespace
+}  // namespace insitu

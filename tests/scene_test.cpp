@@ -229,6 +229,20 @@ TEST(SceneFile, MessagesNameTheRealMistake) {
   expect_error(fx, j, ":$.objects[0].mesh: " + fx.dir.file("chair.ply"), "only OBJ meshes are supported ('.ply')");
 }
 
+// A focal length in millimetres where pixels are meant stays finite but opens the view to ~180°:
+// warned, with the field of view it gives.
+TEST(SceneFile, TinyFocalLengthIsWarned) {
+  SceneFixture fx;
+  auto j = fx.scene;
+  j["camera"] = {{"intrinsics", {{"fx", 1e-9}}}, {"pose", {{"R", {{1, 0, 0}, {0, -1, 0}, {0, 0, -1}}}, {"t", {0, 0, 3}}}}};
+  const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
+  bool warned = false;
+  for (const auto& w : s.warnings.items) warned |= w.find("field of view of 180.0°") != std::string::npos;
+  EXPECT_TRUE(warned);
+  j["camera"]["intrinsics"]["fx"] = 40.0;
+  for (const auto& w : load_scene(parse_scene_file(fx.write(j))).warnings.items) EXPECT_EQ(w.find("field of view"), std::string::npos);
+}
+
 // An object that covers no pixel is worth a warning; one in view is not.
 TEST(SceneFile, ObjectOutOfViewIsWarned) {
   SceneFixture fx;
