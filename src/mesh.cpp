@@ -78,16 +78,23 @@ void check_index(const std::string& path, int line, const std::string& text, lon
     fail(path, line, fmt::format("face {} index {} out of range ({} defined so far)", kind, idx, count));
 }
 
+// Calls f(line number, tokens) for each non-empty line of an OBJ or MTL file, comments removed.
+template <typename F>
+void for_each_statement(std::ifstream& in, F&& f) {
+  std::string line;
+  for (int lineno = 1; std::getline(in, line); ++lineno) {
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+    const auto tok = split_ws(line);
+    if (!tok.empty()) f(lineno, tok);
+  }
+}
+
 ObjScan scan_obj(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path, "file not found or unreadable");
   ObjScan scan;
   long nv = 0, nvt = 0, nvn = 0;
-  std::string line;
-  for (int lineno = 1; std::getline(in, line); ++lineno) {
-    if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-    const auto tok = split_ws(line);
-    if (tok.empty()) continue;
+  for_each_statement(in, [&](int lineno, const std::vector<std::string>& tok) {
     const std::string& kw = tok[0];
     if (kw == "v") { check_numbers(path, lineno, tok, 3, 6, "vertex"); ++nv; }
     else if (kw == "vn") { check_numbers(path, lineno, tok, 3, 3, "normal"); ++nvn; }
@@ -107,7 +114,7 @@ ObjScan scan_obj(const std::string& path) {
       }
       scan.face_lines.push_back(lineno);
     }
-  }
+  });
   return scan;
 }
 
@@ -117,15 +124,11 @@ ObjScan scan_obj(const std::string& path) {
 void scan_mtl(const std::string& path) {
   std::ifstream in(path);
   if (!in) return;  // a missing MTL is tinyobjloader's warning
-  std::string line;
-  for (int lineno = 1; std::getline(in, line); ++lineno) {
-    if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-    const auto tok = split_ws(line);
-    if (tok.empty()) continue;
+  for_each_statement(in, [&](int lineno, const std::vector<std::string>& tok) {
     const std::string& kw = tok[0];
     const bool colour = kw == "Kd" || kw == "Ks" || kw == "Ka" || kw == "Ke";
-    if (!colour && kw != "Ns" && kw != "d") continue;
-    if (colour && tok.size() > 1 && tok[1] == "spectral") continue;
+    if (!colour && kw != "Ns" && kw != "d") return;
+    if (colour && tok.size() > 1 && tok[1] == "spectral") return;
     check_numbers(path, lineno, tok, colour ? (tok.size() == 2 ? 1 : 3) : 1, 3, kw.c_str());
     for (std::size_t k = 1; k < tok.size() && k <= 3; ++k) {
       const double v = std::strtod(tok[k].c_str(), nullptr);
@@ -133,7 +136,7 @@ void scan_mtl(const std::string& path) {
         fail(path, lineno, fmt::format("{} {} is outside [0, 1] ({})", kw, tok[k], kw == "d" ? "an opacity" : "a reflectance"));
       if ((kw == "Ka" || kw == "Ke" || kw == "Ns") && v < 0) fail(path, lineno, fmt::format("{} {} is negative", kw, tok[k]));
     }
-  }
+  });
 }
 
 // ---- Conversion from tinyobjloader ----------------------------------------------------------

@@ -88,17 +88,22 @@ namespace insitu {
 namespace {
 using namespace test;
 
-TEST(Cli, CalibrateWritesACameraFileThatScenesRead) {
-  test::SceneFixture fx;
-  // Points seen by a known camera of the fixture's photo size.
+// Writes points.json: seven points as a known camera of the fixture's photo size sees them, with
+// v from the top edge, or from the bottom edge.
+void write_known_points(const test::SceneFixture& fx, bool bottom_left) {
   const Camera truth = Camera::look_at({0.5, 2.0, 1.5}, {0.5, 0.0, -0.5}, {0, 1, 0}, 60, fx.width, fx.height);
   nlohmann::json pts = nlohmann::json::array();
   const Vec3d xyz[] = {{0, 0, 0}, {1, 0, 0}, {1, 0, -1}, {0, 0, -1}, {0.5, 0.5, -0.5}, {0.2, 0.8, -0.9}, {0.9, 0.3, -0.2}};
   for (const auto& p : xyz) {
     const Vec2d uv = truth.project(p);
-    pts.push_back({{"uv", {uv.x(), uv.y()}}, {"xyz", {p.x(), p.y(), p.z()}}});
+    pts.push_back({{"uv", {uv.x(), bottom_left ? fx.height - uv.y() : uv.y()}}, {"xyz", {p.x(), p.y(), p.z()}}});
   }
   fx.dir.write("points.json", pts.dump());
+}
+
+TEST(Cli, CalibrateWritesACameraFileThatScenesRead) {
+  test::SceneFixture fx;
+  write_known_points(fx, false);
   const CliRun r = run_insitu(fx.dir, "calibrate --points " + fx.dir.file("points.json") + " --image " +
                                           fx.dir.file("photo.png") + " -o " + fx.dir.file("camera.json") + " --vc " +
                                           fx.dir.file("camera.vc"));
@@ -115,14 +120,7 @@ TEST(Cli, CalibrateWritesACameraFileThatScenesRead) {
 // work in both places.
 TEST(Cli, OriginSpellingsAgreeBetweenCliAndScene) {
   test::SceneFixture fx;
-  const Camera truth = Camera::look_at({0.5, 2.0, 1.5}, {0.5, 0.0, -0.5}, {0, 1, 0}, 60, fx.width, fx.height);
-  nlohmann::json pts = nlohmann::json::array();
-  const Vec3d xyz[] = {{0, 0, 0}, {1, 0, 0}, {1, 0, -1}, {0, 0, -1}, {0.5, 0.5, -0.5}, {0.2, 0.8, -0.9}, {0.9, 0.3, -0.2}};
-  for (const auto& p : xyz) {
-    const Vec2d uv = truth.project(p);
-    pts.push_back({{"uv", {uv.x(), fx.height - uv.y()}}, {"xyz", {p.x(), p.y(), p.z()}}});  // bottom-left origin
-  }
-  fx.dir.write("points.json", pts.dump());
+  write_known_points(fx, true);
   const std::string base = "calibrate --points " + fx.dir.file("points.json") + " --size 48 32 --origin ";
   const CliRun dash = run_insitu(fx.dir, base + "bottom-left"), underscore = run_insitu(fx.dir, base + "bottom_left");
   ASSERT_EQ(dash.exit_code, 0) << dash.err;
