@@ -38,27 +38,13 @@
 #include "bsdf.h"
 #include "env_sampling.h"
 #include "room_light.h"
+#include "sampling.h"
 #include "integrators/integrator.h"
 
 namespace insitu {
 namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
-
-// Cosine-weighted direction about n (Malley's method), pdf = cos θ / π.
-Vec3f cosine_sample(const Vec3f& n, float u1, float u2) {
-  const Vec3f t = (std::abs(n.x()) < 0.9f ? Vec3f(1, 0, 0) : Vec3f(0, 1, 0)).cross(n).normalized();
-  const Vec3f b = n.cross(t);
-  const float r = std::sqrt(u1), phi = 2 * kPiF * u2;
-  return (r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(std::max(0.0f, 1 - u1)) * n).normalized();
-}
-
-float power_heuristic(float a, float b) { return a * a / (a * a + b * b); }
-
-Vec3f offset_origin(const Vec3f& p, const Vec3f& ng) {
-  const float eps = 1e-5f * std::max(1e-3f, p.cwiseAbs().maxCoeff());
-  return p + eps * ng;
-}
 
 class PathIntegrator final : public Integrator {
  public:

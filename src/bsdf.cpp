@@ -6,11 +6,6 @@
 
 namespace insitu {
 
-Frame::Frame(const Vec3f& normal) : n(normal) {
-  t = (std::abs(n.x()) < 0.9f ? Vec3f(1, 0, 0) : Vec3f(0, 1, 0)).cross(n).normalized();
-  b = n.cross(t);
-}
-
 namespace {
 
 Rgb schlick(const Rgb& f0, float cos_theta) {
@@ -80,8 +75,7 @@ bool Bsdf::sample(const Vec3f& wo, float u_lobe, float u1, float u2, BsdfSample*
     const Vec3f h(sin_h * std::cos(phi), sin_h * std::sin(phi), cos_h);
     wi = 2 * wo.dot(h) * h - wo;
   } else {
-    const float r = std::sqrt(u1), phi = 2 * kPiF * u2;
-    wi = Vec3f(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1 - u1)));
+    wi = cosine_sample_local(u1, u2);
   }
   if (wi.z() <= 0) return false;
   out->wi = wi.normalized();

@@ -14,17 +14,11 @@
 // Directions are in a local frame with the normal along +z.
 #pragma once
 #include "math.h"
+#include "sampling.h"
 
 namespace insitu {
 
 struct Material;
-
-struct Frame {
-  Vec3f t, b, n;
-  explicit Frame(const Vec3f& normal);
-  Vec3f to_local(const Vec3f& v) const { return {v.dot(t), v.dot(b), v.dot(n)}; }
-  Vec3f to_world(const Vec3f& v) const { return v.x() * t + v.y() * b + v.z() * n; }
-};
 
 struct BsdfSample {
   Vec3f wi;        // local

@@ -74,13 +74,6 @@ TEST(EnvSampling, PdfIntegratesToOne) {
   EXPECT_NEAR(mean, 1.0, 4 * se);
 }
 
-// Power-heuristic weights of the two strategies sum to 1.
-TEST(EnvSampling, MisWeightsSumToOne) {
-  auto w = [](float a, float b) { return a * a / (a * a + b * b); };
-  for (float a : {1e-6f, 0.1f, 1.0f, 7.0f, 1e5f})
-    for (float b : {1e-6f, 0.3f, 1.0f, 1e4f}) EXPECT_NEAR(w(a, b) + w(b, a), 1.0f, 1e-6f);
-}
-
 // A box with flat faces (shading normal = geometric normal), Kd given, scaled.
 EmbreeScene make_box(const test::TempDir& dir, const std::string& kd, double scale) {
   dir.write("box.mtl", "newmtl m\nKd " + kd + "\n");
