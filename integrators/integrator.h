@@ -102,5 +102,7 @@ const IntegratorEntry* find_integrator(const std::string& name);
 // Throws InputError naming the known integrators when `name` is not one of them.
 std::unique_ptr<Integrator> make_integrator(const std::string& name, const RenderInputs& inputs);
 bool is_integrator(const std::string& name);
+// "unknown integrator 'x' (known: realtime, irradiance, path)".
+std::string unknown_integrator_message(const std::string& name);
 
 }  // namespace insitu

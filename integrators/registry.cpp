@@ -29,13 +29,15 @@ const IntegratorEntry* find_integrator(const std::string& name) {
 
 bool is_integrator(const std::string& name) { return find_integrator(name) != nullptr; }
 
-std::unique_ptr<Integrator> make_integrator(const std::string& name, const RenderInputs& inputs) {
+std::string unknown_integrator_message(const std::string& name) {
   std::string known;
-  for (const auto& e : integrator_registry()) {
-    if (name == e.name) return e.create(inputs);
-    known += known.empty() ? e.name : std::string(", ") + e.name;
-  }
-  throw InputError("", fmt::format("unknown integrator '{}' (known: {})", name, known));
+  for (const auto& e : integrator_registry()) known += known.empty() ? e.name : std::string(", ") + e.name;
+  return fmt::format("unknown integrator '{}' (known: {})", name, known);
+}
+
+std::unique_ptr<Integrator> make_integrator(const std::string& name, const RenderInputs& inputs) {
+  if (const IntegratorEntry* e = find_integrator(name)) return e->create(inputs);
+  throw InputError("", unknown_integrator_message(name));
 }
 
 }  // namespace insitu

@@ -2,7 +2,8 @@
 
 #include <embree3/rtcore.h>
 
-#include <cstdio>
+#include <stdexcept>
+#include <string>
 #include <fmt/format.h>
 
 namespace insitu {
@@ -10,19 +11,23 @@ namespace insitu {
 struct EmbreeScene::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
+  std::string error;  // the first error Embree reported, if any
 };
 
 namespace {
-void embree_error(void*, RTCError code, const char* str) {
-  // Embree reports programming errors (invalid arguments, out of memory) here.
-  std::fprintf(stderr, "insitu: embree error %d: %s\n", int(code), str ? str : "");
+// Embree reports programming errors and out-of-memory here: the first is kept, and building the
+// scene then fails with it (an internal error, exit code 1), instead of rendering from a scene
+// that is not what was asked for.
+void embree_error(void* user, RTCError code, const char* str) {
+  auto* impl = static_cast<EmbreeScene::Impl*>(user);
+  if (impl->error.empty()) impl->error = fmt::format("Embree error {}: {}", int(code), str ? str : "");
 }
 }  // namespace
 
 EmbreeScene::EmbreeScene(std::vector<Mesh> meshes) : impl_(std::make_unique<Impl>()), meshes_(std::move(meshes)) {
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) throw std::runtime_error("cannot create the Embree device");
-  rtcSetDeviceErrorFunction(impl_->device, embree_error, nullptr);
+  rtcSetDeviceErrorFunction(impl_->device, embree_error, impl_.get());
   impl_->scene = rtcNewScene(impl_->device);
   rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
   for (std::size_t m = 0; m < meshes_.size(); ++m) {
@@ -30,10 +35,12 @@ EmbreeScene::EmbreeScene(std::vector<Mesh> meshes) : impl_(std::make_unique<Impl
     RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                            3 * sizeof(float), mesh.positions.size()));
+    if (!vb) throw std::runtime_error(impl_->error.empty() ? "Embree: no vertex buffer" : impl_->error);
     for (std::size_t i = 0; i < mesh.positions.size(); ++i)
       for (int k = 0; k < 3; ++k) vb[3 * i + k] = mesh.positions[i][k];
     auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                               3 * sizeof(unsigned), mesh.triangles.size()));
+    if (!ib) throw std::runtime_error(impl_->error.empty() ? "Embree: no index buffer" : impl_->error);
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
       for (int k = 0; k < 3; ++k) ib[3 * i + k] = mesh.triangles[i].v[k];
     rtcCommitGeometry(geom);
@@ -41,6 +48,7 @@ EmbreeScene::EmbreeScene(std::vector<Mesh> meshes) : impl_(std::make_unique<Impl
     rtcReleaseGeometry(geom);
   }
   rtcCommitScene(impl_->scene);
+  if (!impl_->error.empty()) throw std::runtime_error(impl_->error);
 }
 
 EmbreeScene::~EmbreeScene() {

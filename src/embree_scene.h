@@ -40,8 +40,9 @@ class EmbreeScene {
   const std::vector<Mesh>& meshes() const { return meshes_; }
   bool empty() const { return meshes_.empty(); }
 
+  struct Impl;  // Embree's device and scene (public for the error callback; defined in the .cpp)
+
  private:
-  struct Impl;
   std::unique_ptr<Impl> impl_;
   std::vector<Mesh> meshes_;
 };

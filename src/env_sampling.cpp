@@ -46,7 +46,6 @@ EnvSample EnvSampler::sample(float u_texel, float u_s, float u_t) const {
   EnvSample s;
   s.dir = p / r;
   s.pdf = prob_[k] * r * r * r / area;
-  s.radiance = cube_->texel(f, i, j);
   return s;
 }
 

@@ -20,7 +20,6 @@ namespace insitu {
 struct EnvSample {
   Vec3f dir;        // unit
   float pdf;        // per steradian
-  Rgb radiance;
 };
 
 class EnvSampler {

@@ -238,7 +238,6 @@ Mesh load_obj(const std::string& path, Warnings& warnings) {
           continue;
         }
         mesh.triangles.push_back(tri);
-        mesh.source_line.push_back(line);
       }
       offset += nfv;
     }

@@ -43,7 +43,6 @@ struct Mesh {
   std::vector<Vec2f> uvs;
   std::vector<Triangle> triangles;
   std::vector<Material> materials;  // never empty: a default material is added when needed
-  std::vector<int> source_line;     // per triangle: the line of its `f` statement
 };
 
 // Throws InputError("file:line", ...) on bad input; adds counted warnings.

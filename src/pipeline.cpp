@@ -205,6 +205,8 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress) 
     inputs.capture = box->capture.cast<float>();
   }
   inputs.camera = &scene.camera;
+  // Everything before the sample loop is preparation: the catcher's irradiance included.
+  const auto start = std::chrono::steady_clock::now();
   std::unique_ptr<IrradianceField> catcher_irradiance;
   for (const PlaneSpec& p : scene.spec.local_scene) {
     if (p.mesh) {
@@ -227,7 +229,6 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress) 
     inputs.catcher_irradiance = catcher_irradiance.get();
   }
   inputs.max_depth = scene.spec.render.max_depth;
-  const auto start = std::chrono::steady_clock::now();
   auto integrator = make_integrator(scene.spec.render.integrator, inputs);
   RenderResult r;
   r.prepare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

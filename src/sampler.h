@@ -35,7 +35,6 @@ class Sampler {
   Sampler(std::uint64_t seed, std::uint64_t pixel, std::uint64_t sample)
       : seed_(seed), pixel_(pixel), sample_(sample) {}
   float next() { return hash_to_unit(hash4(seed_, pixel_, sample_, dim_++)); }
-  std::uint64_t sample_index() const { return sample_; }
 
  private:
   std::uint64_t seed_, pixel_, sample_;

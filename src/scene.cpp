@@ -347,13 +347,7 @@ SceneSpec parse_scene_file(const std::string& path) {
     JsonObject ro(*r);
     if (auto in = ro.find("integrator")) {
       scene.render.integrator = in->string();
-      if (!is_integrator(scene.render.integrator)) {
-        try {
-          make_integrator(scene.render.integrator, {});
-        } catch (const InputError& e) {
-          in->fail(e.message());
-        }
-      }
+      if (!is_integrator(scene.render.integrator)) in->fail(unknown_integrator_message(scene.render.integrator));
     }
     for (const char* key : {"irradiance", "max_depth"})
       if (ro.has(key)) scene.given.insert(std::string("render.") + key);

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "embree_scene.h"
 #include "mesh.h"
 #include "scene.h"
@@ -15,8 +17,11 @@ TEST(Mesh, GoodQuadWithMaterial) {
   const Mesh m = load_obj(test_data("good_quad.obj"), w);
   EXPECT_TRUE(w.items.empty()) << w.items.front();
   ASSERT_EQ(m.triangles.size(), 2u);  // the quad is fanned
-  EXPECT_EQ(m.source_line[0], 13);  // the `f` line
-  EXPECT_EQ(m.source_line[1], 13);
+  EXPECT_EQ(m.triangles[0].v[0], m.triangles[1].v[0]);  // a fan about the first corner: (1 2 3), (1 3 4)
+  EXPECT_EQ(m.triangles[0].v[2], m.triangles[1].v[1]);
+  // The files it was read from: the OBJ and the MTL it names (inputs no output may replace).
+  ASSERT_EQ(m.files.size(), 2u);
+  EXPECT_EQ(std::filesystem::path(m.files[1]).filename(), "good_quad.mtl");
   ASSERT_GE(m.materials.size(), 1u);
   const Material& red = m.materials[m.triangles[0].material];
   EXPECT_EQ(red.name, "red");

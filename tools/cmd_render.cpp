@@ -49,7 +49,7 @@ int run_render(const RenderArgs& a) {
   if (a.spp > 0) spec.render.spp = a.spp;
   if (a.seed >= 0) spec.render.seed = std::uint64_t(a.seed);
   if (!a.integrator.empty()) {
-    if (!is_integrator(a.integrator)) make_integrator(a.integrator, {});  // throws, naming the known ones
+    if (!is_integrator(a.integrator)) throw InputError("--integrator", unknown_integrator_message(a.integrator));
     spec.render.integrator = a.integrator;
   }
   if (!a.irradiance.empty()) {
