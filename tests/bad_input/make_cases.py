@@ -124,6 +124,9 @@ def main():
     files = {k: white for k in files}
     case("brackets_all_white", ["render", "scene.json"], "unclipped grey level", files=files,
          scene=scene_with(environment=brackets))
+    # Checked before rendering: with 2^20 samples per pixel a render would take minutes first.
+    case("output_folder_is_a_file", ["render", "scene.json", "-o", "photo.png/x.png"], r"photo.png/x.png: cannot create its folder",
+         ["photo.png"], scene=json.dumps(BASE_SCENE).replace('"spp": 1', '"spp": 1048576'))
     case("o_names_a_directory", ["render", "scene.json", "-o", "d.png"], "d.png: is a directory", files={"d.png/.keep": ""})
     # --- Accepted silently, but wrong ---
     # Missing only its last tenth, a JPEG "decodes" (libjpeg fills the rest): once rendered silently.
