@@ -1,3 +1,4 @@
+#include "output_paths.h"
 #include "control_points.h"
 
 #include <cstdlib>
@@ -14,12 +15,6 @@ namespace insitu {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string lower_ext(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  for (auto& c : ext) c = char(std::tolower(c));
-  return ext;
-}
 
 std::vector<ControlPoint> read_json_list(const JsonValue& list) {
   std::vector<ControlPoint> points;
@@ -96,7 +91,7 @@ std::optional<bool> parse_bottom_left_origin(const std::string& name) {
 
 std::vector<ControlPoint> read_control_points(const std::string& path, bool bottom_left_origin, int image_height) {
   if (!fs::exists(path)) throw InputError(path, "file not found");
-  const std::string ext = lower_ext(path);
+  const std::string ext = lower_extension(path);
   std::vector<ControlPoint> points;
   if (ext == ".json") points = read_json_points(path);
   else if (ext == ".csv" || ext == ".txt") points = read_csv_points(path);

@@ -1,3 +1,4 @@
+#include "output_paths.h"
 #include "environment.h"
 
 #include <algorithm>
@@ -11,9 +12,7 @@
 namespace insitu {
 
 EnvironmentSpec environment_from_argument(const std::string& path, std::string* photo) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (auto& c : ext) c = char(std::tolower(c));
-  if (ext == ".json") {
+  if (lower_extension(path) == ".json") {
     // A scene file (it has a photo), or a file holding just an environment object.
     if (!read_json_file(path).contains("photo")) return parse_environment_file(path);
     const SceneSpec scene = parse_scene_file(path);

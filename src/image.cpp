@@ -1,3 +1,4 @@
+#include "output_paths.h"
 #include "image.h"
 
 #include <OpenImageIO/imagebuf.h>
@@ -211,8 +212,7 @@ void write_atomically(const std::string& path, const std::string& format, const 
 }  // namespace
 
 void write_image(const std::string& path, const Image& img, const Exposure* exposure) {
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  const std::string ext = lower_extension(path);
   ImageSpec spec(img.width, img.height, img.channels, storage_type(ext));
   if (ext == ".jpg" || ext == ".jpeg") spec.attribute("CompressionQuality", 92);
   if (exposure) {

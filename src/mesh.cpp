@@ -1,3 +1,4 @@
+#include "output_paths.h"
 #include "mesh.h"
 
 #include <tiny_obj_loader.h>
@@ -166,8 +167,7 @@ Material convert_material(const tinyobj::material_t& m, const fs::path& base_dir
 }  // namespace
 
 Mesh load_obj(const std::string& path, Warnings& warnings) {
-  std::string ext = fs::path(path).extension().string();
-  for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lower_extension(path);
   if (ext != ".obj")
     throw InputError(path, fmt::format("only OBJ meshes are supported ('{}'): convert it to .obj, e.g. in Blender",
                                        ext.empty() ? "no extension" : ext));

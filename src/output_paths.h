@@ -16,6 +16,9 @@ struct NamedPath {
 
 bool same_file(const std::string& a, const std::string& b);
 
+// A path's extension in lower case, with its dot: ".png" for "A.PNG", "" for none.
+std::string lower_extension(const std::string& path);
+
 // Throws InputError naming the output, its role and the input (or output) it would replace.
 // Then checks that each output can be written, before any work: not a directory, its folder
 // created if need be, and a temporary file can be made in that folder (and is removed at once).

@@ -1,3 +1,4 @@
+#include "output_paths.h"
 #include "scene.h"
 
 #include <filesystem>
@@ -28,8 +29,7 @@ std::string existing_file(const JsonValue& v, const fs::path& dir) {
 
 std::string output_file(const JsonValue& v, const fs::path& dir, std::initializer_list<const char*> exts) {
   const std::string p = resolve(dir, v.string());
-  std::string ext = fs::path(p).extension().string();
-  for (auto& ch : ext) ch = char(std::tolower(ch));
+  const std::string ext = lower_extension(p);
   for (const char* e : exts)
     if (ext == e) return p;
   std::string list;
@@ -399,8 +399,7 @@ SceneSpec parse_scene_file(const std::string& path) {
 }
 
 bool is_linear_output(const std::string& image_path) {
-  std::string ext = fs::path(image_path).extension().string();
-  for (auto& ch : ext) ch = char(std::tolower(ch));
+  const std::string ext = lower_extension(image_path);
   return ext == ".exr" || ext == ".tif" || ext == ".tiff";
 }
 

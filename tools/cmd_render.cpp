@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <memory>
 
+#include "output_paths.h"
 #include "commands.h"
 #include "integrators/integrator.h"
 #include "pipeline.h"
@@ -28,8 +29,7 @@ struct RenderArgs {
 int run_render(const RenderArgs& a) {
   SceneSpec spec = parse_scene_file(a.scene);
   if (!a.output.empty()) {
-    std::string ext = std::filesystem::path(a.output).extension().string();
-    for (auto& c : ext) c = char(std::tolower(c));
+    const std::string ext = lower_extension(a.output);
     if (ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".exr" && ext != ".tif" && ext != ".tiff")
       throw InputError("-o " + a.output, "unsupported extension '" + ext + "' (use .png, .jpg, .exr, .tif)");
     spec.output.image = a.output;
@@ -40,9 +40,7 @@ int run_render(const RenderArgs& a) {
     if (a.layers == "none") {
       spec.output.layers.clear();
     } else {
-      std::string ext = std::filesystem::path(a.layers).extension().string();
-      for (auto& c : ext) c = char(std::tolower(c));
-      if (ext != ".exr") throw InputError("--layers " + a.layers, "the layers are a multi-layer EXR: use .exr, or none");
+      if (lower_extension(a.layers) != ".exr") throw InputError("--layers " + a.layers, "the layers are a multi-layer EXR: use .exr, or none");
       spec.output.layers = a.layers;
     }
   }
