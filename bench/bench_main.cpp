@@ -8,12 +8,12 @@
 #include <filesystem>
 #include <random>
 
-#include "calibration.h"
-#include "cubemap.h"
-#include "equirect.h"
-#include "gaussian_irradiance.h"
-#include "mesh.h"
-#include "pipeline.h"
+#include "calib/calibration.h"
+#include "light/cubemap.h"
+#include "light/equirect.h"
+#include "light/gaussian_irradiance.h"
+#include "render/mesh.h"
+#include "scene/pipeline.h"
 
 namespace {
 using namespace insitu;

@@ -3,21 +3,22 @@
 //   L_o(x) = ρ(x) · E(n(x)) / π
 //
 // ρ = Kd × map_Kd(uv) (Lambertian), n the shading normal facing the camera, E one of the
-// irradiance modes of irradiance.h chosen by the scene's render.irradiance (gaussian | sh9 |
-// exact). No shadows, no occlusion between objects, no bounce light: what a real-time engine with
+// irradiance modes of irradiance.h (gaussian | sh9 | exact). No shadows, no occlusion between objects, no bounce light: what a real-time engine with
 // a better irradiance than the legacy blur would draw. With mode `gaussian` it equals `realtime`.
 //
-// Parameters: render.irradiance (default "exact").
-#include "integrators/integrator.h"
-#include "irradiance.h"
+// Parameters:
+//   irradiance  the irradiance mode: "gaussian", "sh9" or "exact" (default "exact"); flat as
+//               render.irradiance (DESIGN.md), or render.irradiance.irradiance in its own object.
+#include "integrators/registry.h"
+#include "light/irradiance.h"
 
 namespace insitu {
 namespace {
 
 class IrradianceIntegrator final : public Integrator {
  public:
-  explicit IrradianceIntegrator(const RenderInputs& in)
-      : objects_(in.objects), field_(make_irradiance(in.irradiance_mode, *in.environment)) {}
+  IrradianceIntegrator(const RenderInputs& in, IrradianceMode mode)
+      : objects_(in.objects), field_(make_irradiance(mode, *in.environment)) {}
 
   CameraSample sample(const Ray& ray, Sampler&) const override {
     CameraSample out;
@@ -32,8 +33,18 @@ class IrradianceIntegrator final : public Integrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_irradiance_integrator(const RenderInputs& inputs) {
-  return std::make_unique<IrradianceIntegrator>(inputs);
+json read_irradiance_params(IntegratorParams& params) {
+  IrradianceMode mode = IrradianceMode::kExact;
+  if (auto v = params.find("irradiance")) {
+    const auto parsed = parse_irradiance_mode(v->string());
+    if (!parsed) v->fail("expected " + irradiance_mode_list());
+    mode = *parsed;
+  }
+  return {{"irradiance", irradiance_mode_name(mode)}};
+}
+
+std::unique_ptr<Integrator> make_irradiance_integrator(const RenderInputs& inputs, const json& params) {
+  return std::make_unique<IrradianceIntegrator>(inputs, *parse_irradiance_mode(params.at("irradiance").get<std::string>()));
 }
 
 }  // namespace insitu

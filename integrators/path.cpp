@@ -25,7 +25,8 @@
 // Rays leave a surface from p + n_g·ε with ε = 10⁻⁵·max(1 mm, |p|_∞): an offset relative to the
 // position's magnitude, so that objects of a millimetre and of a kilometre are treated alike.
 //
-// Parameters: render.max_depth (bounces, default 5), render.spp.
+// Parameters:
+//   max_depth  bounces, 1 … 1000 (default 5); flat as render.max_depth, or render.path.max_depth.
 // With environment.room_box the room is an emitting box (room_light.h): its faces carry the cube's
 // radiance projected from the capture point, and next-event estimation samples them as an area
 // light, with the pdf converted to solid angle at the shading point and MIS against the BSDF.
@@ -35,11 +36,11 @@
 // photo to them.
 #include <algorithm>
 
-#include "bsdf.h"
-#include "env_sampling.h"
-#include "room_light.h"
-#include "sampling.h"
-#include "integrators/integrator.h"
+#include "render/bsdf.h"
+#include "render/env_sampling.h"
+#include "render/room_light.h"
+#include "core/sampling.h"
+#include "integrators/registry.h"
 
 namespace insitu {
 namespace {
@@ -48,12 +49,12 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 class PathIntegrator final : public Integrator {
  public:
-  explicit PathIntegrator(const RenderInputs& in)
+  PathIntegrator(const RenderInputs& in, int max_depth)
       : in_(in),
         objects_(in.objects),
         env_(*in.environment),
         room_(env_, in.room_box, in.box_min, in.box_max, in.capture),
-        max_depth_(std::max(1, in.max_depth)) {}
+        max_depth_(std::max(1, max_depth)) {}
 
   CameraSample sample(const Ray& camera_ray, Sampler& sampler) const override {
     CameraSample out;
@@ -246,8 +247,14 @@ class PathIntegrator final : public Integrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_path_integrator(const RenderInputs& inputs) {
-  return std::make_unique<PathIntegrator>(inputs);
+json read_path_params(IntegratorParams& params) {
+  int max_depth = 5;
+  if (auto v = params.find("max_depth")) max_depth = int(v->integer(1, 1000));
+  return {{"max_depth", max_depth}};
+}
+
+std::unique_ptr<Integrator> make_path_integrator(const RenderInputs& inputs, const json& params) {
+  return std::make_unique<PathIntegrator>(inputs, params.at("max_depth").get<int>());
 }
 
 }  // namespace insitu

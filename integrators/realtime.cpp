@@ -8,9 +8,9 @@
 // (gaussian_irradiance.h), looked up along n. No visibility, no shadows, no bounce light, no
 // local scene (planes in the scene's local_scene are ignored, as the legacy renderer had none).
 //
-// Parameters: none beyond the scene's (spp sets the anti-aliasing samples per pixel).
-#include "gaussian_irradiance.h"
-#include "integrators/integrator.h"
+// Parameters: none (render.spp sets the anti-aliasing samples per pixel).
+#include "light/gaussian_irradiance.h"
+#include "integrators/registry.h"
 
 namespace insitu {
 namespace {
@@ -33,7 +33,9 @@ class RealtimeIntegrator final : public Integrator {
 
 }  // namespace
 
-std::unique_ptr<Integrator> make_realtime_integrator(const RenderInputs& inputs) {
+json read_realtime_params(IntegratorParams&) { return json::object(); }
+
+std::unique_ptr<Integrator> make_realtime_integrator(const RenderInputs& inputs, const json&) {
   return std::make_unique<RealtimeIntegrator>(inputs);
 }
 

@@ -1,22 +1,27 @@
-#include <fmt/format.h>
+#include "integrators/registry.h"
 
-#include "error.h"
-#include "integrators/integrator.h"
+#include <algorithm>
+#include <fmt/format.h>
+#include <map>
 
 namespace insitu {
 
-std::unique_ptr<Integrator> make_realtime_integrator(const RenderInputs& inputs);
-std::unique_ptr<Integrator> make_irradiance_integrator(const RenderInputs& inputs);
-std::unique_ptr<Integrator> make_path_integrator(const RenderInputs& inputs);
+// Each integrator's file defines its reader and factory (see the table).
+json read_realtime_params(IntegratorParams& params);
+json read_irradiance_params(IntegratorParams& params);
+json read_path_params(IntegratorParams& params);
+std::unique_ptr<Integrator> make_realtime_integrator(const RenderInputs& inputs, const json& params);
+std::unique_ptr<Integrator> make_irradiance_integrator(const RenderInputs& inputs, const json& params);
+std::unique_ptr<Integrator> make_path_integrator(const RenderInputs& inputs, const json& params);
 
 const std::vector<IntegratorEntry>& integrator_registry() {
   static const std::vector<IntegratorEntry> table = {
       {"realtime", "legacy real-time path: base colour x face-blurred cube at the normal, no shadows",
-       make_realtime_integrator, {}},
+       {/*local_scene*/ false, /*room_box*/ false}, read_realtime_params, make_realtime_integrator},
       {"irradiance", "Lambertian objects lit by an irradiance mode (render.irradiance), no visibility",
-       make_irradiance_integrator, {/*local_scene*/ false, /*room_box*/ false, /*irradiance_mode*/ true, /*max_depth*/ false}},
+       {/*local_scene*/ false, /*room_box*/ false}, read_irradiance_params, make_irradiance_integrator},
       {"path", "path tracing of the objects with environment importance sampling and MIS (shadows between objects)",
-       make_path_integrator, {/*local_scene*/ true, /*room_box*/ true, /*irradiance_mode*/ false, /*max_depth*/ true}},
+       {/*local_scene*/ true, /*room_box*/ true}, read_path_params, make_path_integrator},
   };
   return table;
 }
@@ -27,17 +32,100 @@ const IntegratorEntry* find_integrator(const std::string& name) {
   return nullptr;
 }
 
-bool is_integrator(const std::string& name) { return find_integrator(name) != nullptr; }
-
 std::string unknown_integrator_message(const std::string& name) {
   std::string known;
   for (const auto& e : integrator_registry()) known += known.empty() ? e.name : std::string(", ") + e.name;
   return fmt::format("unknown integrator '{}' (known: {})", name, known);
 }
 
-std::unique_ptr<Integrator> make_integrator(const std::string& name, const RenderInputs& inputs) {
-  if (const IntegratorEntry* e = find_integrator(name)) return e->create(inputs);
-  throw InputError("", unknown_integrator_message(name));
+IntegratorParams::IntegratorParams(const JsonBlock& render, const std::string& integrator)
+    : render_(render), integrator_(integrator) {
+  const auto it = render.value.find(integrator);
+  if (it != render.value.end() && it->is_object()) own_ = &*it;
+}
+
+std::optional<JsonValue> IntegratorParams::find(const std::string& key) {
+  asked_.insert(key);
+  const auto flat = render_.value.find(key);
+  const bool has_flat = flat != render_.value.end() && &*flat != own_;
+  if (own_ && own_->contains(key)) {
+    if (has_flat)
+      throw InputError(render_.file + ":" + render_.path + "." + key,
+                       fmt::format("given twice: here and in render.{} (give it once)", integrator_));
+    return JsonValue(own_->at(key), render_.file, render_.path + "." + integrator_ + "." + key);
+  }
+  if (!has_flat) return std::nullopt;
+  return JsonValue(*flat, render_.file, render_.path + "." + key);
+}
+
+void IntegratorParams::finish() const {
+  if (!own_) return;
+  for (auto it = own_->begin(); it != own_->end(); ++it)
+    if (!asked_.count(it.key())) {
+      std::string known;
+      for (const auto& k : asked_) known += (known.empty() ? "" : ", ") + k;
+      throw InputError(render_.file + ":" + render_.path + "." + integrator_ + "." + it.key(),
+                       fmt::format("unknown key (the {} integrator reads: {})", integrator_, known.empty() ? "nothing" : known));
+    }
+}
+
+namespace {
+
+constexpr const char* kLoopKeys[] = {"integrator", "spp", "seed"};
+
+std::string join(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+// Every key of the render object, checked against what the integrators asked for.
+void check_render_keys(const std::string& name, const JsonBlock& render,
+                       const std::map<std::string, std::vector<std::string>>& readers, Warnings& warnings) {
+  for (auto it = render.value.begin(); it != render.value.end(); ++it) {
+    const std::string& key = it.key();
+    if (std::find(std::begin(kLoopKeys), std::end(kLoopKeys), key) != std::end(kLoopKeys)) continue;
+    if (find_integrator(key) && it->is_object()) {
+      if (key != name) warnings.add("render." + key, fmt::format("has no effect: the {} integrator is used", name));
+      continue;
+    }
+    const auto rd = readers.find(key);
+    if (rd == readers.end()) {
+      std::vector<std::string> known(std::begin(kLoopKeys), std::end(kLoopKeys));
+      for (const auto& [k, who] : readers) known.push_back(k);
+      for (const auto& e : integrator_registry()) known.push_back(e.name);
+      throw InputError(render.file + ":" + render.path + "." + key, "unknown key (expected one of: " + join(known) + ")");
+    }
+    if (std::find(rd->second.begin(), rd->second.end(), name) == rd->second.end())
+      warnings.add("render." + key, fmt::format("has no effect: the {} integrator does not read it (only {} {})", name,
+                                               join(rd->second), rd->second.size() == 1 ? "does" : "do"));
+  }
+}
+
+}  // namespace
+
+ResolvedIntegrator resolve_integrator(const std::string& name, const JsonBlock& render, Warnings& warnings) {
+  ResolvedIntegrator r;
+  r.entry = find_integrator(name);
+  if (!r.entry) throw InputError(render.file + ":" + render.path + ".integrator", unknown_integrator_message(name));
+  // Every integrator reads the render object, so that a key is known if any of them reads it and a
+  // bad value is refused whichever integrator is chosen.
+  std::map<std::string, std::vector<std::string>> readers;
+  for (const auto& e : integrator_registry()) {
+    IntegratorParams params(render, e.name);
+    json read = e.read_params(params);
+    params.finish();
+    if (&e == r.entry) r.params = std::move(read);
+    for (const auto& key : params.asked()) readers[key].push_back(e.name);
+  }
+  check_render_keys(name, render, readers, warnings);
+  return r;
+}
+
+std::unique_ptr<Integrator> make_integrator(const std::string& name, const RenderInputs& inputs, const json& render) {
+  Warnings ignored;
+  const ResolvedIntegrator r = resolve_integrator(name, {render, "", "$.render"}, ignored);
+  return r.entry->create(inputs, r.params);
 }
 
 }  // namespace insitu

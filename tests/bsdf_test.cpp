@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include "bsdf.h"
-#include "sampler.h"
+#include "render/bsdf.h"
+#include "core/sampler.h"
 
 namespace insitu {
 namespace {

@@ -4,11 +4,11 @@
 
 #include <random>
 
-#include "calibration.h"
-#include "error.h"
-#include "f_test.h"
-#include "reprojection_cost.h"
-#include "view_correlation.h"
+#include "calib/calibration.h"
+#include "core/error.h"
+#include "calib/f_test.h"
+#include "calib/reprojection_cost.h"
+#include "calib/view_correlation.h"
 #include "test_util.h"
 
 namespace insitu {

@@ -2,7 +2,7 @@
 
 #include <random>
 
-#include "camera.h"
+#include "core/camera.h"
 
 namespace insitu {
 namespace {

@@ -1,10 +1,10 @@
 #include <gtest/gtest.h>
 
-#include "composite.h"
-#include "integrators/integrator.h"
-#include "mesh.h"
-#include "pipeline.h"
-#include "scene.h"
+#include "output/composite.h"
+#include "integrators/registry.h"
+#include "render/mesh.h"
+#include "scene/pipeline.h"
+#include "scene/scene_file.h"
 #include "scene_fixture.h"
 #include "test_util.h"
 

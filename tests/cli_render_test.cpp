@@ -4,7 +4,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_util.h"
-#include "render.h"
+#include "render/render.h"
+#include "scene/spec.h"
 #include "scene_fixture.h"
 
 namespace insitu {

@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "cli_util.h"
-#include "output_paths.h"
+#include "core/output_paths.h"
 #include "scene_fixture.h"
 
 namespace insitu {

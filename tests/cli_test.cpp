@@ -4,8 +4,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "camera.h"
-#include "pipeline.h"
+#include "core/camera.h"
+#include "scene/pipeline.h"
 #include "cli_util.h"
 #include "scene_fixture.h"
 

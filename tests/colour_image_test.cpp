@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "colour.h"
-#include "error.h"
-#include "image.h"
+#include "core/colour.h"
+#include "core/error.h"
+#include "core/image.h"
 #include "test_util.h"
 
 namespace insitu {

@@ -2,7 +2,7 @@
 
 #include <random>
 
-#include "image_compare.h"
+#include "output/image_compare.h"
 
 namespace insitu {
 namespace {

@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include "composite.h"
-#include "pipeline.h"
+#include "output/composite.h"
+#include "scene/pipeline.h"
 #include "scene_fixture.h"
 
 namespace insitu {

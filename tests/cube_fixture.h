@@ -2,7 +2,7 @@
 #pragma once
 #include <random>
 
-#include "cubemap.h"
+#include "light/cubemap.h"
 
 namespace insitu::test {
 

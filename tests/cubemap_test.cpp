@@ -2,7 +2,7 @@
 
 #include <random>
 
-#include "cubemap.h"
+#include "light/cubemap.h"
 
 namespace insitu {
 namespace {

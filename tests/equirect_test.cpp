@@ -2,7 +2,7 @@
 
 #include <random>
 
-#include "equirect.h"
+#include "light/equirect.h"
 #include "test_util.h"
 
 namespace insitu {

@@ -6,13 +6,13 @@
 
 #include <cstring>
 
-#include "environment.h"
-#include "equirect.h"
-#include "gaussian_irradiance.h"
-#include "irradiance.h"
-#include "sampler.h"
+#include "light/environment.h"
+#include "light/equirect.h"
+#include "light/gaussian_irradiance.h"
+#include "light/irradiance.h"
+#include "core/sampler.h"
 #include "test_util.h"
-#include "texel_geometry.h"
+#include "light/texel_geometry.h"
 
 namespace insitu {
 namespace {

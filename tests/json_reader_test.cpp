@@ -2,7 +2,7 @@
 
 #include <fstream>
 
-#include "json_reader.h"
+#include "core/json_reader.h"
 #include "test_util.h"
 
 namespace insitu {

@@ -2,9 +2,9 @@
 
 #include <filesystem>
 
-#include "embree_scene.h"
-#include "mesh.h"
-#include "scene.h"
+#include "render/embree_scene.h"
+#include "render/mesh.h"
+#include "scene/scene_file.h"
 #include "test_util.h"
 
 namespace insitu {

@@ -3,14 +3,14 @@
 #include <random>
 
 #include "cube_fixture.h"
-#include "env_sampling.h"
-#include "equirect.h"
-#include "integrators/integrator.h"
-#include "irradiance.h"
-#include "mesh.h"
-#include "scene.h"
+#include "render/env_sampling.h"
+#include "light/equirect.h"
+#include "integrators/registry.h"
+#include "light/irradiance.h"
+#include "render/mesh.h"
+#include "scene/scene_file.h"
 #include "test_util.h"
-#include "texel_geometry.h"
+#include "light/texel_geometry.h"
 
 namespace insitu {
 namespace {

@@ -3,11 +3,11 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
-#include "colour.h"
-#include "environment.h"
-#include "equirect.h"
-#include "hdr_merge.h"
-#include "pipeline.h"
+#include "core/colour.h"
+#include "light/environment.h"
+#include "light/equirect.h"
+#include "light/hdr_merge.h"
+#include "scene/pipeline.h"
 #include "test_util.h"
 
 namespace insitu {

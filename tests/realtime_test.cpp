@@ -2,9 +2,9 @@
 
 #include <random>
 
-#include "gaussian_irradiance.h"
-#include "integrators/integrator.h"
-#include "mesh.h"
+#include "light/gaussian_irradiance.h"
+#include "integrators/registry.h"
+#include "render/mesh.h"
 #include "test_util.h"
 
 namespace insitu {

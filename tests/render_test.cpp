@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include "pipeline.h"
-#include "sampler.h"
+#include "scene/pipeline.h"
+#include "core/sampler.h"
 #include "scene_fixture.h"
 
 namespace insitu {

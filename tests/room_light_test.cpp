@@ -3,8 +3,8 @@
 #include <random>
 
 #include "cube_fixture.h"
-#include "room_light.h"
-#include "texel_geometry.h"
+#include "render/room_light.h"
+#include "light/texel_geometry.h"
 
 namespace insitu {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <random>
 
-#include "sampling.h"
+#include "core/sampling.h"
 
 namespace insitu {
 namespace {

@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
-#include "image.h"
+#include "core/image.h"
 #include "test_util.h"
 
 namespace insitu::test {

@@ -2,8 +2,8 @@
 
 #include <tbb/global_control.h>
 
-#include "composite.h"
-#include "pipeline.h"
+#include "output/composite.h"
+#include "scene/pipeline.h"
 #include "scene_fixture.h"
 
 namespace insitu {

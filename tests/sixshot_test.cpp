@@ -2,10 +2,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "environment.h"
-#include "equirect.h"
-#include "scene.h"
-#include "sixshot.h"
+#include "light/environment.h"
+#include "light/equirect.h"
+#include "scene/scene_file.h"
+#include "light/sixshot.h"
 #include "test_util.h"
 
 #include <random>

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "temp_files.h"
+#include "core/temp_files.h"
 #include "test_util.h"
 
 namespace insitu {

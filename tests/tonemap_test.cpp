@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "colour.h"
-#include "equirect.h"
+#include "core/colour.h"
+#include "light/equirect.h"
 #include "test_util.h"
-#include "tonemap.h"
+#include "output/tonemap.h"
 
 namespace insitu {
 namespace {
@@ -97,7 +97,7 @@ TEST(ToneMapping, DragoAgreesWithOpenCvOnGreyImages) {
 }  // namespace
 }  // namespace insitu
 
-#include "pipeline.h"
+#include "scene/pipeline.h"
 #include "scene_fixture.h"
 
 namespace insitu {

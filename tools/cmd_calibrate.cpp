@@ -4,12 +4,12 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "calibration.h"
+#include "calib/calibration.h"
 #include "commands.h"
-#include "image.h"
-#include "output_paths.h"
-#include "text_file.h"
-#include "view_correlation.h"
+#include "core/image.h"
+#include "core/output_paths.h"
+#include "core/text_file.h"
+#include "calib/view_correlation.h"
 
 namespace insitu {
 namespace {

@@ -8,8 +8,8 @@
 #include <memory>
 
 #include "commands.h"
-#include "image_compare.h"
-#include "output_paths.h"
+#include "output/image_compare.h"
+#include "core/output_paths.h"
 
 namespace insitu {
 namespace {

@@ -14,11 +14,12 @@
 #include <optional>
 
 #include "commands.h"
-#include "environment.h"
-#include "equirect.h"
-#include "irradiance.h"
-#include "output_paths.h"
-#include "preview.h"
+#include "light/environment.h"
+#include "scene/scene_file.h"
+#include "light/equirect.h"
+#include "light/irradiance.h"
+#include "core/output_paths.h"
+#include "light/preview.h"
 
 namespace insitu {
 namespace {
@@ -41,7 +42,7 @@ int run_cubemap(const CubemapArgs& a) {
     std::vector<NamedPath> outputs;
     for (const char* name : {"cube.exr", "cube.png", "equirect.exr"})
       outputs.push_back({(std::filesystem::path(a.out) / name).string(), "an output"});
-    for (const char* mode : {"gaussian", "sh9", "exact"})
+    for (const std::string& mode : names_of(kIrradianceModes))
       for (const char* ext : {".exr", ".png"})
         outputs.push_back({(std::filesystem::path(a.out) / (std::string("irradiance_") + mode + ext)).string(), "an output"});
     check_outputs(inputs, outputs);

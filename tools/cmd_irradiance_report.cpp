@@ -10,10 +10,11 @@
 #include <optional>
 
 #include "commands.h"
-#include "output_paths.h"
-#include "environment.h"
-#include "irradiance_report.h"
-#include "text_file.h"
+#include "core/output_paths.h"
+#include "light/environment.h"
+#include "scene/scene_file.h"
+#include "light/irradiance_report.h"
+#include "core/text_file.h"
 
 namespace insitu {
 namespace {

@@ -5,10 +5,10 @@
 #include <fmt/format.h>
 #include <memory>
 
-#include "output_paths.h"
+#include "core/output_paths.h"
 #include "commands.h"
-#include "integrators/integrator.h"
-#include "pipeline.h"
+#include "integrators/registry.h"
+#include "scene/pipeline.h"
 #include "progress.h"
 
 namespace insitu {
@@ -47,12 +47,11 @@ int run_render(const RenderArgs& a) {
   if (a.spp > 0) spec.render.spp = a.spp;
   if (a.seed >= 0) spec.render.seed = std::uint64_t(a.seed);
   if (!a.integrator.empty()) {
-    if (!is_integrator(a.integrator)) throw InputError("--integrator", unknown_integrator_message(a.integrator));
+    if (!find_integrator(a.integrator)) throw InputError("--integrator", unknown_integrator_message(a.integrator));
     spec.render.integrator = a.integrator;
   }
   if (!a.irradiance.empty()) {
-    spec.render.irradiance = *parse_irradiance_mode(a.irradiance);
-    spec.given.insert("render.irradiance");
+    spec.render.block.value["irradiance"] = a.irradiance;
   }
   if (!a.tonemap.empty()) {
     spec.output.tonemap.op = *parse_tonemap(a.tonemap);
@@ -106,10 +105,10 @@ Command add_render_command(CLI::App& app) {
   cmd->add_option("--integrator", a->integrator, help);
   cmd->add_option("--irradiance", a->irradiance,
                   "irradiance mode of the irradiance integrator: gaussian, sh9 or exact [default: the scene's, else exact]")
-      ->check(CLI::IsMember({"gaussian", "sh9", "exact"}));
+      ->check(CLI::IsMember(names_of(kIrradianceModes)));
   cmd->add_option("--tonemap", a->tonemap,
                   "for PNG/JPEG: photo, adaptive_log, reinhard or linear [default: the scene's, else photo]")
-      ->check(CLI::IsMember({"photo", "adaptive_log", "reinhard", "linear"}));
+      ->check(CLI::IsMember(names_of(kToneMaps)));
   cmd->add_option("--key", a->key, "tone-mapping key [default: adaptive_log 1, reinhard 0.18, linear 1]")->check(CLI::PositiveNumber);
   return [cmd, a] { return cmd->parsed() ? run_render(*a) : -1; };
 }

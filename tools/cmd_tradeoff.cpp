@@ -16,10 +16,10 @@
 #include <memory>
 
 #include "commands.h"
-#include "composite.h"
-#include "image_compare.h"
-#include "pipeline.h"
-#include "text_file.h"
+#include "output/composite.h"
+#include "output/image_compare.h"
+#include "scene/pipeline.h"
+#include "core/text_file.h"
 
 namespace insitu {
 namespace {
@@ -98,7 +98,10 @@ int run_tradeoff(const TradeoffArgs& a) {
   print_warnings(scene.warnings);
   auto run = [&](const std::string& integrator, IrradianceMode mode, int spp, std::uint64_t seed, RenderResult* result) {
     scene.spec.render.integrator = integrator;
-    scene.spec.render.irradiance = mode;
+    JsonBlock render = scene.spec.render.block;
+    render.value["irradiance"] = irradiance_mode_name(mode);
+    Warnings printed_once;  // the scene's warnings were printed after loading
+    scene.integrator = resolve_integrator(integrator, render, printed_once);
     scene.spec.render.spp = spp;
     scene.spec.render.seed = seed;
     *result = render_scene(scene);

@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include "commands.h"
-#include "temp_files.h"
+#include "core/temp_files.h"
 
 int main(int argc, char** argv) {
   using namespace insitu;

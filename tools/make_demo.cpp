@@ -19,11 +19,11 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "camera.h"
-#include "colour.h"
-#include "image.h"
-#include "sampler.h"
-#include "sixshot.h"
+#include "core/camera.h"
+#include "core/colour.h"
+#include "core/image.h"
+#include "core/sampler.h"
+#include "light/sixshot.h"
 
 namespace {
 using namespace insitu;

@@ -1,7 +1,7 @@
 // Fuzz target: the image loader (OpenImageIO behind our header checks). The first byte picks the
 // extension, which picks the reader: PNG, JPEG or OpenEXR.
 #include "fuzz_common.h"
-#include "image.h"
+#include "core/image.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace insitu;

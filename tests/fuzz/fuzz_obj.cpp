@@ -1,7 +1,7 @@
 // Fuzz target: the OBJ reader (the validation pass with file:line, then tinyobjloader). The first
 // byte chooses whether the input is the OBJ or its MTL (then with a fixed OBJ that names it).
 #include "fuzz_common.h"
-#include "mesh.h"
+#include "render/mesh.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace insitu;

@@ -1,7 +1,7 @@
 // Fuzz target: the control-point readers. The first byte picks the format: JSON, CSV or a View
 // Correlation file; then the points are calibrated, as the CLI would.
-#include "calibration.h"
-#include "control_points.h"
+#include "calib/calibration.h"
+#include "calib/control_points.h"
 #include "fuzz_common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,0 +1,257 @@
+#include "core/output_paths.h"
+#include "core/image.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "core/colour.h"
+#include "core/error.h"
+#include "core/temp_files.h"
+
+namespace insitu {
+namespace fs = std::filesystem;
+using namespace OIIO;
+
+namespace {
+
+// Holds what C libraries print to stderr while an image is read (libpng writes "libpng error: ..."
+// itself before OpenImageIO reports the same failure): on failure it is dropped, since the one-line
+// InputError carries the reader's message; otherwise it is written back unchanged.
+class StderrCapture {
+ public:
+  StderrCapture() {
+    std::fflush(stderr);
+    file_ = std::tmpfile();
+    saved_ = file_ ? ::dup(STDERR_FILENO) : -1;
+    if (saved_ >= 0) ::dup2(::fileno(file_), STDERR_FILENO);
+  }
+  ~StderrCapture() {
+    if (saved_ < 0) {
+      if (file_) std::fclose(file_);
+      return;
+    }
+    std::fflush(stderr);
+    ::dup2(saved_, STDERR_FILENO);
+    ::close(saved_);
+    if (!failed_) {
+      std::rewind(file_);
+      char buf[4096];
+      for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, file_)) > 0;) std::fwrite(buf, 1, n, stderr);
+    }
+    std::fclose(file_);
+  }
+  void failed() { failed_ = true; }
+
+ private:
+  std::FILE* file_ = nullptr;
+  int saved_ = -1;
+  bool failed_ = false;
+};
+
+std::string one_line(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s.empty() ? "unknown error" : s;
+}
+
+// Reads the image; read_image_file() wraps it in a StderrCapture.
+ImageFile read_image_file_quietly(const std::string& path);
+
+}  // namespace
+
+ImageFile read_image_file(const std::string& path) {
+  if (!fs::exists(path)) throw InputError(path, "file not found");
+  StderrCapture capture;
+  try {
+    return read_image_file_quietly(path);
+  } catch (...) {
+    capture.failed();
+    throw;
+  }
+}
+
+namespace {
+
+ImageFile read_image_file_quietly(const std::string& path) {
+  auto in = ImageInput::open(path);
+  if (!in) throw InputError(path, "cannot read image: " + one_line(geterror()));
+  const ImageSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    throw InputError(path, "image has no pixels");
+  // The header's size is checked before anything is allocated: a 100000² header must not cost
+  // memory or minutes.
+  if (std::uint64_t(spec.width) * std::uint64_t(spec.height) > kMaxImagePixels)
+    throw InputError(path, fmt::format("the header declares {}x{} pixels, more than the {} megapixels insitu reads",
+                                       spec.width, spec.height, kMaxImagePixels / 1000000));
+  ImageFile file;
+  file.path = path;
+  file.format = in->format_name();
+  file.display_referred = !(spec.format.basetype == TypeDesc::FLOAT ||
+                            spec.format.basetype == TypeDesc::HALF ||
+                            spec.format.basetype == TypeDesc::DOUBLE);
+  file.bits = int(spec.format.size()) * 8;
+  if (const float t = spec.get_float_attribute("ExposureTime", 0.0f); t > 0) file.exposure.time_s = t;
+  if (const float n = spec.get_float_attribute("FNumber", 0.0f); n > 0) file.exposure.f_number = n;
+  int iso = spec.get_int_attribute("Exif:PhotographicSensitivity", 0);
+  if (iso <= 0) iso = spec.get_int_attribute("Exif:ISOSpeedRatings", 0);
+  if (iso > 0) file.exposure.iso = iso;
+  if (const int f35 = spec.get_int_attribute("Exif:FocalLengthIn35mmFilm", 0); f35 > 0) file.exposure.focal_35mm_mm = f35;
+  const int nc = spec.nchannels;
+  std::vector<float> raw(std::size_t(spec.width) * spec.height * nc);
+  if (!in->read_image(0, 0, 0, nc, TypeDesc::FLOAT, raw.data()))
+    throw InputError(path, "cannot decode image: " + one_line(in->geterror()));
+  // A truncated file may decode "successfully" with its missing rows grey: the reader's error
+  // says so.
+  if (in->has_error()) throw InputError(path, "truncated or corrupt image: " + one_line(in->geterror()));
+  in->close();
+  Image& img = file.stored;
+  img = Image(spec.width, spec.height, 3);
+  const std::size_t n = std::size_t(spec.width) * spec.height;
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) img.data[i * 3 + c] = raw[i * nc + std::min(c, nc < 3 ? 0 : c)];
+  return file;
+}
+
+}  // namespace
+
+std::optional<double> Exposure::relative() const {
+  if (!time_s) return std::nullopt;
+  const double n = f_number.value_or(1.0);
+  return *time_s * iso.value_or(1.0) / (n * n);
+}
+
+std::pair<int, int> read_image_size(const std::string& path) {
+  if (!fs::exists(path)) throw InputError(path, "file not found");
+  auto in = ImageInput::open(path);
+  if (!in) throw InputError(path, "cannot read image: " + geterror());
+  return {in->spec().width, in->spec().height};
+}
+
+std::size_t sanitize(Image& img) {
+  std::size_t count = 0;
+  for (float& v : img.data)
+    if (!(v >= 0.0f) || !std::isfinite(v)) { v = 0.0f; ++count; }
+  return count;
+}
+
+Image linearize(const ImageFile& file, std::size_t* clamped) {
+  Image img = file.stored;
+  std::size_t count = sanitize(img);
+  if (file.display_referred)
+    for (float& v : img.data) v = srgb_to_linear(v);
+  if (clamped) *clamped = count;
+  return img;
+}
+
+namespace {
+
+// "dir/name.ext" -> "dir/.name.tmp-<pid>-<n>.ext": same folder (so rename is atomic), same
+// extension (so OpenImageIO picks the same format).
+std::string temporary_name(const fs::path& final_path) {
+  static std::atomic<int> counter{0};
+  return (final_path.parent_path() /
+          fmt::format(".{}.tmp-{}-{}{}", final_path.stem().string(), ::getpid(), counter++,
+                      final_path.extension().string()))
+      .string();
+}
+
+void commit(const std::string& tmp, const std::string& path) {
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    const std::string why = fs::is_directory(path) ? "is a directory" : "cannot write: " + ec.message();
+    std::error_code ignored;  // the removal's own outcome must not replace the reason
+    fs::remove(tmp, ignored);
+    throw InputError(path, why);
+  }
+}
+
+void make_parent(const fs::path& p) {
+  std::error_code ec;
+  if (!p.parent_path().empty()) fs::create_directories(p.parent_path(), ec);
+  if (ec) throw InputError(p.string(), "cannot create folder: " + ec.message());
+}
+
+TypeDesc storage_type(const std::string& ext_lower) {
+  // Float, not half, for EXR: radiance spans 1e-6 to 1e5 and half overflows at 65504.
+  if (ext_lower == ".exr" || ext_lower == ".hdr" || ext_lower == ".pfm" || ext_lower == ".tif" || ext_lower == ".tiff")
+    return TypeDesc::FLOAT;
+  return TypeDesc::UINT8;
+}
+
+// Writes `pixels` (float, interleaved) with `spec` under a temporary name, then renames it to
+// `path`; on any failure the temporary file is removed and an InputError names `path`.
+void write_atomically(const std::string& path, const std::string& format, const ImageSpec& spec,
+                      const float* pixels) {
+  const fs::path p(path);
+  make_parent(p);
+  const std::string tmp = temporary_name(p);
+  const TempFileGuard guard(tmp);  // removed if the process is interrupted meanwhile
+  auto out = ImageOutput::create(format.empty() ? tmp : format);
+  if (!out) throw InputError(path, "no image format for '" + p.extension().string() + "'");
+  if (!out->open(tmp, spec) || !out->write_image(TypeDesc::FLOAT, pixels) || !out->close()) {
+    const std::string err = out->geterror();
+    out.reset();
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw InputError(path, "cannot write image: " + err);
+  }
+  out.reset();
+  commit(tmp, path);
+}
+
+}  // namespace
+
+void write_image(const std::string& path, const Image& img, const Exposure* exposure) {
+  const std::string ext = lower_extension(path);
+  ImageSpec spec(img.width, img.height, img.channels, storage_type(ext));
+  if (ext == ".jpg" || ext == ".jpeg") spec.attribute("CompressionQuality", 92);
+  if (exposure) {
+    if (exposure->time_s) spec.attribute("ExposureTime", float(*exposure->time_s));
+    if (exposure->f_number) spec.attribute("FNumber", float(*exposure->f_number));
+    if (exposure->iso) spec.attribute("Exif:PhotographicSensitivity", int(*exposure->iso));
+    if (exposure->focal_35mm_mm) spec.attribute("Exif:FocalLengthIn35mmFilm", int(*exposure->focal_35mm_mm));
+  }
+  write_atomically(path, "", spec, img.data.data());
+}
+
+void write_exr_channels(const std::string& path, int width, int height,
+                        const std::vector<ExrChannel>& channels, bool half_float) {
+  const int nc = int(channels.size());
+  ImageSpec spec(width, height, nc, half_float ? TypeDesc::HALF : TypeDesc::FLOAT);
+  spec.channelnames.clear();
+  for (const auto& ch : channels) spec.channelnames.push_back(ch.name);
+  spec.alpha_channel = -1;
+  for (int i = 0; i < nc; ++i)
+    if (channels[i].name == "A") spec.alpha_channel = i;
+  spec.attribute("compression", "zip");
+  std::vector<float> interleaved(std::size_t(width) * height * nc);
+  for (int i = 0; i < nc; ++i) {
+    const Image& src = *channels[i].image;
+    for (std::size_t k = 0; k < std::size_t(width) * height; ++k)
+      interleaved[k * nc + i] = src.data[k * src.channels + channels[i].channel];
+  }
+  write_atomically(path, "openexr", spec, interleaved.data());
+}
+
+Image resize(const Image& img, int width, int height, const std::string& filter) {
+  ImageSpec spec(img.width, img.height, img.channels, TypeDesc::FLOAT);
+  ImageBuf src(spec, const_cast<float*>(img.data.data()));
+  ImageSpec dst_spec(width, height, img.channels, TypeDesc::FLOAT);
+  ImageBuf dst(dst_spec);
+  if (!ImageBufAlgo::resize(dst, src, filter)) throw std::runtime_error("resize: " + dst.geterror());
+  Image out(width, height, img.channels);
+  dst.get_pixels(ROI::All(), TypeDesc::FLOAT, out.data.data());
+  return out;
+}
+
+}  // namespace insitu

@@ -1,0 +1,82 @@
+// Float images and their file I/O through OpenImageIO. Writes are atomic: the file is written
+// under a temporary name in the same folder and renamed, so no half-written output ever carries
+// the final name (DESIGN.md "Errors").
+#pragma once
+#include <cstdint>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+
+namespace insitu {
+
+struct Image {
+  int width = 0, height = 0, channels = 0;
+  std::vector<float> data;  // row-major, row 0 at the top, channels interleaved
+
+  Image() = default;
+  Image(int w, int h, int c, float fill = 0.0f)
+      : width(w), height(h), channels(c), data(std::size_t(w) * h * c, fill) {}
+  bool empty() const { return data.empty(); }
+  float* at(int x, int y) { return &data[(std::size_t(y) * width + x) * channels]; }
+  const float* at(int x, int y) const { return &data[(std::size_t(y) * width + x) * channels]; }
+  Rgb rgb(int x, int y) const { const float* p = at(x, y); return {p[0], p[1], p[2]}; }
+  void set_rgb(int x, int y, const Rgb& c) { float* p = at(x, y); p[0] = c[0]; p[1] = c[1]; p[2] = c[2]; }
+};
+
+// What a camera recorded about an exposure (EXIF, through OpenImageIO); absent values are empty.
+struct Exposure {
+  std::optional<double> time_s, f_number, iso, focal_35mm_mm;
+  // The relative exposure k = t · ISO / N² (missing ISO or N count as 1: taken as equal between
+  // the images compared). Empty without an exposure time.
+  std::optional<double> relative() const;
+};
+
+// An image file as stored: values normalized by OpenImageIO (8-bit k -> k/255), always RGB.
+struct ImageFile {
+  std::string path;
+  Image stored;
+  bool display_referred = false;  // integer pixels (8/16-bit): sRGB-encoded, decoded to linear
+  std::string format;             // "png", "jpeg", "openexr", ...
+  int bits = 32;                  // bits per stored channel
+  Exposure exposure;
+};
+
+// Images larger than this are refused from their header, before decoding (a 16384 × 8192 HDRI is
+// 134 megapixels; phone photos are 12–50).
+constexpr std::uint64_t kMaxImagePixels = std::uint64_t(1) << 27;
+
+// Refuses (InputError naming the file) a missing, unreadable, oversized, truncated or corrupt image.
+ImageFile read_image_file(const std::string& path);
+// Width and height from the header alone.
+std::pair<int, int> read_image_size(const std::string& path);
+
+// Linear Rec.709: display-referred files through the inverse sRGB transfer function, float files
+// as they are. Negative and non-finite values are clamped to 0 and counted in *clamped.
+Image linearize(const ImageFile& file, std::size_t* clamped = nullptr);
+
+// Clamps negative and non-finite values to 0; returns how many values it changed.
+std::size_t sanitize(Image& img);
+
+// Writes RGB(A) float pixels; the format follows the extension. 8-bit formats get the values
+// rounded to k/255 after clamping to [0,1] (the caller encodes with sRGB first).
+// `exposure`, when given, is written as EXIF (ExposureTime, FNumber, ISO, 35 mm focal length).
+void write_image(const std::string& path, const Image& img, const Exposure* exposure = nullptr);
+
+// A multi-part EXR written as one file: named channel groups ("R","G","B","A",
+// "objects.R", ...), all of width x height, stored as half or float.
+struct ExrChannel {
+  std::string name;
+  const Image* image;  // the source image
+  int channel;         // which of its channels
+};
+void write_exr_channels(const std::string& path, int width, int height,
+                        const std::vector<ExrChannel>& channels, bool half_float = false);
+
+// Resampling with a proper filter (OpenImageIO's ImageBufAlgo::resize); filter "" is OpenImageIO's
+// default (Blackman-Harris), "box" the area average (keeps a radiance map's integral).
+Image resize(const Image& img, int width, int height, const std::string& filter = "");
+
+}  // namespace insitu

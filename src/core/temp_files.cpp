@@ -1,0 +1,53 @@
+#include "core/temp_files.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstring>
+
+namespace insitu {
+namespace {
+
+constexpr int kSlots = 32;
+constexpr std::size_t kPathMax = 4096;
+char g_paths[kSlots][kPathMax];
+std::atomic<bool> g_claimed[kSlots];  // owned by a guard (its path may be half written)
+std::atomic<bool> g_used[kSlots];     // published: the handler may read the path
+std::atomic<bool> g_installed{false};
+
+extern "C" void remove_temps_and_die(int sig) {
+  for (int i = 0; i < kSlots; ++i)
+    if (g_used[i].load(std::memory_order_acquire)) ::unlink(g_paths[i]);
+  std::signal(sig, SIG_DFL);  // then end as the signal would have (exit status 128 + sig)
+  std::raise(sig);
+}
+
+}  // namespace
+
+void install_interrupt_cleanup() {
+  if (g_installed.exchange(true)) return;
+  struct sigaction sa {};
+  sa.sa_handler = remove_temps_and_die;
+  sigemptyset(&sa.sa_mask);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaction(sig, &sa, nullptr);
+}
+
+TempFileGuard::TempFileGuard(const std::string& path) {
+  if (path.size() >= kPathMax) return;  // not protected; still removed on ordinary failures
+  for (int i = 0; i < kSlots; ++i) {
+    if (g_claimed[i].exchange(true, std::memory_order_acq_rel)) continue;  // another guard's
+    std::memcpy(g_paths[i], path.c_str(), path.size() + 1);
+    g_used[i].store(true, std::memory_order_release);  // the path is complete: publish it
+    slot_ = i;
+    return;
+  }
+}
+
+TempFileGuard::~TempFileGuard() {
+  if (slot_ < 0) return;
+  g_used[slot_].store(false, std::memory_order_release);
+  g_claimed[slot_].store(false, std::memory_order_release);
+}
+
+}  // namespace insitu

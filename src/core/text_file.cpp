@@ -1,0 +1,39 @@
+#include "core/text_file.h"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+
+#include "core/error.h"
+#include "core/temp_files.h"
+
+namespace insitu {
+namespace fs = std::filesystem;
+
+void write_text_file(const std::string& path, const std::string& text) {
+  const fs::path p(path);
+  std::error_code ec;
+  if (!p.parent_path().empty()) fs::create_directories(p.parent_path(), ec);
+  const fs::path tmp = p.parent_path() / fmt::format(".{}.tmp-{}", p.filename().string(), ::getpid());
+  const TempFileGuard guard(tmp.string());  // removed if the process is interrupted meanwhile
+  {
+    std::ofstream out(tmp);
+    out << text;
+    out.close();
+    if (!out) {
+      fs::remove(tmp, ec);
+      throw InputError(path, "cannot write (is its folder writable?)");
+    }
+  }
+  fs::rename(tmp, p, ec);
+  if (ec) {
+    const std::string why = fs::is_directory(p) ? "is a directory" : "cannot write: " + ec.message();
+    std::error_code ignored;  // the removal's own outcome must not replace the reason
+    fs::remove(tmp, ignored);
+    throw InputError(path, why);
+  }
+}
+
+}  // namespace insitu

@@ -1,0 +1,216 @@
+#include "core/output_paths.h"
+#include "light/environment.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "light/equirect.h"
+#include "core/json_reader.h"
+#include "light/sixshot.h"
+
+namespace insitu {
+
+Image linearize_photo(const ImageFile& photo, const EnvironmentInfo& info, std::size_t* clamped) {
+  if (info.response && photo.bits == 8) {
+    if (clamped) *clamped = 0;
+    return linearize_with_response(photo, *info.response);
+  }
+  return linearize(photo, clamped);
+}
+
+namespace {
+
+float median_luminance(std::vector<float> y) {
+  if (y.empty()) return 0;
+  std::nth_element(y.begin(), y.begin() + long(y.size() / 2), y.end());
+  return y[y.size() / 2];
+}
+
+// The field of view of a shot: its own, the set's, EXIF's 35 mm-equivalent focal length (which
+// describes the diagonal: 2·atan(43.27 mm / 2f)), or 90°.
+double shot_hfov(const ShotSpec& shot, const EnvironmentSpec& spec, const ImageFile& file) {
+  if (shot.hfov_deg) return *shot.hfov_deg;
+  if (spec.hfov_deg) return *spec.hfov_deg;
+  if (file.exposure.focal_35mm_mm) {
+    const double w = file.stored.width, h = file.stored.height;
+    const double tan_half_diag = 43.2666 / (2 * *file.exposure.focal_35mm_mm);
+    return rad_to_deg(2 * std::atan(tan_half_diag * w / std::hypot(w, h)));
+  }
+  return 90.0;
+}
+
+CubeMap scaled(const CubeMap& cube, float factor) {
+  CubeMap out(cube.size());
+  for (int f = 0; f < 6; ++f)
+    for (int j = -1; j <= cube.size(); ++j)
+      for (int i = -1; i <= cube.size(); ++i) out.set_texel(f, i, j, cube.texel(f, i, j) * factor);
+  return out;
+}
+
+CubeMap load_image_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo& info) {
+  Image img;
+  try {
+    img = linearize(read_image_file(spec.image), &info.clamped_values);
+  } catch (const InputError& e) {
+    throw e.with_context(spec.where);
+  }
+  CubeMap cube;
+  if (img.width == 2 * img.height) {
+    cube = cube_from_equirect(img, spec.face_size > 0 ? spec.face_size : std::max(1, img.width / 4));
+  } else if (img.height == 6 * img.width) {
+    cube = cube_from_strip(img);
+    if (spec.face_size > 0 && spec.face_size != cube.size())
+      throw InputError(spec.where, fmt::format("{}: a cube strip has face size {}, face_size asks for {}", spec.image,
+                                               cube.size(), spec.face_size));
+  } else {
+    throw InputError(spec.where, fmt::format("{}: {}x{} is neither equirectangular (2:1) nor a cube strip (1:6)",
+                                             spec.image, img.width, img.height));
+  }
+  if (info.clamped_values > 0)
+    warnings.add(spec.image, fmt::format("{} negative or non-finite values clamped to 0", info.clamped_values));
+  if (spec.exposure == EnvironmentSpec::Exposure::kFactor) {
+    info.exposure_factor = spec.exposure_factor;
+    info.exposure_source = "factor";
+    return scaled(cube, float(spec.exposure_factor));
+  }
+  return cube;
+}
+
+}  // namespace
+
+CubeMap load_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo* info_out, const ImageFile* photo) {
+  EnvironmentInfo info;
+  if (!spec.from_shots()) {
+    CubeMap cube = load_image_environment(spec, warnings, info);
+    if (info_out) *info_out = info;
+    return cube;
+  }
+  // Read every file.
+  std::array<std::vector<ImageFile>, 6> files;
+  for (int f = 0; f < 6; ++f)
+    for (const std::string& path : spec.shots[std::size_t(f)].files) {
+      try {
+        files[std::size_t(f)].push_back(read_image_file(path));
+      } catch (const InputError& e) {
+        throw e.with_context(spec.shots[std::size_t(f)].where);
+      }
+    }
+  // Relative exposures of a bracket set: the given times, else EXIF.
+  auto exposures_of = [&](int f) {
+    const ShotSpec& s = spec.shots[std::size_t(f)];
+    std::vector<double> k;
+    for (std::size_t b = 0; b < files[std::size_t(f)].size(); ++b) {
+      if (!s.times_s.empty()) { k.push_back(s.times_s[b]); continue; }
+      const auto rel = files[std::size_t(f)][b].exposure.relative();
+      if (!rel) throw InputError(s.where, fmt::format("{}: no exposure time in its EXIF; give \"times\"", s.files[b]));
+      k.push_back(*rel);
+    }
+    return k;
+  };
+  // The response: from the first bracketed shot.
+  for (int f = 0; f < 6 && !info.response; ++f)
+    if (files[std::size_t(f)].size() >= 2) {
+      try {
+        info.response = recover_response(files[std::size_t(f)], exposures_of(f));
+      } catch (const InputError& e) {
+        throw e.with_context(spec.shots[std::size_t(f)].where);
+      }
+    }
+  const ResponseCurve response = info.response.value_or(srgb_response());
+
+  // Each shot in its own unit: merged brackets are already divided by k; single shots carry k_f.
+  ShotSet set;
+  set.faced_face = spec.faced_face;
+  std::array<std::optional<double>, 6> k_shot;
+  bool all_singles_have_k = true;
+  for (int f = 0; f < 6; ++f) {
+    auto& fl = files[std::size_t(f)];
+    const ShotSpec& s = spec.shots[std::size_t(f)];
+    set.names[std::size_t(f)] = s.files.front();
+    set.hfov_deg[std::size_t(f)] = shot_hfov(s, spec, fl.front());
+    try {
+      if (fl.size() >= 2) {
+        const std::vector<double> k = exposures_of(f);
+        set.shots[std::size_t(f)] = merge_brackets(fl, k, response);
+        const std::size_t shortest = std::size_t(std::min_element(k.begin(), k.end()) - k.begin());
+        info.clipped[std::size_t(f)] = clipped_fraction(fl[shortest]);
+        k_shot[std::size_t(f)] = 1.0;
+      } else {
+        std::size_t clamped = 0;
+        set.shots[std::size_t(f)] = (fl.front().display_referred && fl.front().bits == 8)
+                                        ? linearize_with_response(fl.front(), response)
+                                        : linearize(fl.front(), &clamped);
+        info.clamped_values += clamped;
+        if (clamped > 0) warnings.add(s.files.front(), fmt::format("{} negative or non-finite values clamped to 0", clamped));
+        info.clipped[std::size_t(f)] = clipped_fraction(fl.front());
+        const auto rel = s.times_s.empty() ? fl.front().exposure.relative() : std::optional<double>(s.times_s.front());
+        if (rel) k_shot[std::size_t(f)] = *rel;
+        else all_singles_have_k = false;
+      }
+    } catch (const InputError& e) {
+      throw e.with_context(s.where);
+    }
+    if (info.clipped[std::size_t(f)] > 0.001)
+      warnings.add(s.files.front(), fmt::format("{:.1f}% of pixels clipped: radiance there is only a lower bound",
+                                                100 * info.clipped[std::size_t(f)]));
+  }
+
+  // Into the photo's unit.
+  const std::optional<double> k_photo = photo ? photo->exposure.relative() : std::nullopt;
+  bool per_shot_exif = false;
+  if (spec.exposure == EnvironmentSpec::Exposure::kFactor) {
+    info.exposure_source = "factor";
+    info.exposure_factor = spec.exposure_factor;
+  } else if (k_photo && all_singles_have_k) {
+    per_shot_exif = true;
+    info.exposure_source = "exif";
+  } else if (spec.exposure == EnvironmentSpec::Exposure::kExif) {
+    if (photo && !k_photo) throw InputError(spec.where + ".exposure", photo->path + ": no exposure time in its EXIF");
+    for (int f = 0; f < 6; ++f)
+      if (!k_shot[std::size_t(f)]) throw InputError(spec.where + ".exposure", spec.shots[std::size_t(f)].files.front() + ": no exposure time in its EXIF");
+  }
+  if (per_shot_exif)
+    for (int f = 0; f < 6; ++f)
+      for (float& v : set.shots[std::size_t(f)].data) v *= float(*k_photo / *k_shot[std::size_t(f)]);
+
+  const int n = spec.face_size > 0 ? spec.face_size : natural_face_size(set);
+  AssemblyInfo assembly;
+  CubeMap cube;
+  try {
+    cube = assemble_cube(set, n, &assembly);
+  } catch (const InputError& e) {
+    throw e.with_context(spec.where);
+  }
+  info.coverage = assembly.coverage;
+  for (int f = 0; f < 6; ++f)
+    if (assembly.coverage[std::size_t(f)] < 1.0)
+      warnings.add(spec.shots[std::size_t(f)].files.front(),
+                   fmt::format("covers {:.1f}% of face {}; the rest is filled from its neighbours",
+                               100 * assembly.coverage[std::size_t(f)], face_name(f)));
+
+  if (spec.exposure == EnvironmentSpec::Exposure::kFactor) {
+    cube = scaled(cube, float(spec.exposure_factor));
+  } else if (!per_shot_exif && photo) {
+    // The estimate: one factor that matches the medians of the photo and of the cube.
+    const Image photo_linear = linearize_photo(*photo, info);
+    std::vector<float> yp, yc;
+    for (int y = 0; y < photo_linear.height; ++y)
+      for (int x = 0; x < photo_linear.width; ++x) yp.push_back(luminance(photo_linear.rgb(x, y)));
+    for (int f = 0; f < 6; ++f)
+      for (int j = 0; j < cube.size(); ++j)
+        for (int i = 0; i < cube.size(); ++i) yc.push_back(luminance(cube.texel(f, i, j)));
+    const float mp = median_luminance(yp), mc = median_luminance(yc);
+    info.exposure_factor = (mp > 0 && mc > 0) ? double(mp / mc) : 1.0;
+    info.exposure_source = "estimate";
+    cube = scaled(cube, float(info.exposure_factor));
+    if (std::abs(info.exposure_factor - 1) > 0.02)
+      warnings.add(spec.where, fmt::format("no EXIF exposure on the photo and every shot: shots scaled by an estimated "
+                                           "{:.3g} (median of the photo / median of the cube); give environment.exposure",
+                                           info.exposure_factor));
+  }
+  if (info_out) *info_out = info;
+  return cube;
+}
+
+}  // namespace insitu

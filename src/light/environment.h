@@ -1,0 +1,37 @@
+// The room's light as a radiance cube in the photo's radiance unit (DESIGN.md "Colour and
+// light"), from six shots (single images or exposure brackets) or from an HDR image
+// (equirectangular 2:1, or a vertical strip of the six faces 1:6).
+//
+// Shots are linearized by the inverse sRGB curve, or by the camera response recovered from the
+// first bracketed shot (hdr_merge.h), which then also linearizes the photo. They are brought into
+// the photo's unit by their relative exposure k = t·ISO/N²: value × k_photo / k_shot (a merged
+// bracket set is already divided by k). Without EXIF on the photo and every single shot, `auto`
+// estimates one factor, median(photo luminance) / median(cube luminance), and says so.
+#pragma once
+#include <array>
+#include <optional>
+
+#include "light/cubemap.h"
+#include "core/error.h"
+#include "light/hdr_merge.h"
+#include "light/environment_spec.h"
+
+namespace insitu {
+
+struct EnvironmentInfo {
+  std::size_t clamped_values = 0;                        // negative or non-finite inputs set to 0
+  std::array<double, 6> coverage = {1, 1, 1, 1, 1, 1};   // per face, from six shots
+  std::array<double, 6> clipped = {0, 0, 0, 0, 0, 0};    // fraction of clipped pixels per shot
+  std::optional<ResponseCurve> response;                 // recovered from brackets
+  double exposure_factor = 1;                            // applied to shots without EXIF
+  std::string exposure_source = "none";                  // "exif", "factor", "estimate", "none"
+};
+
+// `photo` (as stored) gives k_photo and the estimate; without it shots keep their own unit.
+CubeMap load_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo* info = nullptr,
+                         const ImageFile* photo = nullptr);
+
+// The photo in linear units: through the recovered response when there is one, else sRGB-decoded.
+Image linearize_photo(const ImageFile& photo, const EnvironmentInfo& info, std::size_t* clamped = nullptr);
+
+}  // namespace insitu

@@ -1,0 +1,42 @@
+// The room's light as the scene file describes it (DESIGN.md "Scene file"): an HDR image, or six
+// shots with their brackets, field of view and exposure, and an optional room box. Plain data:
+// the scene parser (scene/scene_file.h) fills it, load_environment (environment.h) reads it.
+#pragma once
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+#include "light/cubemap.h"
+
+namespace insitu {
+
+// One shot: a single file, or exposure brackets (aligned, 8-bit) with their exposure times.
+struct ShotSpec {
+  std::vector<std::string> files;
+  std::vector<double> times_s;       // empty: from EXIF
+  std::optional<double> hfov_deg;    // empty: the set's, else EXIF 35 mm focal length, else 90°
+  std::string where;
+};
+
+struct EnvironmentSpec {
+  std::string where;
+  std::string image;                 // equirectangular (2:1) or cube strip (1:6) HDR image
+  std::array<ShotSpec, 6> shots;     // or six shots, by face (+X, −X, +Y, −Y, +Z, −Z)
+  int faced_face = kNegZ;
+  std::optional<double> hfov_deg;    // for every shot that does not give its own
+  int face_size = 0;                 // 0: natural size of the input
+  // Optional parallax correction: the room as a box, and where the environment was captured.
+  struct RoomBox {
+    Vec3d min = Vec3d::Zero(), max = Vec3d::Zero(), capture = Vec3d::Zero();
+  };
+  std::optional<RoomBox> room_box;
+  // How shots are brought into the photo's radiance unit: auto (EXIF when the photo and every
+  // single shot have it, else an estimate that is reported), exif (required), or a factor.
+  enum class Exposure { kAuto, kExif, kFactor } exposure = Exposure::kAuto;
+  double exposure_factor = 1.0;
+  bool from_shots() const { return image.empty(); }
+};
+
+}  // namespace insitu

@@ -1,0 +1,62 @@
+// Diffuse irradiance from a radiance cube, three ways (issue 4; docs/irradiance.md). All give
+//   E(n) = ∫ L(ω) max(0, n·ω) dω
+// in the same units: a white Lambertian surface with normal n has exitant radiance E(n)/π.
+//
+//   gaussian  the legacy method: π × (each face Gaussian-blurred on its own, gaussian_irradiance.h)
+//             looked up along n; fast, and wrong wherever the light is not nearly constant.
+//   sh9       Ramamoorthi & Hanrahan 2001: L projected on the 9 spherical harmonics of order ≤ 2
+//             with each texel weighted by its exact solid angle, E(n) = Σ Â_l L_lm Y_lm(n),
+//             Â_0 = π, Â_1 = 2π/3, Â_2 = π/4.
+//   exact     the integral above over every texel of the cube, the cube taken as constant per
+//             texel, evaluated at the texel centres of a small irradiance cube (32² per face by
+//             default) and looked up bilinearly.
+//
+// irradiance_reference() is the brute-force integral at an arbitrary normal, every texel clipped
+// to the hemisphere and integrated by Lambert's formula; the others are measured against it.
+#pragma once
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "core/name_table.h"
+#include "light/cubemap.h"
+
+namespace insitu {
+
+enum class IrradianceMode { kGaussian, kSh9, kExact };
+inline constexpr Named<IrradianceMode> kIrradianceModes[] = {
+    {IrradianceMode::kGaussian, "gaussian"}, {IrradianceMode::kSh9, "sh9"}, {IrradianceMode::kExact, "exact"}};
+inline const char* irradiance_mode_name(IrradianceMode mode) { return name_of(kIrradianceModes, mode); }
+inline std::optional<IrradianceMode> parse_irradiance_mode(const std::string& name) {
+  return parse_name(kIrradianceModes, name);
+}
+inline std::string irradiance_mode_list() { return quoted_choices(names_of(kIrradianceModes)); }
+
+class IrradianceField {
+ public:
+  virtual ~IrradianceField() = default;
+  virtual Rgb irradiance(const Vec3f& normal_unit) const = 0;
+};
+
+std::unique_ptr<IrradianceField> make_irradiance(IrradianceMode mode, const CubeMap& radiance, int exact_size = 32);
+
+// The slow, obviously correct reference.
+Rgb irradiance_reference(const CubeMap& radiance, const Vec3d& normal_unit);
+
+// Spherical harmonics of order ≤ 2 (real, in R&H's order: Y00, Y1-1, Y10, Y11, Y2-2, Y2-1, Y20,
+// Y21, Y22).
+std::array<double, 9> sh9_basis(const Vec3d& d);
+struct Sh9 {
+  std::array<Rgb, 9> coeff;
+};
+Sh9 project_sh9(const CubeMap& radiance);
+Rgb sh9_irradiance(const Sh9& sh, const Vec3f& normal_unit);
+
+// The exact irradiance at every texel centre of a cube of `size`. Evaluated row by row: on a face,
+// n·x is linear in (s, t), so in each texel row the fully visible texels form one run whose sum
+// comes from per-row prefix sums of L_i Φ_i (Φ_i Lambert's vector of texel i), and only the one or
+// two texels the horizon crosses are clipped. Faces larger than 512 are first box-averaged to 512.
+CubeMap exact_irradiance_cube(const CubeMap& radiance, int size);
+
+}  // namespace insitu

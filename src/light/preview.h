@@ -1,0 +1,23 @@
+// Previews for people: a cube unfolded as a cross, as seen from inside the room.
+//
+//            [ +Y ]
+//   [ −X ] [ −Z ] [ +X ] [ +Z ]
+//            [ −Y ]
+//
+// The middle row is the walls as a panorama facing −Z (left, front, right, back); ceiling and
+// floor are shown with their edge toward −Z against the front wall. Each square is a 90° view
+// (sixshot.h's render_shot), so nothing is mirrored. Values are scaled by `exposure` and encoded
+// with the sRGB curve (clipped).
+#pragma once
+#include "light/cubemap.h"
+#include "core/image.h"
+
+namespace insitu {
+
+// The exposure that puts the cube's median luminance at 0.18.
+double preview_exposure(const CubeMap& cube);
+Image cube_cross_preview(const CubeMap& cube, double exposure);
+// An equirectangular image (width 4n, height 2n) of the cube, linear.
+Image cube_to_equirect(const CubeMap& cube);
+
+}  // namespace insitu

@@ -1,0 +1,174 @@
+#include "light/sixshot.h"
+
+#include <algorithm>
+#include <cassert>
+#include <fmt/format.h>
+
+#include "core/error.h"
+
+namespace insitu {
+
+namespace {
+Vec3d face_axis(int face) {
+  static const Vec3d axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  return axes[face];
+}
+}  // namespace
+
+ShotBasis shot_basis(int face, int faced_face) {
+  assert(faced_face == kPosX || faced_face == kNegX || faced_face == kPosZ || faced_face == kNegZ);
+  ShotBasis b;
+  b.forward = face_axis(face);
+  if (face == kPosY) b.up = -face_axis(faced_face);
+  else if (face == kNegY) b.up = face_axis(faced_face);
+  else b.up = Vec3d(0, 1, 0);
+  b.right = b.forward.cross(b.up);
+  return b;
+}
+
+int natural_face_size(const ShotSet& set, int max_face_size) {
+  int n = max_face_size;
+  for (int f = 0; f < 6; ++f) {
+    const double scale = 1.0 / std::tan(0.5 * deg_to_rad(set.hfov_deg[std::size_t(f)]));  // tan 45° / tan(hfov/2)
+    n = std::min(n, std::max(1, int(std::lround(set.shots[std::size_t(f)].width * scale))));
+  }
+  return n;
+}
+
+CubeMap assemble_cube(const ShotSet& set, int n, AssemblyInfo* info) {
+  CubeMap cube(n), weight(n);
+  bool holes = false;
+  AssemblyInfo local;
+  for (int f = 0; f < 6; ++f) {
+    Image shot = set.shots[std::size_t(f)];
+    const double tan_half = std::tan(0.5 * deg_to_rad(set.hfov_deg[std::size_t(f)]));
+    // Shrink a shot larger than its face by area averaging (which keeps its integral) before
+    // sampling it. The 1e-9 keeps tan 45° = 0.99999999999999989 from rounding n up.
+    const int needed_w = std::max(1, int(std::ceil(n * tan_half - 1e-9)));
+    if (shot.width > needed_w) {
+      const int needed_h = std::max(1, int(std::lround(double(shot.height) * needed_w / shot.width)));
+      shot = resize(shot, needed_w, needed_h, "box");
+    }
+    const ShotBasis b = shot_basis(f, set.faced_face);
+    const double w = shot.width, h = shot.height, f_px = 0.5 * w / tan_half;
+    long covered = 0;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const Vec3d d = texel_direction(f, i, j, n).cast<double>();
+        const double z = d.dot(b.forward);
+        // Pixel position (corner origin) of the direction in the shot.
+        const double px = 0.5 * w + f_px * d.dot(b.right) / z;
+        const double py = 0.5 * h - f_px * d.dot(b.up) / z;
+        const double tol = 1e-3;
+        if (!(z > 0) || px < -tol || px > w + tol || py < -tol || py > h + tol) continue;
+        ++covered;
+        const double x = std::clamp(px - 0.5, 0.0, w - 1.0), y = std::clamp(py - 0.5, 0.0, h - 1.0);
+        const int x0 = std::min(int(x), shot.width - 1), y0 = std::min(int(y), shot.height - 1);
+        const int x1 = std::min(x0 + 1, shot.width - 1), y1 = std::min(y0 + 1, shot.height - 1);
+        const float wx = float(x - x0), wy = float(y - y0);
+        const Rgb c = (1 - wy) * ((1 - wx) * shot.rgb(x0, y0) + wx * shot.rgb(x1, y0)) +
+                      wy * ((1 - wx) * shot.rgb(x0, y1) + wx * shot.rgb(x1, y1));
+        cube.set_texel(f, i, j, c);
+        weight.set_texel(f, i, j, Rgb::Ones());
+      }
+    local.coverage[std::size_t(f)] = double(covered) / (double(n) * n);
+    if (covered == 0)
+      throw InputError(set.names[std::size_t(f)], fmt::format("the shot covers none of face {} (field of view {}°)", face_name(f),
+                                                              set.hfov_deg[std::size_t(f)]));
+    holes |= covered < long(n) * n;
+  }
+  cube.update_borders();
+  if (holes) {
+    weight.update_borders();
+    fill_uncovered(cube, weight);
+  }
+  if (info) *info = local;
+  return cube;
+}
+
+namespace {
+
+// A cube half the size: each texel the weighted mean of its 2×2 children (odd sizes: the last
+// child row/column counts once more); weights summed.
+void pull(const CubeMap& v, const CubeMap& w, CubeMap& v2, CubeMap& w2) {
+  const int n = v.size(), m = (n + 1) / 2;
+  v2 = CubeMap(m);
+  w2 = CubeMap(m);
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i) {
+        Rgb sum = Rgb::Zero();
+        float wsum = 0;
+        for (int b = 0; b < 2; ++b)
+          for (int a = 0; a < 2; ++a) {
+            const int ci = std::min(2 * i + a, n - 1), cj = std::min(2 * j + b, n - 1);
+            const float wt = w.texel(f, ci, cj)[0];
+            sum += wt * v.texel(f, ci, cj);
+            wsum += wt;
+          }
+        v2.set_texel(f, i, j, wsum > 0 ? Rgb(sum / wsum) : Rgb::Zero());
+        w2.set_texel(f, i, j, Rgb::Constant(std::min(1.0f, wsum)));
+      }
+  v2.update_borders();
+  w2.update_borders();
+}
+
+// Jacobi relaxation of the unknown texels toward the mean of their four neighbours (across face
+// edges through the borders), the known ones held fixed.
+void relax(CubeMap& v, const CubeMap& w, int iterations) {
+  const int n = v.size();
+  for (int it = 0; it < iterations; ++it) {
+    CubeMap next = v;
+    for (int f = 0; f < 6; ++f)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          if (w.texel(f, i, j)[0] >= 1.0f) continue;
+          const Rgb mean = 0.25f * (v.texel(f, i - 1, j) + v.texel(f, i + 1, j) + v.texel(f, i, j - 1) + v.texel(f, i, j + 1));
+          const float known = w.texel(f, i, j)[0];
+          next.set_texel(f, i, j, known * v.texel(f, i, j) + (1 - known) * mean);
+        }
+    next.update_borders();
+    v = std::move(next);
+  }
+}
+
+}  // namespace
+
+void fill_uncovered(CubeMap& cube, const CubeMap& weight) {
+  // Pull: coarser and coarser cubes of weighted means, until every texel is known.
+  std::vector<CubeMap> values{cube}, weights{weight};
+  while (values.back().size() > 1) {
+    bool complete = true;
+    const CubeMap& wl = weights.back();
+    for (int f = 0; f < 6 && complete; ++f)
+      for (int j = 0; j < wl.size() && complete; ++j)
+        for (int i = 0; i < wl.size() && complete; ++i) complete = wl.texel(f, i, j)[0] > 0;
+    if (complete) break;
+    CubeMap v2, w2;
+    pull(values.back(), weights.back(), v2, w2);
+    values.push_back(std::move(v2));
+    weights.push_back(std::move(w2));
+  }
+  relax(values.back(), weights.back(), 8);
+  // Push: unknown texels start from the coarser level, looked up by direction (seamless), and are
+  // relaxed; known texels keep their values, partly known ones blend.
+  for (int l = int(values.size()) - 2; l >= 0; --l) {
+    CubeMap& v = values[std::size_t(l)];
+    const CubeMap& w = weights[std::size_t(l)];
+    const CubeMap& coarse = values[std::size_t(l) + 1];
+    const int n = v.size();
+    for (int f = 0; f < 6; ++f)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const float known = w.texel(f, i, j)[0];
+          if (known >= 1.0f) continue;
+          const Rgb up = coarse.lookup(texel_direction(f, i, j, n));
+          v.set_texel(f, i, j, known * v.texel(f, i, j) + (1 - known) * up);
+        }
+    v.update_borders();
+    relax(v, w, 4);
+  }
+  cube = values.front();
+}
+
+}  // namespace insitu

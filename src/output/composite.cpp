@@ -1,0 +1,78 @@
+#include "output/composite.h"
+
+#include <stdexcept>
+
+#include "core/colour.h"
+
+namespace insitu {
+
+Image shadow_ratio(const RenderLayers& l) {
+  Image r(l.with_objects.width, l.with_objects.height, 3, 1.0f);
+  for (std::size_t i = 0; i < r.data.size(); ++i)
+    if (l.without_objects.data[i] > 0) r.data[i] = l.with_objects.data[i] / l.without_objects.data[i];
+  return r;
+}
+
+bool ratio_is_reliable(const Image& photo, const RenderLayers& l, int x, int y) {
+  if (l.catcher_samples.data.empty()) return true;  // layers without the statistics: as before
+  if (*l.catcher_samples.at(x, y) < 2) return *l.catcher_samples.at(x, y) == 0;
+  const double scale = (1.0 - *l.alpha.at(x, y)) * luminance(photo.rgb(x, y));
+  return scale * scale * *l.ratio_variance.at(x, y) <= *l.difference_variance.at(x, y);
+}
+
+Image composite(const Image& photo, const RenderLayers& l, CompositeMode mode) {
+  if (photo.width != l.objects.width || photo.height != l.objects.height)
+    throw std::logic_error("composite: the photo and the layers differ in size");
+  const Image ratio = shadow_ratio(l);
+  Image out(photo.width, photo.height, 3);
+  for (int y = 0; y < photo.height; ++y)
+    for (int x = 0; x < photo.width; ++x) {
+      const float a = *l.alpha.at(x, y);
+      const bool additive = mode == CompositeMode::kAdditive || !ratio_is_reliable(photo, l, x, y);
+      const Rgb background = additive
+                                 ? Rgb((1.0f - a) * photo.rgb(x, y) + l.with_objects.rgb(x, y) - l.without_objects.rgb(x, y))
+                                 : Rgb((1.0f - a) * photo.rgb(x, y) * ratio.rgb(x, y));
+      out.set_rgb(x, y, (l.objects.rgb(x, y) + background).max(0.0f));
+    }
+  return out;
+}
+
+Image touched_mask(const RenderLayers& l) {
+  Image m(l.alpha.width, l.alpha.height, 1, 0.0f);
+  for (int y = 0; y < m.height; ++y)
+    for (int x = 0; x < m.width; ++x) {
+      bool touched = *l.alpha.at(x, y) != 0.0f;
+      for (int c = 0; c < 3; ++c) touched |= l.with_objects.at(x, y)[c] != l.without_objects.at(x, y)[c];
+      *m.at(x, y) = touched ? 1.0f : 0.0f;
+    }
+  return m;
+}
+
+float inverse_response(const ResponseCurve& r, int channel, float v) {
+  const auto& g = r.g[std::size_t(channel)];
+  if (!(v > g[0])) return 0.0f;
+  // Running maximum: the curve as a non-decreasing function.
+  float prev = g[0];
+  for (int z = 1; z < 256; ++z) {
+    const float cur = std::max(prev, g[std::size_t(z)]);
+    if (v <= cur) return (float(z - 1) + (cur > prev ? (v - prev) / (cur - prev) : 1.0f)) / 255.0f;
+    prev = cur;
+  }
+  return 1.0f;
+}
+
+Image encode_composite(const Image& c, const Image& touched, const ImageFile& photo, const ResponseCurve* response) {
+  const bool use_response = response && photo.display_referred && photo.bits == 8;
+  Image out(c.width, c.height, 3);
+  for (int y = 0; y < c.height; ++y)
+    for (int x = 0; x < c.width; ++x) {
+      const bool untouched = *touched.at(x, y) == 0.0f;
+      for (int k = 0; k < 3; ++k) {
+        if (untouched && photo.display_referred) out.at(x, y)[k] = photo.stored.at(x, y)[k];
+        else out.at(x, y)[k] = use_response ? inverse_response(*response, k, c.at(x, y)[k]) : linear_to_srgb(c.at(x, y)[k]);
+      }
+    }
+  return out;
+}
+
+}  // namespace insitu

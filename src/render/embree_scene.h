@@ -1,0 +1,50 @@
+// The Embree 3 scene of the objects: one triangle geometry per mesh, geometry ID = mesh index.
+#pragma once
+#include <memory>
+#include <vector>
+
+#include "core/camera.h"
+#include "render/mesh.h"
+
+namespace insitu {
+
+struct Hit {
+  float t = 0;
+  int mesh = -1, triangle = -1;  // -1: no hit
+  float b1 = 0, b2 = 0;          // barycentrics of vertices 1 and 2
+  bool valid() const { return mesh >= 0; }
+};
+
+// Shading data at a hit: positions and normals in world space, normals unit length and on the
+// side the ray came from (two-sided surfaces, as the legacy renderer drew them).
+struct SurfacePoint {
+  Vec3f p_world;
+  Vec3f ng_world;  // geometric normal
+  Vec3f ns_world;  // interpolated shading normal (the geometric one where the OBJ has none)
+  Vec2f uv = Vec2f::Zero();
+  const Material* material = nullptr;
+};
+
+class EmbreeScene {
+ public:
+  explicit EmbreeScene(std::vector<Mesh> meshes);
+  ~EmbreeScene();
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+  Hit intersect(const Ray& ray, float t_near = 0.0f,
+                float t_far = std::numeric_limits<float>::infinity()) const;
+  // Any hit in (t_near, t_far): a shadow ray.
+  bool occluded(const Ray& ray, float t_near, float t_far) const;
+  SurfacePoint surface(const Ray& ray, const Hit& hit) const;
+  const std::vector<Mesh>& meshes() const { return meshes_; }
+  bool empty() const { return meshes_.empty(); }
+
+  struct Impl;  // Embree's device and scene (public for the error callback; defined in the .cpp)
+
+ private:
+  std::unique_ptr<Impl> impl_;
+  std::vector<Mesh> meshes_;
+};
+
+}  // namespace insitu

@@ -1,0 +1,280 @@
+#include "core/output_paths.h"
+#include "render/mesh.h"
+
+#include <tiny_obj_loader.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace insitu {
+namespace fs = std::filesystem;
+
+Rgb Material::base_colour(const Vec2f& uv) const {
+  if (!map_kd) return kd;
+  // Bilinear, repeating; v = 0 at the bottom row (OBJ convention), texel centres at +0.5.
+  const Image& img = *map_kd;
+  const float x = (uv.x() - std::floor(uv.x())) * float(img.width) - 0.5f;
+  const float y = (1.0f - (uv.y() - std::floor(uv.y()))) * float(img.height) - 0.5f;
+  const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+  const float wx = x - float(x0), wy = y - float(y0);
+  auto wx_ = [&](int i) { return ((i % img.width) + img.width) % img.width; };
+  auto wy_ = [&](int j) { return ((j % img.height) + img.height) % img.height; };
+  const Rgb c = (1 - wy) * ((1 - wx) * img.rgb(wx_(x0), wy_(y0)) + wx * img.rgb(wx_(x0 + 1), wy_(y0))) +
+                wy * ((1 - wx) * img.rgb(wx_(x0), wy_(y0 + 1)) + wx * img.rgb(wx_(x0 + 1), wy_(y0 + 1)));
+  return kd * c;
+}
+
+namespace {
+
+// ---- The validating pass -------------------------------------------------------------------
+
+struct ObjScan {
+  std::vector<int> face_lines;  // line of every `f` statement, in file order
+  std::vector<std::string> mtllibs;  // the MTL files it names
+};
+
+std::vector<std::string> split_ws(const std::string& s) {
+  std::istringstream is(s);
+  std::vector<std::string> out;
+  std::string tok;
+  while (is >> tok) out.push_back(tok);
+  return out;
+}
+
+[[noreturn]] void fail(const std::string& path, int line, const std::string& what) {
+  throw InputError(fmt::format("{}:{}", path, line), what);
+}
+
+void check_numbers(const std::string& path, int line, const std::vector<std::string>& tok,
+                   std::size_t min_count, std::size_t max_count, const char* what) {
+  if (tok.size() - 1 < min_count)
+    fail(path, line, fmt::format("{} needs {} numbers, has {}", what, min_count, tok.size() - 1));
+  for (std::size_t k = 1; k < tok.size() && k <= max_count; ++k) {
+    const char* s = tok[k].c_str();
+    char* end = nullptr;
+    errno = 0;
+    const double x = std::strtod(s, &end);
+    if (end == s || *end != '\0') fail(path, line, fmt::format("{}: '{}' is not a number", what, tok[k]));
+    if (!std::isfinite(x) || errno == ERANGE || std::abs(x) > 1e30)
+      fail(path, line, fmt::format("{}: '{}' is not a finite number", what, tok[k]));
+  }
+}
+
+// One index of a face corner: 1-based, negative counts back from the latest; must name an
+// element defined before this line.
+void check_index(const std::string& path, int line, const std::string& text, long count,
+                 const char* kind) {
+  char* end = nullptr;
+  const long idx = std::strtol(text.c_str(), &end, 10);
+  if (end == text.c_str() || *end != '\0')
+    fail(path, line, fmt::format("face {} index '{}' is not an integer", kind, text));
+  if (idx == 0) fail(path, line, fmt::format("face {} index 0 (OBJ indices start at 1)", kind));
+  const long resolved = idx > 0 ? idx : count + idx + 1;
+  if (resolved < 1 || resolved > count)
+    fail(path, line, fmt::format("face {} index {} out of range ({} defined so far)", kind, idx, count));
+}
+
+// Calls f(line number, tokens) for each non-empty line of an OBJ or MTL file, comments removed.
+template <typename F>
+void for_each_statement(std::ifstream& in, F&& f) {
+  std::string line;
+  for (int lineno = 1; std::getline(in, line); ++lineno) {
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+    const auto tok = split_ws(line);
+    if (!tok.empty()) f(lineno, tok);
+  }
+}
+
+ObjScan scan_obj(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "file not found or unreadable");
+  ObjScan scan;
+  long nv = 0, nvt = 0, nvn = 0;
+  for_each_statement(in, [&](int lineno, const std::vector<std::string>& tok) {
+    const std::string& kw = tok[0];
+    if (kw == "v") { check_numbers(path, lineno, tok, 3, 6, "vertex"); ++nv; }
+    else if (kw == "vn") { check_numbers(path, lineno, tok, 3, 3, "normal"); ++nvn; }
+    else if (kw == "vt") { check_numbers(path, lineno, tok, 1, 3, "texture coordinate"); ++nvt; }
+    else if (kw == "mtllib") { for (std::size_t k = 1; k < tok.size(); ++k) scan.mtllibs.push_back(tok[k]); }
+    else if (kw == "f") {
+      if (tok.size() < 4) fail(path, lineno, fmt::format("face has {} vertices, needs at least 3", tok.size() - 1));
+      for (std::size_t k = 1; k < tok.size(); ++k) {
+        const std::string& c = tok[k];
+        const auto s1 = c.find('/');
+        check_index(path, lineno, c.substr(0, s1), nv, "vertex");
+        if (s1 == std::string::npos) continue;
+        const auto s2 = c.find('/', s1 + 1);
+        const std::string vt = c.substr(s1 + 1, s2 == std::string::npos ? std::string::npos : s2 - s1 - 1);
+        if (!vt.empty()) check_index(path, lineno, vt, nvt, "texture");
+        if (s2 != std::string::npos) check_index(path, lineno, c.substr(s2 + 1), nvn, "normal");
+      }
+      scan.face_lines.push_back(lineno);
+    }
+  });
+  return scan;
+}
+
+// The MTL values insitu uses, checked line by line before tinyobjloader (which reads "nan" and
+// negative values silently): Kd and Ks are reflectances in [0, 1], Ns a finite exponent ≥ 0,
+// d an opacity in [0, 1].
+void scan_mtl(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return;  // a missing MTL is tinyobjloader's warning
+  for_each_statement(in, [&](int lineno, const std::vector<std::string>& tok) {
+    const std::string& kw = tok[0];
+    const bool colour = kw == "Kd" || kw == "Ks" || kw == "Ka" || kw == "Ke";
+    if (!colour && kw != "Ns" && kw != "d") return;
+    if (colour && tok.size() > 1 && tok[1] == "spectral") return;
+    check_numbers(path, lineno, tok, colour ? (tok.size() == 2 ? 1 : 3) : 1, 3, kw.c_str());
+    for (std::size_t k = 1; k < tok.size() && k <= 3; ++k) {
+      const double v = std::strtod(tok[k].c_str(), nullptr);
+      if ((kw == "Kd" || kw == "Ks" || kw == "d") && (v < 0 || v > 1))
+        fail(path, lineno, fmt::format("{} {} is outside [0, 1] ({})", kw, tok[k], kw == "d" ? "an opacity" : "a reflectance"));
+      if ((kw == "Ka" || kw == "Ke" || kw == "Ns") && v < 0) fail(path, lineno, fmt::format("{} {} is negative", kw, tok[k]));
+    }
+  });
+}
+
+// ---- Conversion from tinyobjloader ----------------------------------------------------------
+
+Material convert_material(const tinyobj::material_t& m, const fs::path& base_dir,
+                          const std::string& obj_path) {
+  Material out;
+  out.name = m.name;
+  out.kd = Rgb(float(m.diffuse[0]), float(m.diffuse[1]), float(m.diffuse[2]));
+  out.ks = Rgb(float(m.specular[0]), float(m.specular[1]), float(m.specular[2]));
+  out.ns = float(m.shininess);
+  out.d = float(m.dissolve);
+  const std::string where = fmt::format("{}: material '{}'", obj_path, m.name);
+  if (!out.kd.allFinite() || (out.kd < 0).any())
+    throw InputError(where, "Kd must be finite and non-negative");
+  if (!m.diffuse_texname.empty()) {
+    const std::string tex = (base_dir / m.diffuse_texname).string();
+    try {
+      out.map_kd = std::make_shared<Image>(linearize(read_image_file(tex)));
+    } catch (const InputError& e) {
+      throw e.with_context(where + ": map_Kd");
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+Mesh load_obj(const std::string& path, Warnings& warnings) {
+  const std::string ext = lower_extension(path);
+  if (ext != ".obj")
+    throw InputError(path, fmt::format("only OBJ meshes are supported ('{}'): convert it to .obj, e.g. in Blender",
+                                       ext.empty() ? "no extension" : ext));
+  const ObjScan scan = scan_obj(path);
+  const fs::path base_dir = fs::path(path).parent_path();
+  for (const auto& m : scan.mtllibs) scan_mtl((base_dir / m).string());
+
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = false;  // we fan polygons ourselves so each triangle keeps its line
+  config.vertex_color = false;
+  config.mtl_search_path = base_dir.string();
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(path, config)) {
+    std::string err = reader.Error();
+    while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+    throw InputError(path, err.empty() ? "cannot parse OBJ" : err);
+  }
+  std::istringstream warn_lines(reader.Warning());
+  for (std::string w; std::getline(warn_lines, w);)
+    if (!w.empty()) warnings.add(path, w);
+
+  const auto& attrib = reader.GetAttrib();
+  Mesh mesh;
+  mesh.source = path;
+  mesh.files.push_back(path);
+  for (const auto& m : scan.mtllibs) mesh.files.push_back((base_dir / m).string());
+  for (std::size_t i = 0; i + 2 < attrib.vertices.size(); i += 3)
+    mesh.positions.emplace_back(attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]);
+  for (std::size_t i = 0; i + 2 < attrib.normals.size(); i += 3) {
+    Vec3f n(attrib.normals[i], attrib.normals[i + 1], attrib.normals[i + 2]);
+    mesh.normals.push_back(n.norm() > 0 ? n.normalized() : n);
+  }
+  for (std::size_t i = 0; i + 1 < attrib.texcoords.size(); i += 2)
+    mesh.uvs.emplace_back(attrib.texcoords[i], attrib.texcoords[i + 1]);
+  for (const auto& m : reader.GetMaterials()) {
+    mesh.materials.push_back(convert_material(m, base_dir, path));
+    if (!m.diffuse_texname.empty()) mesh.files.push_back((base_dir / m.diffuse_texname).string());
+  }
+  const int default_material = int(mesh.materials.size());
+  mesh.materials.push_back(Material{});
+
+  std::size_t face_no = 0, degenerate = 0;
+  int first_degenerate_line = 0;
+  for (const auto& shape : reader.GetShapes()) {
+    std::size_t offset = 0;
+    for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++face_no) {
+      const std::size_t nfv = shape.mesh.num_face_vertices[f];
+      const int line = face_no < scan.face_lines.size() ? scan.face_lines[face_no] : 0;
+      int mat = shape.mesh.material_ids.empty() ? -1 : shape.mesh.material_ids[f];
+      if (mat < 0 || mat >= default_material) mat = default_material;
+      for (std::size_t k = 1; k + 1 < nfv; ++k) {
+        const tinyobj::index_t corner[3] = {shape.mesh.indices[offset], shape.mesh.indices[offset + k],
+                                            shape.mesh.indices[offset + k + 1]};
+        Triangle tri;
+        for (int c = 0; c < 3; ++c) {
+          tri.v[c] = std::uint32_t(corner[c].vertex_index);
+          tri.n[c] = corner[c].normal_index;
+          tri.t[c] = corner[c].texcoord_index;
+        }
+        tri.material = mat;
+        // Degenerate: |e1 × e2| <= 1e-12 (|e1|² + |e2|²), in double, scale-free.
+        const Vec3d p0 = mesh.positions[tri.v[0]].cast<double>();
+        const Vec3d e1 = mesh.positions[tri.v[1]].cast<double>() - p0;
+        const Vec3d e2 = mesh.positions[tri.v[2]].cast<double>() - p0;
+        if (e1.cross(e2).norm() <= 1e-12 * (e1.squaredNorm() + e2.squaredNorm()) ||
+            (e1.squaredNorm() + e2.squaredNorm()) == 0.0) {
+          if (degenerate++ == 0) first_degenerate_line = line;
+          continue;
+        }
+        mesh.triangles.push_back(tri);
+      }
+      offset += nfv;
+    }
+  }
+  if (degenerate > 0)
+    warnings.add(path, fmt::format("{} degenerate triangle(s) dropped (first at line {})", degenerate,
+                                   first_degenerate_line));
+  if (mesh.triangles.empty()) throw InputError(path, "no triangles (the mesh has no usable faces)");
+  return mesh;
+}
+
+void transform_mesh(Mesh& mesh, const Mat4d& M) {
+  const Eigen::Matrix3d A = M.topLeftCorner<3, 3>();
+  const Vec3d t = M.topRightCorner<3, 1>();
+  const Eigen::Matrix3d N = A.inverse().transpose();
+  // Rays and positions are float: a transform (scale 1e300, translate 1e300) that takes a vertex
+  // beyond float range, or one whose inverse transpose overflows (scale 1e-300), is refused.
+  if (!M.allFinite() || !N.allFinite())
+    throw InputError("", "the transform is not finite, or not invertible in double precision (scale too small or too large)");
+  for (Vec3f& p : mesh.positions) {
+    const Vec3d q = A * p.cast<double>() + t;
+    if (!(q.cwiseAbs().maxCoeff() < 1e30))
+      throw InputError("", fmt::format("the transform takes vertex ({}, {}, {}) to ({:.3g}, {:.3g}, {:.3g}): beyond the range "
+                                       "insitu renders (1e30 m)", p.x(), p.y(), p.z(), q.x(), q.y(), q.z()));
+    p = q.cast<float>();
+  }
+  for (Vec3f& n : mesh.normals) {
+    const Vec3d m = N * n.cast<double>();
+    n = (m.norm() > 0 ? m.normalized() : m).cast<float>();
+  }
+}
+
+Bounds mesh_bounds(const Mesh& mesh) {
+  Bounds b;
+  for (const Triangle& t : mesh.triangles)
+    for (auto v : t.v) b.extend(mesh.positions[v]);
+  return b;
+}
+
+}  // namespace insitu

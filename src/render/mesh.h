@@ -1,0 +1,61 @@
+// Triangle meshes from OBJ + MTL (tinyobjloader does the parsing).
+//
+// Before tinyobjloader reads a file, a validating pass over its text checks what tinyobjloader
+// lets through silently, so that every error names its line: non-finite or missing coordinates
+// (`v`, `vn`, `vt`), face indices that are 0 or out of range, faces with fewer than three
+// vertices. Polygons are split into fans (0, i, i+1); degenerate triangles (zero area relative
+// to their edge lengths) are dropped and counted as a warning.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/image.h"
+#include "core/math.h"
+
+namespace insitu {
+
+struct Material {
+  std::string name = "default";
+  Rgb kd = Rgb(0.8f, 0.8f, 0.8f);  // diffuse reflectance (linear)
+  Rgb ks = Rgb::Zero();            // specular reflectance, kept for the glossy lobe
+  float ns = 0.0f;                 // Phong exponent
+  float d = 1.0f;                  // dissolve (opacity)
+  std::shared_ptr<const Image> map_kd;  // linear RGB, multiplies kd; sampled by the UVs
+  Rgb base_colour(const Vec2f& uv) const;  // kd × texture(uv), texture repeating
+};
+
+struct Triangle {
+  std::array<std::uint32_t, 3> v;    // into positions
+  std::array<std::int32_t, 3> n;     // into normals, -1: use the geometric normal
+  std::array<std::int32_t, 3> t;     // into uvs, -1: none
+  std::int32_t material;             // into materials
+};
+
+struct Mesh {
+  std::string source;  // the OBJ path, for messages
+  std::vector<std::string> files;  // every file it was read from: the OBJ, its MTL files, textures
+  std::vector<Vec3f> positions;
+  std::vector<Vec3f> normals;
+  std::vector<Vec2f> uvs;
+  std::vector<Triangle> triangles;
+  std::vector<Material> materials;  // never empty: a default material is added when needed
+};
+
+// Throws InputError("file:line", ...) on bad input; adds counted warnings.
+Mesh load_obj(const std::string& path, Warnings& warnings);
+
+// Applies an affine transform (positions by M, normals by its inverse transpose).
+void transform_mesh(Mesh& mesh, const Mat4d& M_world_from_object);
+
+struct Bounds {
+  Vec3f lo = Vec3f::Constant(std::numeric_limits<float>::infinity());
+  Vec3f hi = Vec3f::Constant(-std::numeric_limits<float>::infinity());
+  void extend(const Vec3f& p) { lo = lo.cwiseMin(p); hi = hi.cwiseMax(p); }
+};
+Bounds mesh_bounds(const Mesh& mesh);
+
+}  // namespace insitu

@@ -1,0 +1,61 @@
+// The render loop: for every pixel, spp camera samples at jittered sub-pixel positions (a
+// stratified jittered grid when spp is a perfect square), each traced by the integrator, in up to
+// 8 passes over the image so that progress can report the noise reached. Tiles run in parallel on
+// TBB; every sample's random numbers come from the counter-based hash and each pixel adds its
+// samples in index order, so the image does not depend on the number of threads or passes.
+#pragma once
+#include <cstdint>
+#include <functional>
+
+#include "core/camera.h"
+#include "core/image.h"
+#include "render/integrator.h"
+
+namespace insitu {
+
+// depth.Z where no sample met an object or the local scene: Cycles's background depth, finite so
+// that every layer stays finite.
+constexpr float kNoHitDepth = 1e10f;
+
+// What the render loop itself reads: samples per pixel and the seed of the counter-based random
+// numbers (the integrator reads its own parameters: integrators/registry.h).
+struct RenderSettings {
+  int spp = 16;
+  std::uint64_t seed = 1;
+};
+
+struct RenderLayers {
+  Image objects;  // RGB, premultiplied by coverage: mean over samples of radiance × coverage
+  Image alpha;    // 1 channel: mean coverage
+  Image with_objects, without_objects;  // RGB: mean over samples of the catcher's radiance (0 off it)
+  Image normal, albedo;  // RGB: mean over the samples that met an object or a catcher
+  Image depth;           // 1 channel: camera-space z (metres along the optical axis, as Cycles's and
+                         // Nuke's Z) of what the samples met, averaged over those that met
+                         // something; kNoHitDepth where none did
+  Image samples;         // 1 channel: samples taken in the pixel
+  Image variance;        // 1 channel: variance of the pixel's mean, luminance of O + W − N, estimated
+                         // as if the samples were independent (conservative: their positions are
+                         // stratified)
+  // For the composite's choice between the ratio and the additive form (composite.h): variance
+  // of the ratio of means W̄/N̄ and of the difference W̄ − N̄ (luminance), and the number of samples
+  // that saw the catcher.
+  Image ratio_variance, difference_variance, catcher_samples;
+  double mean_relative_noise = 0;  // mean over changed pixels of √variance / value
+  std::size_t nonfinite_samples = 0;  // zeroed and counted, never propagated
+  double seconds = 0;
+};
+
+// Progress of a render: called once with fraction 0 when the sample loop starts, then from the
+// rendering threads (serialized) with noise −1, and after each pass of samples with the noise
+// reached (mean relative standard error over the pixels the render changed).
+struct RenderProgress {
+  double fraction = 0;
+  int spp_done = 0;
+  double noise = -1;
+};
+using ProgressFn = std::function<void(const RenderProgress&)>;
+
+RenderLayers render(const Camera& camera, const Integrator& integrator, const RenderSettings& settings,
+                    const ProgressFn& progress = {});
+
+}  // namespace insitu

@@ -1,0 +1,315 @@
+#include "scene/pipeline.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <functional>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "output/composite.h"
+#include "output/tonemap.h"
+#include "core/output_paths.h"
+#include "core/text_file.h"
+#include "light/irradiance.h"
+
+namespace insitu {
+
+std::string effective_tonemap(const SceneSpec& spec) {
+  return is_linear_output(spec.output.image) ? "none" : tonemap_name(spec.output.tonemap.op);
+}
+
+void warn_ineffective_settings(const SceneSpec& spec, const IntegratorEntry& e, Warnings& w) {
+  const std::string by = "the " + spec.render.integrator + " integrator";
+  auto given = [&](const char* name) { return spec.given.count(name) > 0; };
+  if (!spec.local_scene.empty() && !e.uses.local_scene)
+    w.add("local_scene", "has no effect: " + by + " draws no shadows on it (only path does)");
+  if (spec.environment.room_box && !e.uses.room_box)
+    w.add("environment.room_box", "has no effect: " + by + " looks the cube up by direction only (only path uses it)");
+  const ToneMap op = spec.output.tonemap.op;
+  if (is_linear_output(spec.output.image)) {
+    for (const char* key : {"output.tonemap", "output.tonemap.key", "output.tonemap.bias"})
+      if (given(key))
+        w.add(key, "has no effect: " + spec.output.image + " is a linear, scene-referred image; tone mapping applies to PNG and JPEG");
+    return;
+  }
+  if (given("output.tonemap.key") && op == ToneMap::kPhoto)
+    w.add("output.tonemap.key", "has no effect with the photo tone map (it re-encodes through the photo's own curve)");
+  if (given("output.tonemap.bias") && op != ToneMap::kAdaptiveLog)
+    w.add("output.tonemap.bias", std::string("has no effect with the ") + tonemap_name(op) + " tone map (only adaptive_log has a bias)");
+}
+
+// A transform that shrinks a mesh below float resolution (scale 1e-30) leaves nothing to render.
+void warn_if_collapsed(const Mesh& mesh, const std::string& where, Warnings& warnings) {
+  const Bounds b = mesh_bounds(mesh);
+  if ((b.lo.array() <= b.hi.array()).all() && !((b.hi - b.lo).maxCoeff() > 0))
+    warnings.add(where, "the transform shrinks the mesh to a point: it covers nothing (is the scale right?)");
+}
+
+bool outside_view(const Camera& cam, const Bounds& b) {
+  if (!(b.lo.array() <= b.hi.array()).all()) return true;  // no triangles
+  // The box's corners in camera space; the view is the frustum z > 0, 0 ≤ u ≤ W, 0 ≤ v ≤ H, i.e.
+  // the half-spaces z > 0, fx·x + cx·z ≥ 0, fx·x + (cx − W)·z ≤ 0 and the same in y. The box is
+  // outside when all eight corners lie outside one of them (each is linear in the camera frame).
+  std::array<Vec3d, 8> c;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3d p_world(k & 1 ? b.hi.x() : b.lo.x(), k & 2 ? b.hi.y() : b.lo.y(), k & 4 ? b.hi.z() : b.lo.z());
+    c[std::size_t(k)] = cam.R_cam_from_world * p_world + cam.t_cam_from_world;
+  }
+  const std::array<std::function<double(const Vec3d&)>, 5> inside = {
+      [](const Vec3d& p) { return p.z(); },
+      [&](const Vec3d& p) { return cam.fx * p.x() + cam.cx * p.z(); },
+      [&](const Vec3d& p) { return -(cam.fx * p.x() + (cam.cx - cam.width) * p.z()); },
+      [&](const Vec3d& p) { return cam.fy * p.y() + cam.cy * p.z(); },
+      [&](const Vec3d& p) { return -(cam.fy * p.y() + (cam.cy - cam.height) * p.z()); }};
+  for (const auto& f : inside)
+    if (std::all_of(c.begin(), c.end(), [&](const Vec3d& p) { return f(p) <= 0; })) return true;
+  return false;
+}
+
+std::vector<NamedPath> scene_input_files(const SceneSpec& spec) {
+  std::vector<NamedPath> in = {{spec.path, "the scene file"}, {spec.photo, "the photo"}};
+  const EnvironmentSpec& e = spec.environment;
+  if (!e.image.empty()) in.push_back({e.image, "the environment"});
+  for (int f = 0; f < 6; ++f)
+    for (const auto& file : e.shots[std::size_t(f)].files) in.push_back({file, std::string("shot ") + face_name(f)});
+  if (!spec.camera.points.empty()) in.push_back({spec.camera.points, "the control points"});
+  if (!spec.camera.file.empty()) in.push_back({spec.camera.file, "the camera file"});
+  for (const auto& o : spec.objects) in.push_back({o.mesh, "a mesh (" + o.where + ")"});
+  for (const auto& p : spec.local_scene)
+    if (p.mesh) in.push_back({p.mesh->mesh, "a local-scene mesh (" + p.mesh->where + ")"});
+  return in;
+}
+
+std::vector<NamedPath> scene_output_files(const SceneSpec& spec) {
+  if (spec.output.image.empty()) return {{spec.output.layers, "the layers"}};
+  return {{spec.output.image, "the output image"},
+          {spec.output.layers, "the layers"},
+          {report_path(spec.output.image), "the report"}};
+}
+
+LoadedScene load_scene(const SceneSpec& spec) {
+  const auto start = std::chrono::steady_clock::now();
+  // Before any work: no output may replace an input or another output.
+  check_outputs(scene_input_files(spec), scene_output_files(spec));
+  LoadedScene s;
+  s.spec = spec;
+  s.warnings = spec.warnings;
+  // The integrator reads its parameters before anything is loaded: a typo costs nothing.
+  s.integrator = resolve_integrator(spec.render.integrator, spec.render.block, s.warnings);
+  warn_ineffective_settings(spec, *s.integrator.entry, s.warnings);
+  try {
+    s.photo = read_image_file(spec.photo);
+  } catch (const InputError& e) {
+    throw e.with_context(spec.photo_where);
+  }
+  // The environment first: brackets may recover the camera response that linearizes the photo.
+  s.environment = load_environment(spec.environment, s.warnings, &s.environment_info, &s.photo);
+  std::size_t clamped = 0;
+  s.photo_linear = linearize_photo(s.photo, s.environment_info, &clamped);
+  if (clamped > 0) s.warnings.add(spec.photo, fmt::format("{} negative or non-finite values clamped to 0", clamped));
+  const int width = s.photo.stored.width, height = s.photo.stored.height;
+  if (spec.camera.kind == CameraSpec::Kind::Points) {
+    // Calibrate; the uncertainty is reported at the objects' mean position when there are any.
+    CalibrationOptions options;
+    if (spec.camera.model) options.model = parse_model(*spec.camera.model);
+    if (!spec.objects.empty()) {
+      Vec3d mean = Vec3d::Zero();
+      for (const auto& o : spec.objects) mean += o.M_world_from_object.topRightCorner<3, 1>() / double(spec.objects.size());
+      options.insertion_world = mean;
+    }
+    try {
+      const auto points = read_control_points(spec.camera.points, spec.camera.bottom_left_origin, height);
+      s.calibration = calibrate(points, width, height, options);
+    } catch (const InputError& e) {
+      throw e.with_context(spec.camera.where + ".points");
+    }
+    s.camera = s.calibration->camera;
+    for (const auto& w : s.calibration->warnings) s.warnings.add(spec.camera.where, w);
+  } else {
+    s.camera = build_camera(spec.camera, width, height, &s.warnings);
+  }
+
+  std::vector<Mesh> meshes;
+  for (const ObjectSpec& obj : spec.objects) {
+    Mesh mesh;
+    try {
+      mesh = load_obj(obj.mesh, s.warnings);
+    } catch (const InputError& e) {
+      throw e.with_context(obj.where + ".mesh");
+    }
+    try {
+      transform_mesh(mesh, obj.M_world_from_object);
+    } catch (const InputError& e) {
+      throw e.with_context(obj.where);
+    }
+    warn_if_collapsed(mesh, obj.where, s.warnings);
+    if (outside_view(s.camera, mesh_bounds(mesh)))
+      s.warnings.add(obj.where, "the object lies entirely outside the camera's view (it covers no pixel): check translate and the camera");
+    meshes.push_back(std::move(mesh));
+  }
+  // The files the meshes named (MTL, textures) are inputs too.
+  std::vector<NamedPath> mesh_files;
+  for (const Mesh& m : meshes)
+    for (const auto& f : m.files) mesh_files.push_back({f, "read by " + m.source});
+  check_outputs(mesh_files, scene_output_files(spec));
+  s.objects = std::make_unique<EmbreeScene>(std::move(meshes));
+  std::vector<Mesh> catcher_meshes;
+  for (std::size_t i = 0; i < spec.local_scene.size(); ++i) {
+    const auto& m = spec.local_scene[i].mesh;
+    if (!m) continue;
+    Mesh mesh;
+    try {
+      mesh = load_obj(m->mesh, s.warnings);
+    } catch (const InputError& e) {
+      throw e.with_context(m->where + ".mesh");
+    }
+    try {
+      transform_mesh(mesh, m->M_world_from_object);
+    } catch (const InputError& e) {
+      throw e.with_context(m->where);
+    }
+    warn_if_collapsed(mesh, m->where, s.warnings);
+    catcher_meshes.push_back(std::move(mesh));
+  }
+  mesh_files.clear();
+  for (const Mesh& m : catcher_meshes)
+    for (const auto& f : m.files) mesh_files.push_back({f, "read by " + m.source});
+  check_outputs(mesh_files, scene_output_files(spec));
+  s.catcher_meshes = std::make_unique<EmbreeScene>(std::move(catcher_meshes));
+  s.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return s;
+}
+
+RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress) {
+  RenderInputs inputs;
+  inputs.objects = scene.objects.get();
+  inputs.environment = &scene.environment;
+  inputs.photo_linear = &scene.photo_linear;
+  if (const auto& box = scene.spec.environment.room_box) {
+    inputs.room_box = true;
+    inputs.box_min = box->min.cast<float>();
+    inputs.box_max = box->max.cast<float>();
+    inputs.capture = box->capture.cast<float>();
+  }
+  inputs.camera = &scene.camera;
+  // Everything before the sample loop is preparation: the catcher's irradiance included.
+  const auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<IrradianceField> catcher_irradiance;
+  for (const PlaneSpec& p : scene.spec.local_scene) {
+    if (p.mesh) {
+      inputs.catcher_mesh_info.push_back({p.albedo_from_photo, p.albedo});
+      continue;
+    }
+    CatcherPlane c;
+    c.point = p.point.cast<float>();
+    c.normal = p.normal.normalized().cast<float>();
+    // The side the camera sees.
+    if (c.normal.dot(scene.camera.eye_world().cast<float>() - c.point) < 0) c.normal = -c.normal;
+    c.albedo_from_photo = p.albedo_from_photo;
+    c.albedo = p.albedo;
+    c.irradiance = irradiance_reference(scene.environment, c.normal.cast<double>());
+    inputs.planes.push_back(c);
+  }
+  if (!inputs.catcher_mesh_info.empty()) {
+    catcher_irradiance = make_irradiance(IrradianceMode::kExact, scene.environment);
+    inputs.catcher_meshes = scene.catcher_meshes.get();
+    inputs.catcher_irradiance = catcher_irradiance.get();
+  }
+  auto integrator = scene.integrator.entry->create(inputs, scene.integrator.params);
+  RenderResult r;
+  r.prepare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.layers = render(scene.camera, *integrator, {scene.spec.render.spp, scene.spec.render.seed}, progress);
+  r.composite_linear = composite(scene.photo_linear, r.layers, scene.spec.composite);
+  r.composite_encoded = encode_composite(r.composite_linear, touched_mask(r.layers), scene.photo,
+                                         scene.environment_info.response ? &*scene.environment_info.response : nullptr);
+  return r;
+}
+
+std::string report_path(const std::string& image_path) { return image_path + ".report.json"; }
+
+std::string layers_path_for(const std::string& image_path) {
+  const std::filesystem::path p(image_path);
+  return (p.parent_path() / (p.stem().string() + ".layers.exr")).string();
+}
+
+nlohmann::json render_report(const LoadedScene& s, const RenderResult& r) {
+  using nlohmann::json;
+  const auto& info = s.environment_info;
+  json shots = json::array();
+  if (s.spec.environment.from_shots())
+    for (int f = 0; f < 6; ++f)
+      shots.push_back({{"face", face_name(f)},
+                       {"files", s.spec.environment.shots[std::size_t(f)].files},
+                       {"coverage_percent", 100 * info.coverage[std::size_t(f)]},
+                       {"clipped_percent", 100 * info.clipped[std::size_t(f)]}});
+  json calibration = nullptr;
+  if (s.calibration)
+    calibration = {{"model", model_name(s.calibration->model)},
+                   {"rms_px", s.calibration->rms_px},
+                   {"inliers", s.calibration->inliers},
+                   {"insertion_sigma_px", s.calibration->insertion_sigma_px}};
+  return json{
+      {"scene", s.spec.path},
+      {"image", {{"width", s.camera.width}, {"height", s.camera.height}}},
+      {"seconds", {{"load", s.load_seconds}, {"prepare", r.prepare_seconds}, {"render", r.layers.seconds}}},
+      {"calibration", calibration},
+      {"environment",
+       {{"face_size", s.environment.size()},
+        {"exposure", info.exposure_source},
+        {"exposure_factor", info.exposure_factor},
+        {"response_from_brackets", info.response.has_value()},
+        {"clamped_values", info.clamped_values},
+        {"shots", shots}}},
+      {"render",
+       {{"integrator", s.spec.render.integrator},
+        {"parameters", s.integrator.params},
+        {"irradiance", s.integrator.params.value("irradiance", json(nullptr))},
+        {"spp", s.spec.render.spp},
+        {"max_depth", s.integrator.params.value("max_depth", json(nullptr))},
+        {"seed", s.spec.render.seed},
+        {"noise_relative", r.layers.mean_relative_noise},
+        {"nonfinite_samples", r.layers.nonfinite_samples}}},
+      {"composite", name_of(kCompositeModes, s.spec.composite)},
+      {"tonemap", effective_tonemap(s.spec)},
+      {"warnings", s.warnings.items},
+  };
+}
+
+void write_outputs(const LoadedScene& scene, const RenderResult& r) {
+  const std::string& image = scene.spec.output.image;
+  const bool linear_out = is_linear_output(image);
+  const ToneMapSettings& tm = scene.spec.output.tonemap;
+  write_image(image, linear_out ? r.composite_linear
+                                : tm.op == ToneMap::kPhoto ? r.composite_encoded : tonemap(r.composite_linear, tm));
+  write_text_file(report_path(image), render_report(scene, r).dump(2) + "\n");
+  if (!scene.spec.output.layers.empty()) {
+    // Every layer is finite, always: ±inf (a variance that overflowed float) becomes the largest
+    // float of its sign, so that it still reads as huge, and NaN becomes 0.
+    auto finite = [](Image img) {
+      constexpr float kMax = std::numeric_limits<float>::max();
+      for (float& v : img.data)
+        if (!std::isfinite(v)) v = std::isnan(v) ? 0.0f : std::copysign(kMax, v);
+      return img;
+    };
+    const Image c = finite(r.composite_linear), o = finite(r.layers.objects), a = finite(r.layers.alpha);
+    const Image w = finite(r.layers.with_objects), n = finite(r.layers.without_objects);
+    const Image ratio = finite(shadow_ratio(r.layers));
+    const Image normal = finite(r.layers.normal), albedo = finite(r.layers.albedo), depth = finite(r.layers.depth);
+    const Image variance = finite(r.layers.variance), photo = finite(scene.photo_linear);
+    write_exr_channels(scene.spec.output.layers, c.width, c.height,
+                       {{"R", &c, 0}, {"G", &c, 1}, {"B", &c, 2},
+                        {"objects.R", &o, 0}, {"objects.G", &o, 1}, {"objects.B", &o, 2}, {"objects.A", &a, 0},
+                        {"with.R", &w, 0}, {"with.G", &w, 1}, {"with.B", &w, 2},
+                        {"without.R", &n, 0}, {"without.G", &n, 1}, {"without.B", &n, 2},
+                        {"shadow_ratio.R", &ratio, 0}, {"shadow_ratio.G", &ratio, 1}, {"shadow_ratio.B", &ratio, 2},
+                        {"normal.X", &normal, 0}, {"normal.Y", &normal, 1}, {"normal.Z", &normal, 2},
+                        {"albedo.R", &albedo, 0}, {"albedo.G", &albedo, 1}, {"albedo.B", &albedo, 2},
+                        {"depth.Z", &depth, 0}, {"samples.Y", &r.layers.samples, 0}, {"variance.Y", &variance, 0},
+                        {"photo.R", &photo, 0}, {"photo.G", &photo, 1}, {"photo.B", &photo, 2}});
+  }
+}
+
+}  // namespace insitu

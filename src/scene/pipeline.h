@@ -1,0 +1,75 @@
+// The render pipeline of a scene file, stage by stage: load (photo, camera, environment,
+// objects), render the layers, composite over the photo, write the outputs.
+#pragma once
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "calib/calibration.h"
+#include "core/camera.h"
+#include "light/cubemap.h"
+#include "render/embree_scene.h"
+#include "light/environment.h"
+#include "core/error.h"
+#include "core/image.h"
+#include "core/output_paths.h"
+#include "render/render.h"
+#include "integrators/registry.h"
+#include "scene/scene_file.h"
+
+namespace insitu {
+
+struct LoadedScene {
+  SceneSpec spec;
+  ImageFile photo;
+  Image photo_linear;
+  Camera camera;
+  std::optional<CalibrationResult> calibration;  // when the camera came from control points
+  CubeMap environment;
+  EnvironmentInfo environment_info;
+  std::unique_ptr<EmbreeScene> objects;
+  std::unique_ptr<EmbreeScene> catcher_meshes;  // meshes of the local scene
+  ResolvedIntegrator integrator;  // the entry and its parameters, read from the render object
+  Warnings warnings;
+  double load_seconds = 0;
+};
+
+// Refuses (InputError) before reading anything when an output would replace an input or another
+// output (output_paths.h), and again once the meshes have named their MTL files and textures.
+LoadedScene load_scene(const SceneSpec& spec);
+
+// The files a scene reads (before loading its meshes) and writes.
+std::vector<NamedPath> scene_input_files(const SceneSpec& spec);
+std::vector<NamedPath> scene_output_files(const SceneSpec& spec);
+
+struct RenderResult {
+  double prepare_seconds = 0;  // the integrator's precomputation (legacy blur, irradiance cube)
+  RenderLayers layers;
+  Image composite_linear;
+  Image composite_encoded;  // what goes into a PNG/JPEG
+};
+
+RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress = {});
+
+// Writes the composite image, the layered EXR and the JSON report, each atomically.
+void write_outputs(const LoadedScene& scene, const RenderResult& result);
+
+// The report written next to the image (IMAGE_STEM.report.json): stage timings, the calibration's
+// RMS, the integrator, irradiance mode, samples per pixel, noise estimate, non-finite samples, and
+// per shot the coverage and clipped percentage.
+nlohmann::json render_report(const LoadedScene& scene, const RenderResult& result);
+// The report of an image: its whole name + ".report.json" (a.png and a.exr keep their own).
+std::string report_path(const std::string& image_path);
+// The layers that go with an image given by -o: IMAGE_STEM.layers.exr beside it.
+std::string layers_path_for(const std::string& image_path);
+
+// Whether a world-space box lies entirely outside the camera's view frustum (conservative: a box
+// that straddles a corner of the frustum may still be out of view).
+bool outside_view(const Camera& camera, const Bounds& box_world);
+
+// Settings given (SceneSpec::given, the local scene, the room box) that the integrator or the
+// output format does not use, each named in a warning; and what is really done, for the report.
+// (The integrators' parameters are checked by resolve_integrator.)
+void warn_ineffective_settings(const SceneSpec& spec, const IntegratorEntry& integrator, Warnings& warnings);
+std::string effective_tonemap(const SceneSpec& spec);  // "none" for EXR/TIFF
+
+}  // namespace insitu

@@ -1,0 +1,35 @@
+// The scene file (DESIGN.md "Scene file"): JSON, paths relative to the file, unknown keys are
+// errors. parse_scene_file() checks types, ranges and that every named file exists; every error
+// names the file and the JSON path. The reference is in README.md.
+#pragma once
+#include <string>
+
+#include "core/camera.h"
+#include "core/error.h"
+#include "scene/spec.h"
+
+namespace insitu {
+
+SceneSpec parse_scene_file(const std::string& path);
+
+// Outputs whose format ignores the tone map: EXR and TIFF stay linear, scene-referred.
+bool is_linear_output(const std::string& image_path);
+// A JSON file holding just an environment object (the scene file's "environment" value).
+EnvironmentSpec parse_environment_file(const std::string& path);
+
+// An environment named on the command line: a scene file (its environment), a JSON file holding
+// just an environment object (e.g. {"shots": {...}}), or an HDR image. For a scene file, *photo
+// receives its photo's path.
+EnvironmentSpec environment_from_argument(const std::string& path, std::string* photo = nullptr);
+
+// Builds the camera for a photo of width x height (not for Kind::Points: see pipeline.cpp).
+Camera build_camera(const CameraSpec& spec, int width, int height, Warnings* warnings = nullptr);
+
+// How far a given rotation matrix may be from orthonormal, ‖R Rᵀ − I‖_F, before it is refused;
+// within it the nearest rotation is used (exporters round R to about 6 decimals).
+constexpr double kRotationTolerance = 1e-3;
+
+// The object transform: translate · rotate · scale (scale first), or a 4x4 matrix.
+Mat4d object_transform(const Vec3d& translate, double rotate_deg, const Vec3d& axis, const Vec3d& scale);
+
+}  // namespace insitu

@@ -1,0 +1,87 @@
+// The scene file's plain spec types (DESIGN.md "Scene file"): what the parser (scene_file.h)
+// builds from the JSON and the pipeline (pipeline.h) turns into objects. Nothing of the render
+// side: a spec names files and settings, it loads and builds nothing.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/json_reader.h"
+#include "core/math.h"
+#include "light/environment_spec.h"
+#include "output/settings.h"
+
+namespace insitu {
+
+struct CameraSpec {
+  enum class Kind { LookAt, Explicit, File, Points } kind = Kind::LookAt;
+  std::string where;  // JSON location, for messages
+  // LookAt: eye, look, up and one field of view. Explicit: intrinsics (or a field of view) and R, t.
+  Vec3d eye = Vec3d::Zero(), look = Vec3d::Zero(), up = Vec3d(0, 1, 0);
+  std::optional<double> hfov_deg, vfov_deg;
+  std::optional<double> fx, fy, cx, cy;
+  Mat3d R_cam_from_world = Mat3d::Identity();
+  Vec3d t_cam_from_world = Vec3d::Zero();
+  std::string file;  // File: a camera.json
+  // Points: calibrate from control points (calibration.h).
+  std::string points;
+  std::optional<std::string> model;  // "f", "f+c", "f+c+a"; nullopt: auto
+  bool bottom_left_origin = false;
+};
+
+struct ObjectSpec {
+  std::string where;
+  std::string mesh;
+  Mat4d M_world_from_object = Mat4d::Identity();
+};
+
+// A surface of the local scene: an infinite plane, or a mesh (the real table, a step) placed
+// like an object.
+struct PlaneSpec {
+  Vec3d point = Vec3d::Zero(), normal = Vec3d(0, 1, 0);
+  std::optional<ObjectSpec> mesh;  // set: a mesh catcher (point and normal unused)
+  bool albedo_from_photo = true;
+  Rgb albedo = Rgb::Zero();
+};
+
+struct OutputSpec {
+  std::string image;   // composite (PNG, JPEG, EXR, TIFF)
+  std::string layers;  // multi-layer EXR; empty: none
+  ToneMapSettings tonemap;  // for PNG/JPEG; EXR and TIFF stay linear
+};
+
+// The render stage: the render loop's samples per pixel and seed, the integrator's name, and the
+// render object itself, whose other keys are the integrators' parameters (render.max_depth, or
+// render.path.max_depth): each integrator reads its own (integrators/registry.h).
+struct RenderSpec {
+  std::string integrator = "realtime";
+  int spp = 16;
+  std::uint64_t seed = 1;
+  JsonBlock block{json::object(), "", "$.render"};
+};
+
+// The ranges every verb and the scene file accept for samples per pixel and the seed.
+constexpr int kMaxSpp = 1 << 20;
+constexpr long kMaxSeed = (1L << 62) - 1;
+
+struct SceneSpec {
+  std::string path;  // the scene file
+  std::string photo;
+  std::string photo_where;
+  CameraSpec camera;
+  EnvironmentSpec environment;
+  std::vector<PlaneSpec> local_scene;
+  std::vector<ObjectSpec> objects;
+  RenderSpec render;
+  CompositeMode composite = CompositeMode::kRatio;
+  OutputSpec output;
+  Warnings warnings;  // found while parsing (a rounded rotation, an option without effect)
+  // The settings the user gave (scene file or command line), by their scene-file name, e.g.
+  // "render.irradiance", "output.tonemap.key": a given setting that has no effect is warned of.
+  std::set<std::string> given;
+};
+
+}  // namespace insitu
