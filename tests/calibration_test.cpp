@@ -219,7 +219,7 @@ TEST(Calibration, OutlierIsNamedAndTheCameraStaysRight) {
         EXPECT_FALSE(r.points[i].outlier) << r.points[i].name;
       }
     bool named = false;
-    for (const auto& w : r.warnings) named |= w.find("p7") != std::string::npos;
+    for (const auto& w : r.warnings.items) named |= w.find("p7") != std::string::npos;
     EXPECT_TRUE(named);
     EXPECT_EQ(r.inliers, 19);
     // The camera is right: within 4 reported standard deviations (or exact without noise).
@@ -256,7 +256,7 @@ TEST(Calibration, ErrorsAndWarnings) {
   dup.back().name = "again";
   const CalibrationResult rd = calibrate(dup, 800, 600);
   bool dup_warned = false;
-  for (const auto& w : rd.warnings) dup_warned |= w.find("p3 and again") != std::string::npos;
+  for (const auto& w : rd.warnings.items) dup_warned |= w.find("p3 and again") != std::string::npos;
   EXPECT_TRUE(dup_warned);
   // Coplanar points with a free principal point warn.
   const Truth flat = make_truth(rng, 10, 60, true, 1.0, 800, 600, CameraModel::kF);
@@ -265,7 +265,7 @@ TEST(Calibration, ErrorsAndWarnings) {
   const CalibrationResult rc = calibrate(flat.clean, 800, 600, fc);
   EXPECT_TRUE(rc.coplanar);
   bool coplanar_warned = false;
-  for (const auto& w : rc.warnings) coplanar_warned |= w.find("coplanar") != std::string::npos;
+  for (const auto& w : rc.warnings.items) coplanar_warned |= w.find("coplanar") != std::string::npos;
   EXPECT_TRUE(coplanar_warned);
   // Model too rich for the points.
   std::vector<ControlPoint> five(t.clean.begin(), t.clean.begin() + 5);
@@ -276,7 +276,7 @@ TEST(Calibration, ErrorsAndWarnings) {
   const Truth tele = make_truth(rng, 10, 0.5, false, 1.0, 800, 600, CameraModel::kF);
   const CalibrationResult rt = calibrate(tele.clean, 800, 600);
   bool fov_warned = false;
-  for (const auto& w : rt.warnings) fov_warned |= w.find("implausible") != std::string::npos;
+  for (const auto& w : rt.warnings.items) fov_warned |= w.find("implausible") != std::string::npos;
   EXPECT_TRUE(fov_warned);
 }
 
@@ -291,7 +291,7 @@ TEST(Calibration, PointBehindTheCameraWarns) {
   t.clean.push_back(back);
   const CalibrationResult r = calibrate(t.clean, 800, 600);
   bool warned = false;
-  for (const auto& w : r.warnings) warned |= w.find("behind the camera: behind_me") != std::string::npos;
+  for (const auto& w : r.warnings.items) warned |= w.find("behind the camera: behind_me") != std::string::npos;
   EXPECT_TRUE(warned);
 }
 

@@ -9,6 +9,7 @@
 #include "light/irradiance.h"
 #include "render/mesh.h"
 #include "scene/scene_file.h"
+#include "box_fixture.h"
 #include "test_util.h"
 #include "light/texel_geometry.h"
 
@@ -75,19 +76,6 @@ TEST(EnvSampling, PdfIntegratesToOne) {
 }
 
 // A box with flat faces (shading normal = geometric normal), Kd given, scaled.
-EmbreeScene make_box(const test::TempDir& dir, const std::string& kd, double scale) {
-  dir.write("box.mtl", "newmtl m\nKd " + kd + "\n");
-  const std::string obj =
-      "mtllib box.mtl\nusemtl m\n"
-      "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
-      "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n";
-  Warnings w;
-  std::vector<Mesh> meshes;
-  meshes.push_back(load_obj(dir.write("box.obj", obj), w));
-  transform_mesh(meshes.back(), object_transform({0, 0, 0}, 0, {0, 1, 0}, Vec3d::Constant(scale)));
-  return EmbreeScene(std::move(meshes));
-}
-
 struct Estimate {
   Rgb mean, se;
 };
@@ -115,7 +103,7 @@ TEST(Path, WhiteFurnaceAtEveryScale) {
       for (int i = 0; i < 8; ++i) env.set_texel(f, i, j, Rgb(0.7f, 0.7f, 0.7f));
   env.update_borders();
   for (double scale : {1e-3, 1.0, 1e3}) {
-    const EmbreeScene box = make_box(dir, "1 1 1", scale);
+    const EmbreeScene box = test::make_box(dir, "1 1 1", scale);
     RenderInputs in;
     in.objects = &box;
     in.environment = &env;
@@ -147,7 +135,7 @@ TEST(Path, ConvexObjectEqualsExactIrradiance) {
   INSITU_REQUIRE_SHARED();
   test::TempDir dir;
   const CubeMap env = cube_from_equirect(linearize(read_image_file(test::shared_data() + "/hdri/sunset.exr")), 16);
-  const EmbreeScene box = make_box(dir, "0.5 0.4 0.3", 1.0);
+  const EmbreeScene box = test::make_box(dir, "0.5 0.4 0.3", 1.0);
   RenderInputs in;
   in.objects = &box;
   in.environment = &env;

@@ -224,20 +224,8 @@ void write_furniture(const fs::path& dir) {
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: make_demo OUT_DIR\n");
-    return 2;
-  }
-  const fs::path out(argv[1]);
-  fs::create_directories(out / "shots");
-
-  // The photo: 640 × 480, 2 × 2 samples per pixel.
-  const Vec3d eye(1.7, 1.45, 2.5), look(-0.2, 0.45, -1.2);
-  const double hfov_deg = 62.0;
-  const Camera cam = Camera::look_at(eye, look, Vec3d(0, 1, 0), hfov_deg, 640, 480);
+// The photo, 640 × 480 with 2 × 2 samples per pixel, written with the EXIF exposure of a phone.
+void write_photo(const fs::path& out, const Camera& cam, const Exposure& exif) {
   Image photo(cam.width, cam.height, 3);
   for (int y = 0; y < cam.height; ++y)
     for (int x = 0; x < cam.width; ++x) {
@@ -248,17 +236,14 @@ int main(int argc, char** argv) {
       }
       photo.set_rgb(x, y, sum / 4.0f);
     }
-  // One exposure for the photo and the shots, recorded in their EXIF as a phone would.
-  Exposure exif;
-  exif.time_s = 1.0 / 60;
-  exif.f_number = 1.8;
-  exif.iso = 100;
   write_image((out / "photo.jpg").string(), encode_srgb(photo), &exif);
 
-  // Six 90° shots from where the furniture stands, 256 × 256 (rendered at 768² and shrunk), each
-  // as three exposure brackets four stops apart (EXIF 1/960 s, 1/60 s, 1/4 s), so that the window
-  // and the lamp are recorded without clipping in the shortest one.
-  const Vec3f shot_origin(-0.2f, 0.9f, -1.2f);
+}
+
+// Six 90° shots from where the furniture stands, 256 × 256 (rendered at 768² and shrunk), each
+// as three exposure brackets four stops apart (EXIF 1/960 s, 1/60 s, 1/4 s), so that the window
+// and the lamp are recorded without clipping in the shortest one.
+void write_shots(const fs::path& out, const Vec3f& shot_origin, const Exposure& exif) {
   const int faced = kNegZ;
   const char* names[6] = {"east", "west", "ceiling", "floor", "south", "north"};
   const double bracket_factor[3] = {1.0 / 16, 1.0, 16.0};
@@ -275,10 +260,11 @@ int main(int argc, char** argv) {
     }
   }
 
-  write_furniture(out);
+}
 
-  // Control points: room corners and window corners a user would click, projected by the true
-  // camera, with about 1 px of click noise (σ = 0.7 px per axis), rounded to 0.1 px.
+// Control points: room corners and window corners a user would click, projected by the true
+// camera, with about 1 px of click noise (σ = 0.7 px per axis), rounded to 0.1 px.
+void write_points(const fs::path& out, const Camera& cam) {
   const std::vector<std::pair<std::string, Vec3d>> landmarks = {
       {"floor corner, back left", {-2.5, 0.0, -3.0}},       {"floor corner, back right", {2.5, 0.0, -3.0}},
       {"ceiling corner, back left", {-2.5, 2.6, -3.0}},     {"ceiling corner, back right", {2.5, 2.6, -3.0}},
@@ -305,6 +291,9 @@ int main(int argc, char** argv) {
   }
   write_text(out / "points.json", points.dump(2) + "\n");
 
+}
+
+void write_scene(const fs::path& out, const Vec3f& shot_origin) {
   auto r3 = [](float v) { return std::round(double(v) * 1000) / 1000; };  // float constants, printed cleanly
   auto brackets = [](const std::string& name) {
     return nlohmann::ordered_json::array({"shots/" + name + "_short.jpg", "shots/" + name + ".jpg", "shots/" + name + "_long.jpg"});
@@ -327,6 +316,31 @@ int main(int argc, char** argv) {
       {"render", {{"integrator", "path"}, {"spp", 144}}},
   };
   write_text(out / "scene.json", scene.dump(2) + "\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: make_demo OUT_DIR\n");
+    return 2;
+  }
+  const fs::path out(argv[1]);
+  fs::create_directories(out / "shots");
+  const Vec3d eye(1.7, 1.45, 2.5), look(-0.2, 0.45, -1.2);
+  const double hfov_deg = 62.0;
+  const Camera cam = Camera::look_at(eye, look, Vec3d(0, 1, 0), hfov_deg, 640, 480);
+  // One exposure for the photo and the shots, recorded in their EXIF as a phone would.
+  Exposure exif;
+  exif.time_s = 1.0 / 60;
+  exif.f_number = 1.8;
+  exif.iso = 100;
+  const Vec3f shot_origin(-0.2f, 0.9f, -1.2f);
+  write_photo(out, cam, exif);
+  write_shots(out, shot_origin, exif);
+  write_furniture(out);
+  write_points(out, cam);
+  write_scene(out, shot_origin);
   std::printf("demo scene written to %s\n", out.string().c_str());
   return 0;
 }

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "core/camera.h"
+#include "core/error.h"
 #include "calib/control_points.h"
 
 namespace insitu {
@@ -75,7 +76,7 @@ struct CalibrationResult {
   Vec2d insertion_px = Vec2d::Zero();
   double insertion_sigma_px = 0;     // 1σ along the major axis of the projected uncertainty
   double insertion_radius95_px = 0;  // radius of the 95% ellipse along its major axis
-  std::vector<std::string> warnings;
+  Warnings warnings;  // each without a location: the caller adds the points file's
 };
 
 // Throws InputError for fewer than five points, non-finite values, points that cannot determine

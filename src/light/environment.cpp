@@ -77,17 +77,10 @@ CubeMap load_image_environment(const EnvironmentSpec& spec, Warnings& warnings, 
   return cube;
 }
 
-}  // namespace
+using ShotFiles = std::array<std::vector<ImageFile>, 6>;
 
-CubeMap load_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo* info_out, const ImageFile* photo) {
-  EnvironmentInfo info;
-  if (!spec.from_shots()) {
-    CubeMap cube = load_image_environment(spec, warnings, info);
-    if (info_out) *info_out = info;
-    return cube;
-  }
-  // Read every file.
-  std::array<std::vector<ImageFile>, 6> files;
+ShotFiles read_shot_files(const EnvironmentSpec& spec) {
+  ShotFiles files;
   for (int f = 0; f < 6; ++f)
     for (const std::string& path : spec.shots[std::size_t(f)].files) {
       try {
@@ -96,57 +89,68 @@ CubeMap load_environment(const EnvironmentSpec& spec, Warnings& warnings, Enviro
         throw e.with_context(spec.shots[std::size_t(f)].where);
       }
     }
-  // Relative exposures of a bracket set: the given times, else EXIF.
-  auto exposures_of = [&](int f) {
-    const ShotSpec& s = spec.shots[std::size_t(f)];
-    std::vector<double> k;
-    for (std::size_t b = 0; b < files[std::size_t(f)].size(); ++b) {
-      if (!s.times_s.empty()) { k.push_back(s.times_s[b]); continue; }
-      const auto rel = files[std::size_t(f)][b].exposure.relative();
-      if (!rel) throw InputError(s.where, fmt::format("{}: no exposure time in its EXIF; give \"times\"", s.files[b]));
-      k.push_back(*rel);
-    }
-    return k;
-  };
-  // The response: from the first bracketed shot.
+  return files;
+}
+
+// Relative exposures of a bracket set: the given times, else EXIF.
+std::vector<double> bracket_exposures(const ShotSpec& s, const std::vector<ImageFile>& files) {
+  std::vector<double> k;
+  for (std::size_t b = 0; b < files.size(); ++b) {
+    if (!s.times_s.empty()) { k.push_back(s.times_s[b]); continue; }
+    const auto rel = files[b].exposure.relative();
+    if (!rel) throw InputError(s.where, fmt::format("{}: no exposure time in its EXIF; give \"times\"", s.files[b]));
+    k.push_back(*rel);
+  }
+  return k;
+}
+
+// The camera response, from the first bracketed shot (hdr_merge.h), when there is one.
+void recover_first_response(const EnvironmentSpec& spec, const ShotFiles& files, EnvironmentInfo& info) {
   for (int f = 0; f < 6 && !info.response; ++f)
     if (files[std::size_t(f)].size() >= 2) {
       try {
-        info.response = recover_response(files[std::size_t(f)], exposures_of(f));
+        info.response = recover_response(files[std::size_t(f)], bracket_exposures(spec.shots[std::size_t(f)], files[std::size_t(f)]));
       } catch (const InputError& e) {
         throw e.with_context(spec.shots[std::size_t(f)].where);
       }
     }
-  const ResponseCurve response = info.response.value_or(srgb_response());
+}
 
-  // Each shot in its own unit: merged brackets are already divided by k; single shots carry k_f.
+// Each shot linear, in its own unit: merged brackets are already divided by k (k_shot = 1); a
+// single shot carries its k when EXIF or "times" gives it.
+struct LinearShots {
   ShotSet set;
-  set.faced_face = spec.faced_face;
   std::array<std::optional<double>, 6> k_shot;
   bool all_singles_have_k = true;
+};
+
+LinearShots linearize_shots(const EnvironmentSpec& spec, const ShotFiles& files, const ResponseCurve& response,
+                            EnvironmentInfo& info, Warnings& warnings) {
+  LinearShots out;
+  out.set.faced_face = spec.faced_face;
   for (int f = 0; f < 6; ++f) {
-    auto& fl = files[std::size_t(f)];
+    const auto& fl = files[std::size_t(f)];
     const ShotSpec& s = spec.shots[std::size_t(f)];
-    set.names[std::size_t(f)] = s.files.front();
-    set.hfov_deg[std::size_t(f)] = shot_hfov(s, spec, fl.front());
+    out.set.names[std::size_t(f)] = s.files.front();
+    out.set.hfov_deg[std::size_t(f)] = shot_hfov(s, spec, fl.front());
     try {
       if (fl.size() >= 2) {
-        const std::vector<double> k = exposures_of(f);
-        set.shots[std::size_t(f)] = merge_brackets(fl, k, response);
+        const std::vector<double> k = bracket_exposures(s, fl);
+        out.set.shots[std::size_t(f)] = merge_brackets(fl, k, response);
         const std::size_t shortest = std::size_t(std::min_element(k.begin(), k.end()) - k.begin());
         info.clipped[std::size_t(f)] = clipped_fraction(fl[shortest]);
-        k_shot[std::size_t(f)] = 1.0;
+        out.k_shot[std::size_t(f)] = 1.0;
       } else {
         std::size_t clamped = 0;
-        set.shots[std::size_t(f)] = (fl.front().display_referred && fl.front().bits == 8)
-                                        ? linearize_with_response(fl.front(), response)
-                                        : linearize(fl.front(), &clamped);
+        out.set.shots[std::size_t(f)] = (fl.front().display_referred && fl.front().bits == 8)
+                                            ? linearize_with_response(fl.front(), response)
+                                            : linearize(fl.front(), &clamped);
         info.clamped_values += clamped;
         if (clamped > 0) warnings.add(s.files.front(), fmt::format("{} negative or non-finite values clamped to 0", clamped));
         info.clipped[std::size_t(f)] = clipped_fraction(fl.front());
         const auto rel = s.times_s.empty() ? fl.front().exposure.relative() : std::optional<double>(s.times_s.front());
-        if (rel) k_shot[std::size_t(f)] = *rel;
-        else all_singles_have_k = false;
+        if (rel) out.k_shot[std::size_t(f)] = *rel;
+        else out.all_singles_have_k = false;
       }
     } catch (const InputError& e) {
       throw e.with_context(s.where);
@@ -155,25 +159,34 @@ CubeMap load_environment(const EnvironmentSpec& spec, Warnings& warnings, Enviro
       warnings.add(s.files.front(), fmt::format("{:.1f}% of pixels clipped: radiance there is only a lower bound",
                                                 100 * info.clipped[std::size_t(f)]));
   }
+  return out;
+}
 
-  // Into the photo's unit.
+// Into the photo's unit by EXIF, value × k_photo / k_shot, when the photo and every single shot
+// have it (returns true); the factor and exif modes are noted or checked here.
+bool apply_exif_exposure(const EnvironmentSpec& spec, const ImageFile* photo, LinearShots& shots, EnvironmentInfo& info) {
   const std::optional<double> k_photo = photo ? photo->exposure.relative() : std::nullopt;
-  bool per_shot_exif = false;
   if (spec.exposure == EnvironmentSpec::Exposure::kFactor) {
     info.exposure_source = "factor";
     info.exposure_factor = spec.exposure_factor;
-  } else if (k_photo && all_singles_have_k) {
-    per_shot_exif = true;
+    return false;
+  }
+  if (k_photo && shots.all_singles_have_k) {
     info.exposure_source = "exif";
-  } else if (spec.exposure == EnvironmentSpec::Exposure::kExif) {
+    for (int f = 0; f < 6; ++f)
+      for (float& v : shots.set.shots[std::size_t(f)].data) v *= float(*k_photo / *shots.k_shot[std::size_t(f)]);
+    return true;
+  }
+  if (spec.exposure == EnvironmentSpec::Exposure::kExif) {
     if (photo && !k_photo) throw InputError(spec.where + ".exposure", photo->path + ": no exposure time in its EXIF");
     for (int f = 0; f < 6; ++f)
-      if (!k_shot[std::size_t(f)]) throw InputError(spec.where + ".exposure", spec.shots[std::size_t(f)].files.front() + ": no exposure time in its EXIF");
+      if (!shots.k_shot[std::size_t(f)])
+        throw InputError(spec.where + ".exposure", spec.shots[std::size_t(f)].files.front() + ": no exposure time in its EXIF");
   }
-  if (per_shot_exif)
-    for (int f = 0; f < 6; ++f)
-      for (float& v : set.shots[std::size_t(f)].data) v *= float(*k_photo / *k_shot[std::size_t(f)]);
+  return false;
+}
 
+CubeMap assemble(const EnvironmentSpec& spec, const ShotSet& set, EnvironmentInfo& info, Warnings& warnings) {
   const int n = spec.face_size > 0 ? spec.face_size : natural_face_size(set);
   AssemblyInfo assembly;
   CubeMap cube;
@@ -188,27 +201,47 @@ CubeMap load_environment(const EnvironmentSpec& spec, Warnings& warnings, Enviro
       warnings.add(spec.shots[std::size_t(f)].files.front(),
                    fmt::format("covers {:.1f}% of face {}; the rest is filled from its neighbours",
                                100 * assembly.coverage[std::size_t(f)], face_name(f)));
+  return cube;
+}
 
-  if (spec.exposure == EnvironmentSpec::Exposure::kFactor) {
-    cube = scaled(cube, float(spec.exposure_factor));
-  } else if (!per_shot_exif && photo) {
-    // The estimate: one factor that matches the medians of the photo and of the cube.
-    const Image photo_linear = linearize_photo(*photo, info);
-    std::vector<float> yp, yc;
-    for (int y = 0; y < photo_linear.height; ++y)
-      for (int x = 0; x < photo_linear.width; ++x) yp.push_back(luminance(photo_linear.rgb(x, y)));
-    for (int f = 0; f < 6; ++f)
-      for (int j = 0; j < cube.size(); ++j)
-        for (int i = 0; i < cube.size(); ++i) yc.push_back(luminance(cube.texel(f, i, j)));
-    const float mp = median_luminance(yp), mc = median_luminance(yc);
-    info.exposure_factor = (mp > 0 && mc > 0) ? double(mp / mc) : 1.0;
-    info.exposure_source = "estimate";
-    cube = scaled(cube, float(info.exposure_factor));
-    if (std::abs(info.exposure_factor - 1) > 0.02)
-      warnings.add(spec.where, fmt::format("no EXIF exposure on the photo and every shot: shots scaled by an estimated "
-                                           "{:.3g} (median of the photo / median of the cube); give environment.exposure",
-                                           info.exposure_factor));
-  }
+// Without EXIF, the estimate: one factor that matches the medians of the photo and of the cube.
+CubeMap scale_by_estimate(const CubeMap& cube, const ImageFile& photo, const EnvironmentSpec& spec, EnvironmentInfo& info,
+                          Warnings& warnings) {
+  const Image photo_linear = linearize_photo(photo, info);
+  std::vector<float> yp, yc;
+  for (int y = 0; y < photo_linear.height; ++y)
+    for (int x = 0; x < photo_linear.width; ++x) yp.push_back(luminance(photo_linear.rgb(x, y)));
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < cube.size(); ++j)
+      for (int i = 0; i < cube.size(); ++i) yc.push_back(luminance(cube.texel(f, i, j)));
+  const float mp = median_luminance(yp), mc = median_luminance(yc);
+  info.exposure_factor = (mp > 0 && mc > 0) ? double(mp / mc) : 1.0;
+  info.exposure_source = "estimate";
+  if (std::abs(info.exposure_factor - 1) > 0.02)
+    warnings.add(spec.where, fmt::format("no EXIF exposure on the photo and every shot: shots scaled by an estimated "
+                                         "{:.3g} (median of the photo / median of the cube); give environment.exposure",
+                                         info.exposure_factor));
+  return scaled(cube, float(info.exposure_factor));
+}
+
+CubeMap load_shot_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo& info, const ImageFile* photo) {
+  const ShotFiles files = read_shot_files(spec);
+  recover_first_response(spec, files, info);
+  const ResponseCurve response = info.response.value_or(srgb_response());
+  LinearShots shots = linearize_shots(spec, files, response, info, warnings);
+  const bool per_shot_exif = apply_exif_exposure(spec, photo, shots, info);
+  CubeMap cube = assemble(spec, shots.set, info, warnings);
+  if (spec.exposure == EnvironmentSpec::Exposure::kFactor) return scaled(cube, float(spec.exposure_factor));
+  if (!per_shot_exif && photo) return scale_by_estimate(cube, *photo, spec, info, warnings);
+  return cube;
+}
+
+}  // namespace
+
+CubeMap load_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo* info_out, const ImageFile* photo) {
+  EnvironmentInfo info;
+  CubeMap cube = spec.from_shots() ? load_shot_environment(spec, warnings, info, photo)
+                                   : load_image_environment(spec, warnings, info);
   if (info_out) *info_out = info;
   return cube;
 }

@@ -164,6 +164,48 @@ Material convert_material(const tinyobj::material_t& m, const fs::path& base_dir
   return out;
 }
 
+// Polygons fanned into triangles, each keeping its OBJ line; degenerate ones, |e1 × e2| ≤
+// 1e-12 (|e1|² + |e2|²) in double (scale-free), are dropped and counted in one warning.
+void add_triangles(const std::vector<tinyobj::shape_t>& shapes, const ObjScan& scan, int default_material,
+                   const std::string& path, Mesh& mesh, Warnings& warnings) {
+  std::size_t face_no = 0, degenerate = 0;
+  int first_degenerate_line = 0;
+  for (const auto& shape : shapes) {
+    std::size_t offset = 0;
+    for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++face_no) {
+      const std::size_t nfv = shape.mesh.num_face_vertices[f];
+      const int line = face_no < scan.face_lines.size() ? scan.face_lines[face_no] : 0;
+      int mat = shape.mesh.material_ids.empty() ? -1 : shape.mesh.material_ids[f];
+      if (mat < 0 || mat >= default_material) mat = default_material;
+      for (std::size_t k = 1; k + 1 < nfv; ++k) {
+        const tinyobj::index_t corner[3] = {shape.mesh.indices[offset], shape.mesh.indices[offset + k],
+                                            shape.mesh.indices[offset + k + 1]};
+        Triangle tri;
+        for (int c = 0; c < 3; ++c) {
+          tri.v[c] = std::uint32_t(corner[c].vertex_index);
+          tri.n[c] = corner[c].normal_index;
+          tri.t[c] = corner[c].texcoord_index;
+        }
+        tri.material = mat;
+        // Degenerate: |e1 × e2| <= 1e-12 (|e1|² + |e2|²), in double, scale-free.
+        const Vec3d p0 = mesh.positions[tri.v[0]].cast<double>();
+        const Vec3d e1 = mesh.positions[tri.v[1]].cast<double>() - p0;
+        const Vec3d e2 = mesh.positions[tri.v[2]].cast<double>() - p0;
+        if (e1.cross(e2).norm() <= 1e-12 * (e1.squaredNorm() + e2.squaredNorm()) ||
+            (e1.squaredNorm() + e2.squaredNorm()) == 0.0) {
+          if (degenerate++ == 0) first_degenerate_line = line;
+          continue;
+        }
+        mesh.triangles.push_back(tri);
+      }
+      offset += nfv;
+    }
+  }
+  if (degenerate > 0)
+    warnings.add(path, fmt::format("{} degenerate triangle(s) dropped (first at line {})", degenerate,
+                                   first_degenerate_line));
+}
+
 }  // namespace
 
 Mesh load_obj(const std::string& path, Warnings& warnings) {
@@ -209,42 +251,7 @@ Mesh load_obj(const std::string& path, Warnings& warnings) {
   const int default_material = int(mesh.materials.size());
   mesh.materials.push_back(Material{});
 
-  std::size_t face_no = 0, degenerate = 0;
-  int first_degenerate_line = 0;
-  for (const auto& shape : reader.GetShapes()) {
-    std::size_t offset = 0;
-    for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++face_no) {
-      const std::size_t nfv = shape.mesh.num_face_vertices[f];
-      const int line = face_no < scan.face_lines.size() ? scan.face_lines[face_no] : 0;
-      int mat = shape.mesh.material_ids.empty() ? -1 : shape.mesh.material_ids[f];
-      if (mat < 0 || mat >= default_material) mat = default_material;
-      for (std::size_t k = 1; k + 1 < nfv; ++k) {
-        const tinyobj::index_t corner[3] = {shape.mesh.indices[offset], shape.mesh.indices[offset + k],
-                                            shape.mesh.indices[offset + k + 1]};
-        Triangle tri;
-        for (int c = 0; c < 3; ++c) {
-          tri.v[c] = std::uint32_t(corner[c].vertex_index);
-          tri.n[c] = corner[c].normal_index;
-          tri.t[c] = corner[c].texcoord_index;
-        }
-        tri.material = mat;
-        // Degenerate: |e1 × e2| <= 1e-12 (|e1|² + |e2|²), in double, scale-free.
-        const Vec3d p0 = mesh.positions[tri.v[0]].cast<double>();
-        const Vec3d e1 = mesh.positions[tri.v[1]].cast<double>() - p0;
-        const Vec3d e2 = mesh.positions[tri.v[2]].cast<double>() - p0;
-        if (e1.cross(e2).norm() <= 1e-12 * (e1.squaredNorm() + e2.squaredNorm()) ||
-            (e1.squaredNorm() + e2.squaredNorm()) == 0.0) {
-          if (degenerate++ == 0) first_degenerate_line = line;
-          continue;
-        }
-        mesh.triangles.push_back(tri);
-      }
-      offset += nfv;
-    }
-  }
-  if (degenerate > 0)
-    warnings.add(path, fmt::format("{} degenerate triangle(s) dropped (first at line {})", degenerate,
-                                   first_degenerate_line));
+  add_triangles(reader.GetShapes(), scan, default_material, path, mesh, warnings);
   if (mesh.triangles.empty()) throw InputError(path, "no triangles (the mesh has no usable faces)");
   return mesh;
 }

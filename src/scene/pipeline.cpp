@@ -90,6 +90,59 @@ std::vector<NamedPath> scene_output_files(const SceneSpec& spec) {
           {report_path(spec.output.image), "the report"}};
 }
 
+namespace {
+
+// The camera: calibrated from control points (the uncertainty reported at the objects' mean
+// position when there are any), or built from the spec.
+void load_camera(const SceneSpec& spec, int width, int height, LoadedScene& s) {
+  if (spec.camera.kind != CameraSpec::Kind::Points) {
+    s.camera = build_camera(spec.camera, width, height, &s.warnings);
+    return;
+  }
+  CalibrationOptions options;
+  if (spec.camera.model) options.model = parse_model(*spec.camera.model);
+  if (!spec.objects.empty()) {
+    Vec3d mean = Vec3d::Zero();
+    for (const auto& o : spec.objects) mean += o.M_world_from_object.topRightCorner<3, 1>() / double(spec.objects.size());
+    options.insertion_world = mean;
+  }
+  try {
+    const auto points = read_control_points(spec.camera.points, spec.camera.bottom_left_origin, height);
+    s.calibration = calibrate(points, width, height, options);
+  } catch (const InputError& e) {
+    throw e.with_context(spec.camera.where + ".points");
+  }
+  s.camera = s.calibration->camera;
+  for (const auto& w : s.calibration->warnings.items) s.warnings.add(spec.camera.where, w);
+}
+
+// A mesh read and placed by its transform; errors carry the spec's JSON location.
+Mesh load_placed_mesh(const ObjectSpec& obj, Warnings& warnings) {
+  Mesh mesh;
+  try {
+    mesh = load_obj(obj.mesh, warnings);
+  } catch (const InputError& e) {
+    throw e.with_context(obj.where + ".mesh");
+  }
+  try {
+    transform_mesh(mesh, obj.M_world_from_object);
+  } catch (const InputError& e) {
+    throw e.with_context(obj.where);
+  }
+  warn_if_collapsed(mesh, obj.where, warnings);
+  return mesh;
+}
+
+// The files the meshes named (MTL, textures) are inputs too.
+void check_mesh_files(const std::vector<Mesh>& meshes, const SceneSpec& spec) {
+  std::vector<NamedPath> mesh_files;
+  for (const Mesh& m : meshes)
+    for (const auto& f : m.files) mesh_files.push_back({f, "read by " + m.source});
+  check_outputs(mesh_files, scene_output_files(spec));
+}
+
+}  // namespace
+
 LoadedScene load_scene(const SceneSpec& spec) {
   const auto start = std::chrono::steady_clock::now();
   // Before any work: no output may replace an input or another output.
@@ -110,74 +163,20 @@ LoadedScene load_scene(const SceneSpec& spec) {
   std::size_t clamped = 0;
   s.photo_linear = linearize_photo(s.photo, s.environment_info, &clamped);
   if (clamped > 0) s.warnings.add(spec.photo, fmt::format("{} negative or non-finite values clamped to 0", clamped));
-  const int width = s.photo.stored.width, height = s.photo.stored.height;
-  if (spec.camera.kind == CameraSpec::Kind::Points) {
-    // Calibrate; the uncertainty is reported at the objects' mean position when there are any.
-    CalibrationOptions options;
-    if (spec.camera.model) options.model = parse_model(*spec.camera.model);
-    if (!spec.objects.empty()) {
-      Vec3d mean = Vec3d::Zero();
-      for (const auto& o : spec.objects) mean += o.M_world_from_object.topRightCorner<3, 1>() / double(spec.objects.size());
-      options.insertion_world = mean;
-    }
-    try {
-      const auto points = read_control_points(spec.camera.points, spec.camera.bottom_left_origin, height);
-      s.calibration = calibrate(points, width, height, options);
-    } catch (const InputError& e) {
-      throw e.with_context(spec.camera.where + ".points");
-    }
-    s.camera = s.calibration->camera;
-    for (const auto& w : s.calibration->warnings) s.warnings.add(spec.camera.where, w);
-  } else {
-    s.camera = build_camera(spec.camera, width, height, &s.warnings);
-  }
+  load_camera(spec, s.photo.stored.width, s.photo.stored.height, s);
 
   std::vector<Mesh> meshes;
   for (const ObjectSpec& obj : spec.objects) {
-    Mesh mesh;
-    try {
-      mesh = load_obj(obj.mesh, s.warnings);
-    } catch (const InputError& e) {
-      throw e.with_context(obj.where + ".mesh");
-    }
-    try {
-      transform_mesh(mesh, obj.M_world_from_object);
-    } catch (const InputError& e) {
-      throw e.with_context(obj.where);
-    }
-    warn_if_collapsed(mesh, obj.where, s.warnings);
-    if (outside_view(s.camera, mesh_bounds(mesh)))
+    meshes.push_back(load_placed_mesh(obj, s.warnings));
+    if (outside_view(s.camera, mesh_bounds(meshes.back())))
       s.warnings.add(obj.where, "the object lies entirely outside the camera's view (it covers no pixel): check translate and the camera");
-    meshes.push_back(std::move(mesh));
   }
-  // The files the meshes named (MTL, textures) are inputs too.
-  std::vector<NamedPath> mesh_files;
-  for (const Mesh& m : meshes)
-    for (const auto& f : m.files) mesh_files.push_back({f, "read by " + m.source});
-  check_outputs(mesh_files, scene_output_files(spec));
+  check_mesh_files(meshes, spec);
   s.objects = std::make_unique<EmbreeScene>(std::move(meshes));
   std::vector<Mesh> catcher_meshes;
-  for (std::size_t i = 0; i < spec.local_scene.size(); ++i) {
-    const auto& m = spec.local_scene[i].mesh;
-    if (!m) continue;
-    Mesh mesh;
-    try {
-      mesh = load_obj(m->mesh, s.warnings);
-    } catch (const InputError& e) {
-      throw e.with_context(m->where + ".mesh");
-    }
-    try {
-      transform_mesh(mesh, m->M_world_from_object);
-    } catch (const InputError& e) {
-      throw e.with_context(m->where);
-    }
-    warn_if_collapsed(mesh, m->where, s.warnings);
-    catcher_meshes.push_back(std::move(mesh));
-  }
-  mesh_files.clear();
-  for (const Mesh& m : catcher_meshes)
-    for (const auto& f : m.files) mesh_files.push_back({f, "read by " + m.source});
-  check_outputs(mesh_files, scene_output_files(spec));
+  for (const PlaneSpec& p : spec.local_scene)
+    if (p.mesh) catcher_meshes.push_back(load_placed_mesh(*p.mesh, s.warnings));
+  check_mesh_files(catcher_meshes, spec);
   s.catcher_meshes = std::make_unique<EmbreeScene>(std::move(catcher_meshes));
   s.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return s;

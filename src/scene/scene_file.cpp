@@ -296,6 +296,78 @@ EnvironmentSpec parse_environment_file(const std::string& path) {
   return parse_environment(JsonValue(doc, path, "$"), fs::path(path).parent_path());
 }
 
+namespace {
+
+// local_scene[i]: {"plane": {point, normal}} or a mesh placed like an object, with an albedo
+// ("from_photo", the default, or [r, g, b] in [0, 1]).
+PlaneSpec parse_local_scene_item(JsonObject item, const fs::path& dir) {
+  PlaneSpec plane;
+  if (auto a = item.find("albedo")) {
+    if (a->is_string()) {
+      if (a->string() != "from_photo") a->fail("expected \"from_photo\" or [r, g, b]");
+    } else {
+      const Vec3d rgb = a->vec3();
+      if (rgb.minCoeff() < 0 || rgb.maxCoeff() > 1) a->fail("albedo must lie in [0, 1]");
+      plane.albedo_from_photo = false;
+      plane.albedo = rgb.cast<float>().array();
+    }
+  }
+  if (item.has("mesh")) {
+    if (item.has("plane")) item.fail("give 'plane' or 'mesh', not both");
+    plane.mesh = parse_object(std::move(item), dir);  // checks the remaining keys
+    return plane;
+  }
+  JsonObject pl(item.get("plane"));
+  plane.point = pl.get("point").vec3();
+  const JsonValue n = pl.get("normal");
+  plane.normal = n.vec3();
+  if (!(plane.normal.norm() > 0)) n.fail("the normal is zero");
+  plane.normal.normalize();
+  pl.finish();
+  item.finish();
+  return plane;
+}
+
+// The render loop's keys; the rest are the integrators', read by them (integrators/registry.h).
+void parse_render(const JsonValue& r, RenderSpec& render) {
+  JsonObject ro(r);
+  if (auto in = ro.find("integrator")) render.integrator = in->string();
+  if (auto spp = ro.find("spp")) render.spp = int(spp->integer(1, kMaxSpp));
+  if (auto seed = ro.find("seed")) render.seed = std::uint64_t(seed->integer(0, kMaxSeed));
+  render.block = {r.raw(), r.file(), r.path()};
+}
+
+// output.tonemap: "name", or {"op": "name", "key": k, "bias": b}.
+void parse_tonemap_settings(const JsonValue& tm, SceneSpec& scene) {
+  auto parse_op = [&](const JsonValue& v) {
+    const auto op = parse_tonemap(v.string());
+    if (!op) v.fail("expected " + quoted_choices(names_of(kToneMaps)));
+    scene.output.tonemap.op = *op;
+  };
+  scene.given.insert("output.tonemap");
+  if (tm.is_string()) return parse_op(tm);
+  JsonObject t(tm);
+  parse_op(t.get("op"));
+  if (auto k = t.find("key")) scene.output.tonemap.key = k->number(1e-6, 1e6), scene.given.insert("output.tonemap.key");
+  if (auto b = t.find("bias")) scene.output.tonemap.bias = b->number(0.01, 0.99), scene.given.insert("output.tonemap.bias");
+  t.finish();
+}
+
+// output: the composite (default out/composite.png), the layers (out/layers.exr, or "none").
+void parse_output(const std::optional<JsonValue>& out, const fs::path& dir, SceneSpec& scene) {
+  scene.output.image = resolve(dir, "out/composite.png");
+  scene.output.layers = resolve(dir, "out/layers.exr");
+  if (!out) return;
+  JsonObject oo(*out);
+  if (auto img = oo.find("image")) scene.output.image = output_file(*img, dir, {".png", ".jpg", ".jpeg", ".exr", ".tif", ".tiff"});
+  if (auto layers = oo.find("layers"))
+    scene.output.layers = layers->is_string() && layers->string() == "none" ? "" : output_file(*layers, dir, {".exr"});
+  if (auto tm = oo.find("tonemap")) parse_tonemap_settings(*tm, scene);
+  oo.finish();
+}
+
+}  // namespace
+
 SceneSpec parse_scene_file(const std::string& path) {
   const json doc = read_json_file(path);
   const fs::path dir = fs::path(path).parent_path();
@@ -309,81 +381,17 @@ SceneSpec parse_scene_file(const std::string& path) {
   scene.photo_where = photo.where();
   scene.camera = parse_camera(JsonObject(root.get("camera")), dir, scene.warnings);
   scene.environment = parse_environment(root.get("environment"), dir);
-
-  if (auto ls = root.find("local_scene")) {
-    for (std::size_t i = 0; i < ls->size(); ++i) {
-      JsonObject item(ls->element(i));
-      PlaneSpec plane;
-      if (auto a = item.find("albedo")) {
-        if (a->is_string()) {
-          if (a->string() != "from_photo") a->fail("expected \"from_photo\" or [r, g, b]");
-        } else {
-          const Vec3d rgb = a->vec3();
-          if (rgb.minCoeff() < 0 || rgb.maxCoeff() > 1) a->fail("albedo must lie in [0, 1]");
-          plane.albedo_from_photo = false;
-          plane.albedo = rgb.cast<float>().array();
-        }
-      }
-      if (item.has("mesh")) {
-        if (item.has("plane")) item.fail("give 'plane' or 'mesh', not both");
-        plane.mesh = parse_object(std::move(item), dir);  // checks the remaining keys
-      } else {
-        JsonObject pl(item.get("plane"));
-        plane.point = pl.get("point").vec3();
-        const JsonValue n = pl.get("normal");
-        plane.normal = n.vec3();
-        if (!(plane.normal.norm() > 0)) n.fail("the normal is zero");
-        plane.normal.normalize();
-        pl.finish();
-        item.finish();
-      }
-      scene.local_scene.push_back(plane);
-    }
-  }
+  if (auto ls = root.find("local_scene"))
+    for (std::size_t i = 0; i < ls->size(); ++i) scene.local_scene.push_back(parse_local_scene_item(JsonObject(ls->element(i)), dir));
   if (auto objs = root.find("objects"))
     for (std::size_t i = 0; i < objs->size(); ++i) scene.objects.push_back(parse_object(JsonObject(objs->element(i)), dir));
-
-  if (auto r = root.find("render")) {
-    // The render loop's keys; the rest are the integrators', read by them (integrators/registry.h).
-    JsonObject ro(*r);
-    if (auto in = ro.find("integrator")) scene.render.integrator = in->string();
-    if (auto spp = ro.find("spp")) scene.render.spp = int(spp->integer(1, kMaxSpp));
-    if (auto seed = ro.find("seed")) scene.render.seed = std::uint64_t(seed->integer(0, kMaxSeed));
-    scene.render.block = {r->raw(), r->file(), r->path()};
-  }
+  if (auto r = root.find("render")) parse_render(*r, scene.render);
   if (auto c = root.find("composite")) {
     const auto mode = parse_name(kCompositeModes, c->string());
     if (!mode) c->fail("expected " + quoted_choices(names_of(kCompositeModes)));
     scene.composite = *mode;
   }
-  scene.output.image = resolve(dir, "out/composite.png");
-  scene.output.layers = resolve(dir, "out/layers.exr");
-  if (auto out = root.find("output")) {
-    JsonObject oo(*out);
-    if (auto img = oo.find("image")) scene.output.image = output_file(*img, dir, {".png", ".jpg", ".jpeg", ".exr", ".tif", ".tiff"});
-    if (auto layers = oo.find("layers")) {  // a path, or "none"
-      scene.output.layers = layers->is_string() && layers->string() == "none" ? "" : output_file(*layers, dir, {".exr"});
-    }
-    if (auto tm = oo.find("tonemap")) {
-      // "name", or {"op": "name", "key": k, "bias": b}.
-      auto parse_op = [&](const JsonValue& v) {
-        const auto op = parse_tonemap(v.string());
-        if (!op) v.fail("expected " + quoted_choices(names_of(kToneMaps)));
-        scene.output.tonemap.op = *op;
-      };
-      scene.given.insert("output.tonemap");
-      if (tm->is_string()) {
-        parse_op(*tm);
-      } else {
-        JsonObject t(*tm);
-        parse_op(t.get("op"));
-        if (auto k = t.find("key")) scene.output.tonemap.key = k->number(1e-6, 1e6), scene.given.insert("output.tonemap.key");
-        if (auto b = t.find("bias")) scene.output.tonemap.bias = b->number(0.01, 0.99), scene.given.insert("output.tonemap.bias");
-        t.finish();
-      }
-    }
-    oo.finish();
-  }
+  parse_output(root.find("output"), dir, scene);
   root.finish();
   return scene;
 }
