@@ -114,12 +114,6 @@ TEST(Catcher, DifferentialLeavesUntouchedPixelsAndModesAgree) {
   EXPECT_LT(diff / total, 0.02);
 }
 
-}  // namespace
-}  // namespace insitu
-
-namespace insitu {
-namespace {
-
 struct WallScene {
   test::TempDir dir;
   std::unique_ptr<EmbreeScene> scene;
@@ -197,61 +191,6 @@ TEST(Catcher, GrazingRaysAlongTheFloor) {
   }
 }
 
-}  // namespace
-}  // namespace insitu
-
-namespace insitu {
-namespace {
-
-// The variance layer predicts the spread between renders with different seeds: for independent
-// estimates a and b of one pixel, E[(a − b)²] = 2·Var(mean); averaged over the changed pixels. The
-// layer treats the samples as independent, but their pixel positions are stratified, which makes
-// the true variance smaller: the layer is conservative (ratio ≈ 0.75 here), never optimistic.
-TEST(Layers, VariancePredictsTheSpreadAcrossSeeds) {
-  test::SceneFixture fx;
-  auto j = fx.scene;
-  j["render"] = {{"integrator", "path"}, {"spp", 64}};
-  j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
-  j["objects"] = {{{"mesh", "good_quad.obj"}, {"translate", {0, 0.3, 0}}}};
-  SceneSpec spec = parse_scene_file(fx.write(j));
-  const LoadedScene s = load_scene(spec);
-  const RenderResult a = render_scene(s);
-  LoadedScene s2 = load_scene(spec);
-  s2.spec.render.seed = 99;
-  const RenderResult b = render_scene(s2);
-  double diff2 = 0, var = 0;
-  int n = 0;
-  for (int y = 0; y < a.layers.variance.height; ++y)
-    for (int x = 0; x < a.layers.variance.width; ++x) {
-      const float va = *a.layers.variance.at(x, y), vb = *b.layers.variance.at(x, y);
-      if (va <= 0 && vb <= 0) continue;
-      auto value = [&](const RenderLayers& l) {
-        return luminance(Rgb(l.objects.rgb(x, y) + l.with_objects.rgb(x, y) - l.without_objects.rgb(x, y)));
-      };
-      const double d = value(a.layers) - value(b.layers);
-      diff2 += d * d;
-      var += va + vb;
-      ++n;
-    }
-  ASSERT_GT(n, 100);
-  // Never optimistic: the ratio of the observed spread to the predicted one may exceed 1 only by
-  // its own sampling error, about √(2/n) relative for n pixels (a χ² with n degrees of freedom);
-  // 4 of those. Not absurdly conservative either.
-  EXPECT_GT(diff2 / var, 0.5);
-  EXPECT_LT(diff2 / var, 1 + 4 * std::sqrt(2.0 / n)) << "n = " << n;
-  // Where the camera met the object: its normal (+Y, the quad faces up) and albedo in the layers.
-  const Vec2d uv = s.camera.project({0.5, 0.3, -0.5});
-  EXPECT_NEAR(a.layers.normal.at(int(uv.x()), int(uv.y()))[1], 1.0f, 1e-4f);
-  EXPECT_NEAR(a.layers.albedo.at(int(uv.x()), int(uv.y()))[0], 0.8f, 1e-4f);
-  EXPECT_GT(*a.layers.depth.at(int(uv.x()), int(uv.y())), 0.0f);
-}
-
-}  // namespace
-}  // namespace insitu
-
-namespace insitu {
-namespace {
-
 // Parallax correction: with a room box, a floor point near the bright +X wall receives more of
 // its light than a point across the room; without it, both receive the same.
 TEST(Catcher, RoomBoxParallaxFavoursThePointNearTheWindow) {
@@ -290,35 +229,6 @@ TEST(Catcher, RoomBoxParallaxFavoursThePointNearTheWindow) {
   const double near0 = irradiance_at(false, 4.5f), far0 = irradiance_at(false, -4.5f);
   EXPECT_NEAR(near0 / far0, 1.0, 0.05);
 }
-
-}  // namespace
-}  // namespace insitu
-
-namespace insitu {
-namespace {
-
-TEST(Layers, ProgressReportsSamplesAndNoisePerPass) {
-  test::SceneFixture fx;
-  auto j = fx.scene;
-  j["render"] = {{"integrator", "path"}, {"spp", 16}};
-  j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
-  j["objects"] = {{{"mesh", "good_quad.obj"}, {"translate", {0, 0.3, 0}}}};
-  const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
-  std::vector<RenderProgress> reports;
-  const RenderResult r = render_scene(s, [&](const RenderProgress& p) {
-    if (p.noise >= 0) reports.push_back(p);
-  });
-  ASSERT_EQ(reports.size(), 8u);  // 8 passes of 2 samples
-  EXPECT_EQ(reports.back().spp_done, 16);
-  EXPECT_DOUBLE_EQ(reports.back().noise, r.layers.mean_relative_noise);
-  EXPECT_GT(reports[1].noise, reports.back().noise);  // more samples, less noise
-}
-
-}  // namespace
-}  // namespace insitu
-
-namespace insitu {
-namespace {
 
 // The same occluder over a floor given as a catcher mesh (a 200 m quad) instead of a plane: the
 // same analytic shadow ratio.

@@ -81,13 +81,6 @@ TEST(Cli, RendersAScene) {
     EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
 }
 
-}  // namespace
-}  // namespace insitu
-
-namespace insitu {
-namespace {
-using namespace test;
-
 // Writes points.json: seven points as a known camera of the fixture's photo size sees them, with
 // v from the top edge, or from the bottom edge.
 void write_known_points(const test::SceneFixture& fx, bool bottom_left) {
@@ -147,13 +140,6 @@ TEST(Cli, CalibrateBadInputIsOneLine) {
   expect_one_line_error(run_insitu(dir, "calibrate --points " + dir.file("nan.csv") + " --size 640 480"), "nan.csv:2");
 }
 
-}  // namespace
-}  // namespace insitu
-
-namespace insitu {
-namespace {
-using namespace test;
-
 TEST(Cli, CubemapWritesEveryOutput) {
   test::SceneFixture fx;
   const CliRun r = run_insitu(fx.dir, "cubemap " + fx.write() + " -o " + fx.dir.file("cube") + " --irradiance-size 4");
@@ -187,13 +173,6 @@ TEST(Cli, IrradianceIntegratorWithGaussianEqualsRealtime) {
   expect_one_line_error(run_insitu(fx.dir, "render " + fx.write(j)), "$.render.irradiance: expected \"gaussian\", \"sh9\" or \"exact\"");
 }
 
-}  // namespace
-}  // namespace insitu
-
-namespace insitu {
-namespace {
-using namespace test;
-
 TEST(Cli, CompareWritesThePictureAndRejectsMismatchedImages) {
   test::TempDir dir;
   write_image(dir.file("a.png"), Image(16, 12, 3, 0.5f));
@@ -212,13 +191,6 @@ TEST(Cli, CompareWritesThePictureAndRejectsMismatchedImages) {
   EXPECT_NE(mixed.err.find("insitu: warning: " + dir.file("b.png") + " is a display-referred 8-bit image"), std::string::npos)
       << mixed.err;
 }
-
-}  // namespace
-}  // namespace insitu
-
-namespace insitu {
-namespace {
-using namespace test;
 
 TEST(Cli, TradeoffWritesTableCsvPlotAndAb) {
   test::SceneFixture fx;

@@ -1,81 +1,14 @@
 #include <gtest/gtest.h>
 
-#include <random>
-
-#include "cube_fixture.h"
-#include "render/env_sampling.h"
-#include "light/equirect.h"
-#include "integrators/registry.h"
-#include "light/irradiance.h"
-#include "render/mesh.h"
-#include "scene/scene_file.h"
 #include "box_fixture.h"
+#include "integrators/registry.h"
+#include "light/equirect.h"
+#include "light/irradiance.h"
 #include "test_util.h"
-#include "light/texel_geometry.h"
 
 namespace insitu {
 namespace {
 
-using test::random_cube;
-
-// χ² of the texel histogram of 200 000 samples against P_i = pdf integrated over texel i (which
-// the sampler must reproduce); with k − 1 = 95 degrees of freedom the statistic is within
-// (χ² − k)/√(2k) < 4 unless the sampler is wrong.
-TEST(EnvSampling, ChiSquareAgainstThePdf) {
-  const int n = 4;
-  const CubeMap cube = random_cube(n, 1);
-  const EnvSampler s(cube);
-  const int count = 200000;
-  std::vector<double> hist(6 * n * n, 0.0), expected(6 * n * n, 0.0);
-  // Expected: ∫_texel pdf dω by a fine midpoint quadrature in solid angle (independent of the
-  // sampler's own probabilities).
-  for (int f = 0; f < 6; ++f)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const int q = 16;
-        double sum = 0;
-        for (int b = 0; b < q; ++b)
-          for (int a = 0; a < q; ++a) {
-            const int ii = i * q + a, jj = j * q + b, nn = n * q;
-            sum += s.pdf(texel_direction(f, ii, jj, nn)) * texel_solid_angle(ii, jj, nn);
-          }
-        expected[std::size_t((f * n + j) * n + i)] = sum * count;
-      }
-  std::mt19937 rng(2);
-  std::uniform_real_distribution<float> u(0, 1);
-  for (int k = 0; k < count; ++k) {
-    const EnvSample e = s.sample(u(rng), u(rng), u(rng));
-    ASSERT_NEAR(e.pdf, s.pdf(e.dir), 1e-3f * e.pdf);
-    const FaceCoord fc = direction_to_face(e.dir);
-    hist[std::size_t((fc.face * n + std::min(int(fc.t * n), n - 1)) * n + std::min(int(fc.s * n), n - 1))] += 1;
-  }
-  double chi2 = 0, total = 0;
-  for (std::size_t b = 0; b < hist.size(); ++b) {
-    chi2 += (hist[b] - expected[b]) * (hist[b] - expected[b]) / expected[b];
-    total += expected[b];
-  }
-  EXPECT_NEAR(total, count, 1e-3 * count);  // the pdf integrates to 1
-  const double k = double(hist.size() - 1);
-  EXPECT_LT((chi2 - k) / std::sqrt(2 * k), 4.0) << "chi2 " << chi2;
-}
-
-// ∫ pdf dω = 1: Monte Carlo over uniform directions, E[4π·pdf] = 1 within 4 standard errors.
-TEST(EnvSampling, PdfIntegratesToOne) {
-  const EnvSampler s(random_cube(8, 3));
-  std::mt19937 rng(4);
-  std::normal_distribution<float> g(0, 1);
-  const int count = 400000;
-  double sum = 0, sum2 = 0;
-  for (int k = 0; k < count; ++k) {
-    const double x = 4 * kPi * s.pdf(Vec3f(g(rng), g(rng), g(rng)).normalized());
-    sum += x;
-    sum2 += x * x;
-  }
-  const double mean = sum / count, se = std::sqrt((sum2 / count - mean * mean) / count);
-  EXPECT_NEAR(mean, 1.0, 4 * se);
-}
-
-// A box with flat faces (shading normal = geometric normal), Kd given, scaled.
 struct Estimate {
   Rgb mean, se;
 };

@@ -2,6 +2,8 @@
 
 #include "scene/pipeline.h"
 #include "core/sampler.h"
+#include <OpenImageIO/imageio.h>
+
 #include "scene_fixture.h"
 
 namespace insitu {
@@ -61,12 +63,6 @@ TEST(Render, DepthIsCameraSpaceZAndNoHitIsDocumented) {
   }
 }
 
-}  // namespace
-}  // namespace insitu
-
-namespace insitu {
-namespace {
-
 // The noise figure after each pass covers the same pixels (all the render changed), so for a
 // deterministic integrator, whose only noise is the pixel footprint, it falls as the samples grow:
 // for independent samples σ_mean ∝ 1/√n, and stratification only makes it fall faster. Each pass
@@ -89,12 +85,6 @@ TEST(Render, NoiseFigureFallsPassAfterPass) {
   EXPECT_LT(noise.back().second, noise.front().second);
 }
 
-}  // namespace
-}  // namespace insitu
-
-namespace insitu {
-namespace {
-
 // permute() is a bijection of [0, n) for every n and key (a slow, obvious check: every index is
 // hit once), and keys give different orders.
 TEST(Sampler, PermuteIsABijection) {
@@ -112,14 +102,6 @@ TEST(Sampler, PermuteIsABijection) {
   for (std::uint32_t i = 0; i < 144; ++i) same += permute(i, 144, 1) == permute(i, 144, 2);
   EXPECT_LT(same, 20);
 }
-
-}  // namespace
-}  // namespace insitu
-
-#include <OpenImageIO/imageio.h>
-
-namespace insitu {
-namespace {
 
 // Every channel of the layered EXR is finite, always: here the environment holds NaN, −inf and the
 // largest finite float (3.4e38, which overflows as soon as it is scaled), the scene has a floor
@@ -146,6 +128,66 @@ TEST(Render, EveryLayerIsFiniteAtTheExtremes) {
   for (std::size_t i = 0; i < pixels.size(); ++i)
     ASSERT_TRUE(std::isfinite(pixels[i])) << "channel " << spec.channelnames[i % std::size_t(spec.nchannels)] << ", pixel "
                                           << i / std::size_t(spec.nchannels);
+}
+
+// The variance layer predicts the spread between renders with different seeds: for independent
+// estimates a and b of one pixel, E[(a − b)²] = 2·Var(mean); averaged over the changed pixels. The
+// layer treats the samples as independent, but their pixel positions are stratified, which makes
+// the true variance smaller: the layer is conservative (ratio ≈ 0.75 here), never optimistic.
+TEST(Layers, VariancePredictsTheSpreadAcrossSeeds) {
+  test::SceneFixture fx;
+  auto j = fx.scene;
+  j["render"] = {{"integrator", "path"}, {"spp", 64}};
+  j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
+  j["objects"] = {{{"mesh", "good_quad.obj"}, {"translate", {0, 0.3, 0}}}};
+  SceneSpec spec = parse_scene_file(fx.write(j));
+  const LoadedScene s = load_scene(spec);
+  const RenderResult a = render_scene(s);
+  LoadedScene s2 = load_scene(spec);
+  s2.spec.render.seed = 99;
+  const RenderResult b = render_scene(s2);
+  double diff2 = 0, var = 0;
+  int n = 0;
+  for (int y = 0; y < a.layers.variance.height; ++y)
+    for (int x = 0; x < a.layers.variance.width; ++x) {
+      const float va = *a.layers.variance.at(x, y), vb = *b.layers.variance.at(x, y);
+      if (va <= 0 && vb <= 0) continue;
+      auto value = [&](const RenderLayers& l) {
+        return luminance(Rgb(l.objects.rgb(x, y) + l.with_objects.rgb(x, y) - l.without_objects.rgb(x, y)));
+      };
+      const double d = value(a.layers) - value(b.layers);
+      diff2 += d * d;
+      var += va + vb;
+      ++n;
+    }
+  ASSERT_GT(n, 100);
+  // Never optimistic: the ratio of the observed spread to the predicted one may exceed 1 only by
+  // its own sampling error, about √(2/n) relative for n pixels (a χ² with n degrees of freedom);
+  // 4 of those. Not absurdly conservative either.
+  EXPECT_GT(diff2 / var, 0.5);
+  EXPECT_LT(diff2 / var, 1 + 4 * std::sqrt(2.0 / n)) << "n = " << n;
+  // Where the camera met the object: its normal (+Y, the quad faces up) and albedo in the layers.
+  const Vec2d uv = s.camera.project({0.5, 0.3, -0.5});
+  EXPECT_NEAR(a.layers.normal.at(int(uv.x()), int(uv.y()))[1], 1.0f, 1e-4f);
+  EXPECT_NEAR(a.layers.albedo.at(int(uv.x()), int(uv.y()))[0], 0.8f, 1e-4f);
+  EXPECT_GT(*a.layers.depth.at(int(uv.x()), int(uv.y())), 0.0f);
+}
+
+TEST(Layers, ProgressReportsSamplesAndNoisePerPass) {
+  test::SceneFixture fx;
+  auto j = fx.scene;
+  j["render"] = {{"integrator", "path"}, {"spp", 16}};
+  j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
+  j["objects"] = {{{"mesh", "good_quad.obj"}, {"translate", {0, 0.3, 0}}}};
+  const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
+  std::vector<RenderProgress> reports;
+  const RenderResult r = render_scene(s, [&](const RenderProgress& p) {
+    if (p.noise >= 0) reports.push_back(p);
+  });
+  ASSERT_EQ(reports.size(), 8u);  // 8 passes of 2 samples
+  EXPECT_EQ(reports.back().spp_done, 16);
+  EXPECT_DOUBLE_EQ(reports.back().noise, r.layers.mean_relative_noise);
+  EXPECT_GT(reports[1].noise, reports.back().noise);  // more samples, less noise
 }
 
 }  // namespace

@@ -333,12 +333,6 @@ TEST(Render, BitIdenticalForAnyNumberOfThreads) {
   EXPECT_EQ(one.layers.alpha.data, many.layers.alpha.data);
 }
 
-}  // namespace
-}  // namespace insitu
-
-namespace insitu {
-namespace {
-
 // The demo's generator used eye (1.7, 1.45, 2.5), look (−0.2, 0.45, −1.2), hfov 62°
 // (tools/make_demo.cpp); its points.json carries ~0.7 px of click noise per axis. The calibrated
 // camera must agree within 4 reported standard deviations.

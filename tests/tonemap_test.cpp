@@ -8,6 +8,8 @@
 #include "light/equirect.h"
 #include "test_util.h"
 #include "output/tonemap.h"
+#include "scene/pipeline.h"
+#include "scene_fixture.h"
 
 namespace insitu {
 namespace {
@@ -93,15 +95,6 @@ TEST(ToneMapping, DragoAgreesWithOpenCvOnGreyImages) {
   std::printf("Drago vs OpenCV: largest difference %.5f\n", worst);
   EXPECT_LT(worst, 0.01);
 }
-
-}  // namespace
-}  // namespace insitu
-
-#include "scene/pipeline.h"
-#include "scene_fixture.h"
-
-namespace insitu {
-namespace {
 
 TEST(ToneMapping, SelectedInTheSceneFile) {
   test::SceneFixture fx;
