@@ -9,63 +9,15 @@
 #include "calib/f_test.h"
 #include "calib/reprojection_cost.h"
 #include "calib/view_correlation.h"
+#include "calibration_fixture.h"
 #include "test_util.h"
 
 namespace insitu {
 namespace {
 
-// ---- Synthetic cameras and points ----------------------------------------------------------
-
-struct Truth {
-  Camera camera;
-  std::vector<ControlPoint> clean;  // exact projections
-};
-
-// A camera `distance` away from a scene of size ~`scale` centred at `offset`, looking at it with a
-// random tilt and roll, and n points seen by it: random pixels (5% margin) at random depths, or on
-// a plane through the scene centre when coplanar.
-Truth make_truth(std::mt19937& rng, int n, double hfov_deg, bool coplanar, double scale, int width, int height,
-                 CameraModel model) {
-  std::uniform_real_distribution<double> u(-1, 1);
-  const Vec3d offset = Vec3d(3, 0.5, -2) * scale;
-  // Distance so that the scene of size `scale` roughly fills the field of view.
-  const double distance = scale / std::tan(0.5 * deg_to_rad(hfov_deg));
-  const Vec3d dir = Vec3d(u(rng), 0.3 * u(rng) - 0.3, u(rng)).normalized();
-  const Vec3d eye = offset - distance * dir;
-  const Vec3d up = (Vec3d(0, 1, 0) + 0.2 * Vec3d(u(rng), 0, u(rng))).normalized();
-  Truth t;
-  t.camera = Camera::look_at(eye, offset + 0.05 * scale * Vec3d(u(rng), u(rng), u(rng)), up, hfov_deg, width, height);
-  if (model != CameraModel::kF) {
-    t.camera.cx += 0.06 * width * u(rng);
-    t.camera.cy += 0.06 * height * u(rng);
-  }
-  if (model == CameraModel::kFCA) t.camera.fy *= 1.08;
-  const Vec3d plane_n = (-dir + 0.5 * Vec3d(u(rng), u(rng), u(rng))).normalized();
-  for (int i = 0; i < n; ++i) {
-    const Vec2d uv(width * (0.5 + 0.45 * u(rng)), height * (0.5 + 0.45 * u(rng)));
-    Vec3d p;
-    if (coplanar) {
-      // The ray through uv meets the plane through `offset` with normal plane_n.
-      const Vec3d o = t.camera.eye_world(), d = t.camera.unproject(uv, 1.0) - o;
-      p = o + d * ((offset - o).dot(plane_n) / d.dot(plane_n));
-    } else {
-      p = t.camera.unproject(uv, distance * (1 + 0.5 * u(rng)));
-    }
-    ControlPoint cp;
-    cp.p_world = p;
-    cp.uv_px = t.camera.project(p);
-    cp.name = "p" + std::to_string(i);
-    t.clean.push_back(cp);
-  }
-  return t;
-}
-
-std::vector<ControlPoint> with_noise(const std::vector<ControlPoint>& pts, std::mt19937& rng, double sigma_px) {
-  std::normal_distribution<double> g(0, sigma_px);
-  auto out = pts;
-  for (auto& p : out) p.uv_px += Vec2d(g(rng), g(rng));
-  return out;
-}
+using test::make_truth;
+using test::Truth;
+using test::with_noise;
 
 // ---- Noise-free accuracy over the whole range --------------------------------------------------
 
@@ -306,95 +258,6 @@ TEST(Calibration, CostFunctorPassesGradientChecker) {
   const double* params[3] = {aa, t, intr};
   ceres::GradientChecker::ProbeResults results;
   EXPECT_TRUE(checker.Probe(params, 1e-7, &results)) << results.error_log;
-}
-
-// ---- The F-test against published tables ----------------------------------------------------
-
-// Upper percentage points of the F distribution (e.g. NIST/SEMATECH e-Handbook, Table 1.3.6.7.2).
-TEST(FTest, MatchesPublishedCriticalValues) {
-  EXPECT_NEAR(f_distribution_sf(30.817, 2, 3), 0.01, 1e-4);
-  EXPECT_NEAR(f_distribution_sf(4.965, 1, 10), 0.05, 1e-4);
-  EXPECT_NEAR(f_distribution_sf(7.559, 2, 10), 0.01, 1e-4);
-  EXPECT_NEAR(f_distribution_sf(3.098, 3, 20), 0.05, 1e-4);
-  EXPECT_NEAR(f_distribution_sf(161.448, 1, 1), 0.05, 1e-4);
-  EXPECT_DOUBLE_EQ(f_distribution_sf(0, 2, 5), 1.0);
-  EXPECT_DOUBLE_EQ(f_distribution_sf(INFINITY, 2, 5), 0.0);
-  // I_x(1, 1) = x; I_½(a, a) = ½.
-  EXPECT_NEAR(regularized_incomplete_beta(1, 1, 0.3), 0.3, 1e-14);
-  EXPECT_NEAR(regularized_incomplete_beta(7.5, 7.5, 0.5), 0.5, 1e-12);
-}
-
-// ---- View Correlation exchange ---------------------------------------------------------------
-
-// Graphics Gems II's screen_project, written out from the original:
-//   sx = −(d/s·halfx·x_v/z_v) + xcenter,  sy = −(aspect·d/s·halfx·y_v/z_v) + ycenter
-// with (x_v, y_v, z_v) = (p − eye) in the frame z = normalize(eye − look), x = up × z, y = z × x.
-Vec2d vc_screen_project(const ViewCorrelation& vc, const Vec3d& p) {
-  const Vec3d z = (vc.eye - vc.look).normalized();
-  const Vec3d x = vc.up.normalized().cross(z).normalized();
-  const Vec3d y = z.cross(x).normalized();
-  const Vec3d d = p - vc.eye;
-  const double xv = d.dot(x), yv = d.dot(y), zv = d.dot(z);
-  return {-(vc.d_over_s * vc.halfx * xv / zv) + vc.xcenter, -(vc.aspect * vc.d_over_s * vc.halfx * yv / zv) + vc.ycenter};
-}
-
-TEST(ViewCorrelation, ProjectionAgreesWithTheOriginalFormula) {
-  std::mt19937 rng(20);
-  const Truth t = make_truth(rng, 8, 50, false, 1.0, 720, 486, CameraModel::kFCA);
-  const ViewCorrelation vc = view_correlation_from_camera(t.camera, t.clean);
-  for (const auto& p : t.clean) {
-    const Vec2d s = vc_screen_project(vc, p.p_world);
-    // VC's screen y grows upward from the bottom edge.
-    EXPECT_NEAR(s.x(), p.uv_px.x(), 1e-9);
-    EXPECT_NEAR(s.y(), t.camera.height - p.uv_px.y(), 1e-9);
-  }
-}
-
-TEST(ViewCorrelation, FileRoundTripAndCalibrationFromIt) {
-  std::mt19937 rng(21);
-  const Truth t = make_truth(rng, 9, 45, false, 1.0, 640, 480, CameraModel::kF);
-  test::TempDir dir;
-  write_view_correlation(dir.file("old.vc"), view_correlation_from_camera(t.camera, t.clean));
-  const ViewCorrelation back = read_view_correlation(dir.file("old.vc"));
-  const Camera cam = camera_from_view_correlation(back);
-  EXPECT_NEAR(cam.fx, t.camera.fx, 1e-6);
-  EXPECT_NEAR((cam.R_cam_from_world - t.camera.R_cam_from_world).norm(), 0, 1e-8);
-  EXPECT_NEAR((cam.eye_world() - t.camera.eye_world()).norm(), 0, 1e-8);
-  ASSERT_EQ(back.points.size(), t.clean.size());
-  EXPECT_NEAR((back.points[3].uv_px - t.clean[3].uv_px).norm(), 0, 1e-6);
-  // The points of a .vc file calibrate like any other.
-  const auto pts = read_control_points(dir.file("old.vc"), false, 480);
-  const CalibrationResult r = calibrate(pts, 640, 480);
-  EXPECT_LT(std::abs(r.camera.fx / t.camera.fx - 1), 1e-6);
-}
-
-TEST(ControlPoints, JsonCsvAndErrors) {
-  test::TempDir dir;
-  dir.write("p.json", R"([{"uv": [1, 2], "xyz": [3, 4, 5], "name": "corner"}, {"uv": [6, 7], "xyz": [8, 9, 10]}])");
-  const auto pj = read_control_points(dir.file("p.json"), false, 100);
-  ASSERT_EQ(pj.size(), 2u);
-  EXPECT_EQ(pj[0].name, "corner");
-  EXPECT_EQ(pj[1].name, "#2");
-  EXPECT_EQ(pj[1].p_world, Vec3d(8, 9, 10));
-  dir.write("p.csv", "u,v,x,y,z,name\n1, 2, 3, 4, 5, a\n# comment\n6,7,8,9,10\n");
-  const auto pc = read_control_points(dir.file("p.csv"), true, 100);  // bottom-left origin
-  ASSERT_EQ(pc.size(), 2u);
-  EXPECT_EQ(pc[0].uv_px, Vec2d(1, 98));
-  EXPECT_EQ(pc[0].name, "a");
-  dir.write("bad.csv", "1,2,3,4,5\n1,2,x,4,5\n");
-  try {
-    read_control_points(dir.file("bad.csv"), false, 100);
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.where(), dir.file("bad.csv") + ":2");
-  }
-  dir.write("bad.json", R"([{"uv": [1, 2], "xyz": [3, 4]}])");
-  try {
-    read_control_points(dir.file("bad.json"), false, 100);
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.where(), dir.file("bad.json") + ":$[0].xyz");
-  }
 }
 
 }  // namespace

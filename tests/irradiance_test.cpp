@@ -43,26 +43,6 @@ std::vector<Vec3d> random_normals(int count, unsigned seed) {
   return out;
 }
 
-TEST(TexelGeometry, SolidAnglesAndLambertVectorsSumAsTheSphere) {
-  for (int n : {1, 3, 16}) {
-    double omega = 0;
-    Vec3d phi = Vec3d::Zero();
-    for (int f = 0; f < 6; ++f)
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-          omega += texel_solid_angle(i, j, n);
-          const Vec3d v = texel_vector_irradiance(f, i, j, n);
-          phi += v;
-          EXPECT_LE(v.norm(), texel_solid_angle(i, j, n) + 1e-15);
-        }
-    EXPECT_NEAR(omega, 4 * kPi, 1e-12);
-    EXPECT_NEAR(phi.norm(), 0.0, 1e-12);
-  }
-  // A whole face seen from its centre's normal: Lambert's vector length is the one-face form
-  // factor times π, and it equals the full-hemisphere-clipped integral for the face's own axis.
-  EXPECT_NEAR(texel_vector_irradiance(kPosY, 0, 0, 1).y(), 2 * std::sqrt(2.0) * std::atan(1 / std::sqrt(2.0)), 1e-12);
-}
-
 // A constant environment L gives E = πL at every normal in every mode.
 TEST(Irradiance, ConstantEnvironmentGivesPiL) {
   for (int n : {1, 2, 8, 33}) {

@@ -4,8 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
 
 #include "core/camera.h"
+#include "light/irradiance.h"
+#include "output/settings.h"
 #include "integrators/registry.h"
 #include "render/mesh.h"
 #include "render/render.h"
@@ -73,6 +79,42 @@ TEST(Registry, AnotherIntegratorsParametersAreWarnedOf) {
   Warnings none;
   resolve("path", {{"integrator", "path"}, {"spp", 4}, {"seed", 2}, {"max_depth", 3}}, &none);
   EXPECT_TRUE(none.items.empty());
+}
+
+// ---- The docs and scripts against the tables ---------------------------------------------------
+
+std::string read_source(const std::string& rel) {
+  std::ifstream in(test::source_dir() + "/" + rel);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// README's integrator table (the rows after "| name | what it does |") names exactly the registry.
+TEST(Registry, ReadmeListsEveryIntegrator) {
+  const std::string readme = read_source("README.md");
+  const auto start = readme.find("| name | what it does |");
+  ASSERT_NE(start, std::string::npos) << "README.md has no integrator table";
+  std::set<std::string> documented;
+  std::istringstream rows(readme.substr(start));
+  std::string row;
+  std::getline(rows, row);  // header
+  std::getline(rows, row);  // |---|---|
+  const std::regex name_re(R"(^\| `([a-z_0-9]+)` \|)");
+  std::smatch m;
+  while (std::getline(rows, row) && std::regex_search(row, m, name_re)) documented.insert(m[1]);
+  std::set<std::string> registered;
+  for (const auto& e : integrator_registry()) registered.insert(e.name);
+  EXPECT_EQ(documented, registered);
+}
+
+// scripts/bit-identity.sh renders every integrator, irradiance mode and tone map.
+TEST(Registry, BitIdentityScriptCoversEveryTable) {
+  const std::string script = read_source("scripts/bit-identity.sh");
+  ASSERT_FALSE(script.empty());
+  for (const auto& e : integrator_registry()) EXPECT_NE(script.find(e.name), std::string::npos) << e.name;
+  for (const auto& name : names_of(kIrradianceModes)) EXPECT_NE(script.find(name), std::string::npos) << name;
+  for (const auto& name : names_of(kToneMaps)) EXPECT_NE(script.find(name), std::string::npos) << name;
 }
 
 // ---- The invariants of every registered integrator -------------------------------------------
