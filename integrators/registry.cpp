@@ -17,11 +17,11 @@ std::unique_ptr<Integrator> make_path_integrator(const RenderInputs& inputs, con
 const std::vector<IntegratorEntry>& integrator_registry() {
   static const std::vector<IntegratorEntry> table = {
       {"realtime", "legacy real-time path: base colour x face-blurred cube at the normal, no shadows",
-       {/*local_scene*/ false, /*room_box*/ false}, read_realtime_params, make_realtime_integrator},
+       {/*local_scene*/ false, /*room_box*/ false, /*monte_carlo*/ false}, read_realtime_params, make_realtime_integrator},
       {"irradiance", "Lambertian objects lit by an irradiance mode (render.irradiance), no visibility",
-       {/*local_scene*/ false, /*room_box*/ false}, read_irradiance_params, make_irradiance_integrator},
+       {/*local_scene*/ false, /*room_box*/ false, /*monte_carlo*/ false}, read_irradiance_params, make_irradiance_integrator},
       {"path", "path tracing of the objects with environment importance sampling and MIS (shadows between objects)",
-       {/*local_scene*/ true, /*room_box*/ true}, read_path_params, make_path_integrator},
+       {/*local_scene*/ true, /*room_box*/ true, /*monte_carlo*/ true}, read_path_params, make_path_integrator},
   };
   return table;
 }

@@ -48,6 +48,8 @@ class IntegratorParams {
 struct IntegratorCapabilities {
   bool local_scene = false;  // catches shadows on local_scene (differential rendering)
   bool room_box = false;     // uses environment.room_box
+  bool monte_carlo = false;  // its noise falls as 1/√spp (insitu tradeoff renders it over a ladder);
+                             // otherwise spp only anti-aliases
 };
 
 struct IntegratorEntry {

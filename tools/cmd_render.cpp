@@ -104,10 +104,11 @@ Command add_render_command(CLI::App& app) {
   for (const auto& e : integrator_registry()) help += fmt::format(" {} ({})", e.name, e.summary);
   cmd->add_option("--integrator", a->integrator, help);
   cmd->add_option("--irradiance", a->irradiance,
-                  "irradiance mode of the irradiance integrator: gaussian, sh9 or exact [default: the scene's, else exact]")
+                  "irradiance mode of the irradiance integrator: " + quoted_choices(names_of(kIrradianceModes)) +
+                      " [default: the scene's, else exact]")
       ->check(CLI::IsMember(names_of(kIrradianceModes)));
   cmd->add_option("--tonemap", a->tonemap,
-                  "for PNG/JPEG: photo, adaptive_log, reinhard or linear [default: the scene's, else photo]")
+                  "for PNG/JPEG: " + quoted_choices(names_of(kToneMaps)) + " [default: the scene's, else photo]")
       ->check(CLI::IsMember(names_of(kToneMaps)));
   cmd->add_option("--key", a->key, "tone-mapping key [default: adaptive_log 1, reinhard 0.18, linear 1]")->check(CLI::PositiveNumber);
   return [cmd, a] { return cmd->parsed() ? run_render(*a) : -1; };

@@ -121,11 +121,23 @@ int run_tradeoff(const TradeoffArgs& a) {
     std::fprintf(stderr, "tradeoff: %-20s %5d spp %8.3f s  rel. RMSE %.4f\n", name.c_str(), spp, seconds, c.masked->relative_rmse);
     if (keep) *keep = std::move(r);
   };
-  measure("realtime", "realtime", IrradianceMode::kGaussian, 16, &realtime_result);
-  measure("irradiance/gaussian", "irradiance", IrradianceMode::kGaussian, 16, nullptr);
-  measure("irradiance/sh9", "irradiance", IrradianceMode::kSh9, 16, nullptr);
-  measure("irradiance/exact", "irradiance", IrradianceMode::kExact, 16, nullptr);
-  for (int spp : a.ladder) measure("path", "path", IrradianceMode::kExact, spp, &best_path);
+  // Every integrator of the registry: a Monte Carlo one over the ladder, the others at 16 spp
+  // (anti-aliasing only), in each irradiance mode when it reads one. The A/B picture sets the
+  // legacy path against the best path-traced render.
+  for (const IntegratorEntry& e : integrator_registry()) {
+    const std::string name = e.name;
+    Warnings ignored;
+    const bool reads_mode = resolve_integrator(name, {json::object(), "", "$.render"}, ignored).params.contains("irradiance");
+    for (const auto& [mode, mode_name] : kIrradianceModes) {
+      if (!reads_mode && mode != IrradianceMode::kExact) continue;
+      const std::string label = reads_mode ? name + "/" + mode_name : name;
+      if (!e.uses.monte_carlo) {
+        measure(label, name, mode, 16, name == "realtime" ? &realtime_result : nullptr);
+        continue;
+      }
+      for (int spp : a.ladder) measure(label, name, mode, spp, name == "path" ? &best_path : nullptr);
+    }
+  }
 
   namespace fs = std::filesystem;
   const fs::path dir(a.out);
