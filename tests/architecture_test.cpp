@@ -91,6 +91,24 @@ TEST(Architecture, SpecTypesIncludeNothingOfTheRenderSide) {
   }
 }
 
+// Every quoted include anywhere (the tests, the fuzz targets, the benchmarks, the CLI) names a
+// file that exists beside it, under src/ or tools/, or from the repository root: a header moved to its stage
+// is followed everywhere, including the targets that only the sanitizer leg builds.
+TEST(Architecture, EveryQuotedIncludeExists) {
+  int checked = 0;
+  for (const char* dir : {"tests", "tests/fuzz", "bench", "tools", "integrators"})
+    for (const auto& e : fs::directory_iterator(kRoot / dir)) {
+      if (e.path().extension() != ".h" && e.path().extension() != ".cpp") continue;
+      for (const std::string& inc : includes_of(e.path())) {
+        const bool found = fs::is_regular_file(e.path().parent_path() / inc) || fs::is_regular_file(kRoot / "src" / inc) ||
+                           fs::is_regular_file(kRoot / inc) || fs::is_regular_file(kRoot / "tools" / inc);
+        EXPECT_TRUE(found) << e.path() << ": #include \"" << inc << "\" is nowhere";
+        ++checked;
+      }
+    }
+  EXPECT_GT(checked, 100);
+}
+
 // The checker itself: a file that includes upward is caught.
 TEST(Architecture, TheCheckCanFail) {
   EXPECT_FALSE(kAllowed.at("calib").count(stage_of_include("render/embree_scene.h")));

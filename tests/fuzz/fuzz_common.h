@@ -11,7 +11,7 @@
 #include <fstream>
 #include <string>
 
-#include "error.h"
+#include "core/error.h"
 
 namespace insitu::fuzz {
 
