@@ -7,10 +7,13 @@
 // proportion to luminance × solid angle, with a shadow ray) and a BSDF sample (cosine-weighted),
 // combined by multiple importance sampling with the power heuristic (Veach 1997, §9.2). Escaping
 // rays take the cube's nearest texel, the same piecewise-constant function the `exact` irradiance
-// integrates. A ray that meets a catcher plane sees the real room: the photo's radiance where the
-// point is in the photo's frame (a Lambertian floor looks the same from the object), else the
-// cube; such directions are reached by BSDF sampling only (weight 1; the environment sample
-// toward them counts as occluded). Russian roulette from the third bounce on, survival
+// integrates. A ray from an object that meets the local scene sees the real surface as it is with
+// the objects present, so that the objects see their own shadows on it (issue 12): the surface is
+// shaded like the catcher below (its albedo from the photo, a sample of the room's light that the
+// objects can block, one cosine bounce that traces the objects), not looked up in the photo, which
+// holds no shadow of them. The local scene emits nothing, so directions toward it are reached by
+// BSDF sampling only (weight 1; the environment sample toward them counts as occluded). Russian
+// roulette from the third bounce on, survival
 // probability min(0.95, max throughput). Materials: bsdf.h — Lambertian ρ = Kd × map_Kd, plus a
 // glossy GGX lobe where the MTL gives Ks (roughness from Ns).
 //
@@ -182,7 +185,8 @@ class PathIntegrator final : public Integrator {
       ray = {origin, wi};
       hit = objects_->intersect(ray);
       if (const CatcherHit c = find_catcher(ray, hit.valid() ? hit.t : kInfinity); c.valid) {
-        L += throughput * room_radiance(c.x, wi);
+        // The real surface, shaded with the objects present: they see their own shadows on it.
+        L += throughput * estimate_catcher(c, wi, sampler, depth).with;
         break;
       }
       if (!hit.valid()) {
@@ -198,43 +202,63 @@ class PathIntegrator final : public Integrator {
     return L;
   }
 
-  void catcher(const Ray& camera_ray, const CatcherHit& c, Sampler& sampler, CameraSample& out) const {
-    const Vec3f& x = c.x;
+  // ρ/π of a local-scene point met along `dir`: the surface's, or the photo's P/E (E the exact
+  // irradiance at its normal without objects), P where the photo sees the point, else the room's
+  // light along `dir` (what the capture point saw in that direction: the real surface beyond).
+  Rgb albedo_over_pi(const CatcherHit& c, const Vec3f& dir) const {
+    if (!c.albedo_from_photo) return c.albedo / kPiF;
+    const Rgb P = room_radiance(c.x, dir);
+    Rgb rho_over_pi;
+    for (int k = 0; k < 3; ++k) rho_over_pi[k] = c.irradiance[k] > 0 ? P[k] / c.irradiance[k] : 0.0f;
+    return rho_over_pi;
+  }
+
+  // The radiance a real surface reflects along -dir, with and without the objects, from the same
+  // random numbers:
+  //   L(x) = ρ/π ∫ L_room(ω) V(x, ω) cos θ dω
+  // estimated by a sample of the room's light (blocked by the local scene for both, by the
+  // objects only `with`) and a cosine-weighted sample combined by MIS. The cosine sample traces
+  // an object it meets (depth + 1: the objects' light on the real surface), and takes what lies
+  // behind otherwise: the real room as the photo shows it, or the room's light. For the model — a
+  // Lambertian real surface of albedo ρ lit by the room — `with` is unbiased; `without` has mean
+  // ρ/π E = P, the photo.
+  struct CatcherEstimate {
+    Rgb with = Rgb::Zero(), without = Rgb::Zero(), rho_over_pi = Rgb::Zero();
+  };
+  CatcherEstimate estimate_catcher(const CatcherHit& c, const Vec3f& dir, Sampler& sampler, int depth) const {
+    CatcherEstimate e;
+    e.rho_over_pi = albedo_over_pi(c, dir);
     const Vec3f& n = c.n;
-    // ρ/π: the surface's, or the photo's P/E.
-    Rgb rho_over_pi = c.albedo / kPiF;
-    if (c.albedo_from_photo) {
-      const Rgb P = room_radiance(x, -camera_ray.dir);
-      for (int k = 0; k < 3; ++k) rho_over_pi[k] = c.irradiance[k] > 0 ? P[k] / c.irradiance[k] : 0.0f;
-    }
-    const Vec3f origin = offset_origin(x, n);
-    Rgb with = Rgb::Zero(), without = Rgb::Zero();
-    // Environment sample: blocked by the local scene for both, by the objects for `with`.
+    const Vec3f origin = offset_origin(c.x, n);
     const float ue = sampler.next(), us = sampler.next(), ut = sampler.next();
     const RoomSample rs = room_.sample(origin, ue, us, ut);
     const float cos_l = n.dot(rs.dir);
     if (rs.pdf > 0 && cos_l > 0 && !blocked_by_catcher(origin, rs)) {
-      const Rgb contribution = rho_over_pi * rs.radiance * (cos_l / rs.pdf * power_heuristic(rs.pdf, cos_l / kPiF));
-      without += contribution;
-      if (!blocked_by_objects(origin, rs)) with += contribution;
+      const Rgb contribution = e.rho_over_pi * rs.radiance * (cos_l / rs.pdf * power_heuristic(rs.pdf, cos_l / kPiF));
+      e.without += contribution;
+      if (!blocked_by_objects(origin, rs)) e.with += contribution;
     }
-    // BSDF sample: what lies behind (the real room, or the environment), or an object in front.
     const Vec3f wi = cosine_sample(n, sampler.next(), sampler.next());
     const float pdf_bsdf = n.dot(wi) / kPiF;
     const CatcherHit behind_hit = find_catcher({origin, wi}, kInfinity);
     const Rgb behind = behind_hit.valid
-                           ? Rgb(kPiF * rho_over_pi * room_radiance(behind_hit.x, wi))
-                           : Rgb(kPiF * rho_over_pi * env_radiance(origin, wi) * power_heuristic(pdf_bsdf, room_.pdf(origin, wi)));
-    without += behind;
+                           ? Rgb(kPiF * e.rho_over_pi * room_radiance(behind_hit.x, wi))
+                           : Rgb(kPiF * e.rho_over_pi * env_radiance(origin, wi) * power_heuristic(pdf_bsdf, room_.pdf(origin, wi)));
+    e.without += behind;
     const Hit hit = objects_->intersect({origin, wi});
     if (hit.valid() && (!behind_hit.valid || hit.t < behind_hit.t))
-      with += kPiF * rho_over_pi * trace_from({origin, wi}, hit, sampler, 1);
+      e.with += kPiF * e.rho_over_pi * trace_from({origin, wi}, hit, sampler, depth + 1);
     else
-      with += behind;
-    out.with_objects = with;
-    out.without_objects = without;
-    out.normal = n;
-    out.albedo = kPiF * rho_over_pi;
+      e.with += behind;
+    return e;
+  }
+
+  void catcher(const Ray& camera_ray, const CatcherHit& c, Sampler& sampler, CameraSample& out) const {
+    const CatcherEstimate e = estimate_catcher(c, camera_ray.dir, sampler, 0);
+    out.with_objects = e.with;
+    out.without_objects = e.without;
+    out.normal = c.n;
+    out.albedo = kPiF * e.rho_over_pi;
     out.depth = c.t;
   }
 

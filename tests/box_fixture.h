@@ -1,4 +1,4 @@
-// A closed axis-aligned box of half-size `scale` at the origin, Lambertian with the given Kd
+// A closed axis-aligned box of half-size `scale` centred at `centre` (default the origin), Lambertian with the given Kd
 // ("r g b"), written to a temporary folder and loaded as the objects' Embree scene: the convex
 // object of the furnace and closed-surface tests.
 #pragma once
@@ -12,7 +12,7 @@
 
 namespace insitu::test {
 
-inline EmbreeScene make_box(const TempDir& dir, const std::string& kd, double scale) {
+inline EmbreeScene make_box(const TempDir& dir, const std::string& kd, double scale, const Vec3d& centre = Vec3d::Zero()) {
   dir.write("box.mtl", "newmtl m\nKd " + kd + "\n");
   const std::string obj =
       "mtllib box.mtl\nusemtl m\n"
@@ -21,7 +21,7 @@ inline EmbreeScene make_box(const TempDir& dir, const std::string& kd, double sc
   Warnings w;
   std::vector<Mesh> meshes;
   meshes.push_back(load_obj(dir.write("box.obj", obj), w));
-  transform_mesh(meshes.back(), object_transform({0, 0, 0}, 0, {0, 1, 0}, Vec3d::Constant(scale)));
+  transform_mesh(meshes.back(), object_transform(centre, 0, {0, 1, 0}, Vec3d::Constant(scale)));
   return EmbreeScene(std::move(meshes));
 }
 

@@ -86,5 +86,64 @@ TEST(Path, ConvexObjectEqualsExactIrradiance) {
   }
 }
 
+// A floor catcher plane through the origin, facing up, of the given albedo.
+CatcherPlane floor_plane(float albedo) {
+  CatcherPlane p;
+  p.point = Vec3f::Zero();
+  p.normal = Vec3f(0, 1, 0);
+  p.albedo_from_photo = false;
+  p.albedo = Rgb::Constant(albedo);
+  return p;
+}
+
+// White furnace with the local scene: a white box standing on a white floor in a constant
+// environment L. Every point of the upper half-space then sees L in every direction (sky, floor and
+// box all return L), so the box reflects exactly L wherever it is seen — through any number of
+// bounces between it and the real floor, which the objects' paths now shade rather than look up.
+TEST(Path, WhiteFurnaceWithTheLocalScene) {
+  test::TempDir dir;
+  CubeMap env(8);
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < 8; ++j)
+      for (int i = 0; i < 8; ++i) env.set_texel(f, i, j, Rgb::Constant(0.7f));
+  env.update_borders();
+  const EmbreeScene box = test::make_box(dir, "1 1 1", 1.0, Vec3d(0, 1.001, 0));
+  RenderInputs in;
+  in.objects = &box;
+  in.environment = &env;
+  in.planes = {floor_plane(1.0f)};
+  const auto path = make_integrator("path", in, {{"max_depth", 1000}});
+  // The side of the box 2 cm above the floor, and its top.
+  const Ray rays[] = {{Vec3f(5, 0.021f, 0.3f), Vec3f(-1, 0, 0)}, {Vec3f(0.2f, 6, 0.1f), Vec3f(0, -1, 0)}};
+  for (std::size_t r = 0; r < 2; ++r) {
+    const Estimate e = estimate(*path, rays[r], 8000, r);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(e.mean[c], 0.7f, 4 * e.se[c] + 1e-5f) << "ray " << r;
+  }
+}
+
+// Objects see their own shadows: the underside of a 2 m box hovering 1 cm above the floor sees the
+// floor in the box's own shadow, lit only through the 1 cm gap, so it is nearly black. Looked up
+// in the photo (which has no shadow of the box) the floor would give it ρ_box · L_floor = 0.8 · 0.5
+// in this constant sky L = 1 over a floor of albedo 0.5. The camera looks up from below the floor
+// (planes catch from their front only).
+TEST(Path, ObjectsSeeTheirOwnShadowsOnTheLocalScene) {
+  test::TempDir dir;
+  CubeMap env(8);
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < 8; ++j)
+      for (int i = 0; i < 8; ++i) env.set_texel(f, i, j, Rgb::Constant(1.0f));
+  env.update_borders();
+  const EmbreeScene box = test::make_box(dir, "0.8 0.8 0.8", 1.0, Vec3d(0, 1.01, 0));
+  RenderInputs in;
+  in.objects = &box;
+  in.environment = &env;
+  in.planes = {floor_plane(0.5f)};
+  const auto path = make_integrator("path", in);
+  const Estimate e = estimate(*path, {Vec3f(0.1f, -1, 0.05f), Vec3f(0, 1, 0)}, 4000, 0);
+  const float unshadowed = 0.8f * 0.5f;
+  EXPECT_LT(e.mean[0], 0.05f * unshadowed) << "se " << e.se[0];
+  EXPECT_GT(e.mean[0], 0.0f);  // some light leaks in through the gap
+}
+
 }  // namespace
 }  // namespace insitu

@@ -1,0 +1,105 @@
+// insitu against an independent renderer (issue 12; docs/validation.md). tools/validate/ built
+// the open-ground scene in Blender and rendered it with Cycles 3.4: the empty photo, the photo with
+// the objects (the truth, twice, with two seeds), the objects' coverage and six HDR shots from the
+// insertion point. Its small outputs are committed in tools/validate/open_ground/out; here insitu
+// renders them with the true camera and is measured over the objects and the pixels they change,
+// with the regions of tools/validate/metrics.py.
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "scene/pipeline.h"
+#include "scene/scene_file.h"
+#include "test_util.h"
+
+namespace insitu {
+namespace {
+
+const std::string kOut = test::source_dir() + "/tools/validate/open_ground/out";
+
+// All channels of an EXR (Blender writes RGBA).
+Image read_all_channels(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return {};
+  const OIIO::ImageSpec& spec = in->spec();
+  Image img(spec.width, spec.height, spec.nchannels);
+  in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.data.data());
+  return img;
+}
+
+float lum(const Image& img, int i) {
+  const float* p = &img.data[std::size_t(i) * img.channels];
+  return 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2];
+}
+
+// The regions of metrics.py: the objects (coverage α > 0.01), and the other pixels whose
+// luminance the objects change by more than 3 % (3 × 3 mean of |Y_truth − Y_photo|).
+std::vector<bool> objects_and_changed(const Image& truth, const Image& photo, const Image& coverage) {
+  const int w = truth.width, h = truth.height;
+  std::vector<bool> mask(std::size_t(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      double s = 0;
+      int k = 0;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int xx = x + dx, yy = y + dy;
+          if (xx < 0 || yy < 0 || xx >= w || yy >= h) continue;
+          s += std::abs(lum(truth, yy * w + xx) - lum(photo, yy * w + xx));
+          ++k;
+        }
+      const int i = y * w + x;
+      const bool object = coverage.data[std::size_t(i) * coverage.channels + 3] > 0.01f;
+      mask[std::size_t(i)] = object || s / k > 0.03 * std::max(lum(photo, i), 1e-6f);
+    }
+  return mask;
+}
+
+// sqrt(Σ_R (a − t)²) / sqrt(Σ_R t²) over RGB.
+double relative_rmse(const Image& a, const Image& t, const std::vector<bool>& mask) {
+  double se = 0, st = 0;
+  for (std::size_t i = 0; i < mask.size(); ++i)
+    if (mask[i])
+      for (int c = 0; c < 3; ++c) {
+        const double d = a.data[i * a.channels + c] - t.data[i * t.channels + c];
+        se += d * d;
+        st += double(t.data[i * t.channels + c]) * t.data[i * t.channels + c];
+      }
+  return std::sqrt(se / st);
+}
+
+// The goal of issue 12 for this scene is 3 % at 1024 spp. At the 256 spp rendered here insitu's
+// own noise adds to that, and the truth's noise to both: the bound is
+// sqrt(goal² + σ_insitu² + σ_truth²), with σ_insitu its standard error from the variance layer
+// over the region and σ_truth the truth's own (truth against truth2, / √2).
+TEST(Validation, OpenGroundAgainstCyclesWithinTheGoal) {
+  if (!std::ifstream(kOut + "/scene.json")) GTEST_SKIP() << kOut << " is absent";
+  SceneSpec spec = parse_scene_file(kOut + "/scene.json");
+  spec.render.spp = 256;
+  const LoadedScene scene = load_scene(spec);
+  const RenderResult r = render_scene(scene);
+  const Image truth = read_all_channels(kOut + "/truth.exr"), truth2 = read_all_channels(kOut + "/truth2.exr");
+  const Image photo = read_all_channels(kOut + "/photo.exr"), coverage = read_all_channels(kOut + "/coverage.exr");
+  ASSERT_EQ(truth.width, r.composite_linear.width);
+  ASSERT_EQ(coverage.channels, 4);
+  const std::vector<bool> mask = objects_and_changed(truth, photo, coverage);
+  double var = 0, t2 = 0;
+  for (std::size_t i = 0; i < mask.size(); ++i)
+    if (mask[i]) {
+      var += 3 * r.layers.variance.data[i];
+      for (int c = 0; c < 3; ++c) t2 += double(truth.data[i * truth.channels + c]) * truth.data[i * truth.channels + c];
+    }
+  const double sigma_insitu = std::sqrt(var / t2), sigma_truth = relative_rmse(truth2, truth, mask) / std::sqrt(2.0);
+  const double goal = 0.03, bound = std::sqrt(goal * goal + sigma_insitu * sigma_insitu + sigma_truth * sigma_truth);
+  const double error = relative_rmse(r.composite_linear, truth, mask);
+  EXPECT_LT(error, bound) << "σ_insitu " << sigma_insitu << ", σ_truth " << sigma_truth;
+  std::printf("validation: open ground, 256 spp: %.2f %% (bound %.2f %%: σ_insitu %.2f %%, σ_truth %.2f %%)\n", 100 * error,
+              100 * bound, 100 * sigma_insitu, 100 * sigma_truth);
+}
+
+}  // namespace
+}  // namespace insitu

@@ -1,0 +1,252 @@
+# Ground truth from an independent renderer (issue 12): builds a validation scene in Blender 3.4
+# and renders it with Cycles — the empty photo, the photo with the objects (the truth), the
+# objects' coverage, the truth again with another seed (its noise), and six 90° shots from the
+# insertion point — then writes the insitu scene
+# that reproduces it (the true camera, the shots as the environment, the floor as local scene).
+#
+#   blender -b --factory-startup --python tools/validate/cycles_render.py -- SCENE.json OUT_DIR
+#
+# SCENE.json describes the scene in insitu's world frame (DESIGN.md: right-handed, +Y up, metres):
+#   {"hdri": "...exr", "hdri_strength": 1, "ground": {"size": 40, "checker": [[r,g,b], [r,g,b]],
+#    "checker_scale": 20}, "objects": [{"mesh": "...obj", "translate": [x,y,z], "rotate": deg,
+#    "scale": s}], "camera": {"eye": [...], "look": [...], "hfov_deg": 50, "width": 320,
+#    "height": 240}, "insertion": [x,y,z], "samples": {"photo": 1024, "shots": 256},
+#    "shot_size": 128, "seed": 1}
+# Paths in it are relative to the file. Every material is made a pure Lambertian (Diffuse BSDF,
+# roughness 0) of the MTL's Kd or map_Kd, the reflectance model insitu's MTL reading gives a
+# material without Ks; the pixel filter is a 1-pixel box, insitu's.
+import json
+import math
+import os
+import shutil
+import sys
+
+import bpy
+from mathutils import Matrix, Vector
+
+argv = sys.argv[sys.argv.index("--") + 1:]
+desc_path, out_dir = os.path.abspath(argv[0]), os.path.abspath(argv[1])
+desc = json.load(open(desc_path))
+here = os.path.dirname(desc_path)
+os.makedirs(os.path.join(out_dir, "shots"), exist_ok=True)
+
+
+def rel(p):
+    return p if os.path.isabs(p) else os.path.normpath(os.path.join(here, p))
+
+
+def to_blender(v):
+    """insitu (Y up) -> Blender (Z up): (x, y, z) -> (x, -z, y), a proper rotation."""
+    return Vector((v[0], -v[2], v[1]))
+
+
+def setup_render(scene, samples, width, height, seed):
+    scene.render.engine = "CYCLES"
+    scene.cycles.device = "CPU"
+    scene.cycles.samples = samples
+    scene.cycles.use_adaptive_sampling = False
+    scene.cycles.use_denoising = False
+    scene.cycles.pixel_filter_type = "BOX"
+    scene.cycles.filter_width = 1.0
+    scene.cycles.seed = seed
+    scene.cycles.sample_clamp_direct = 0
+    scene.cycles.sample_clamp_indirect = 0
+    scene.render.resolution_x, scene.render.resolution_y = width, height
+    scene.render.resolution_percentage = 100
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.image_settings.color_depth = "16"  # half floats: small files, 3 significant digits
+    scene.render.image_settings.exr_codec = "ZIP"
+    scene.view_settings.view_transform = "Standard"
+    scene.render.threads_mode = "AUTO"
+
+
+def make_world(scene):
+    world = bpy.data.worlds.new("hdri")
+    scene.world = world
+    world.use_nodes = True
+    nt = world.node_tree
+    env = nt.nodes.new("ShaderNodeTexEnvironment")
+    env.image = bpy.data.images.load(rel(desc["hdri"]))
+    bg = nt.nodes["Background"]
+    bg.inputs["Strength"].default_value = desc.get("hdri_strength", 1.0)
+    nt.links.new(env.outputs["Color"], bg.inputs["Color"])
+
+
+def diffuse_material(name, colour_socket_source=None, colour=(0.8, 0.8, 0.8)):
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    nt = mat.node_tree
+    for n in list(nt.nodes):
+        nt.nodes.remove(n)
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    diff = nt.nodes.new("ShaderNodeBsdfDiffuse")
+    diff.inputs["Roughness"].default_value = 0.0
+    diff.inputs["Color"].default_value = (*colour, 1.0)
+    nt.links.new(diff.outputs["BSDF"], out.inputs["Surface"])
+    return mat, nt, diff
+
+
+def make_ground():
+    g = desc["ground"]
+    bpy.ops.mesh.primitive_plane_add(size=g.get("size", 40.0), location=(0, 0, 0))
+    plane = bpy.context.active_object
+    mat, nt, diff = diffuse_material("ground")
+    checker = nt.nodes.new("ShaderNodeTexChecker")
+    checker.inputs["Scale"].default_value = g.get("checker_scale", 20.0)
+    a, b = g.get("checker", [[0.2, 0.2, 0.2], [0.6, 0.6, 0.6]])
+    checker.inputs["Color1"].default_value = (*a, 1.0)
+    checker.inputs["Color2"].default_value = (*b, 1.0)
+    nt.links.new(checker.outputs["Color"], diff.inputs["Color"])
+    plane.data.materials.append(mat)
+    return plane
+
+
+def lambertian_copy(mat):
+    """The imported material as a pure Diffuse BSDF of its base colour (value or texture)."""
+    principled = next((n for n in mat.node_tree.nodes if n.type == "BSDF_PRINCIPLED"), None)
+    base = principled.inputs["Base Color"] if principled else None
+    colour = tuple(base.default_value[:3]) if base else (0.8, 0.8, 0.8)
+    new, nt, diff = diffuse_material(mat.name + "_lambert", colour=colour)
+    if base and base.is_linked:
+        src = base.links[0].from_node
+        if src.type == "TEX_IMAGE":
+            tex = nt.nodes.new("ShaderNodeTexImage")
+            tex.image = src.image
+            tex.interpolation = "Closest"
+            nt.links.new(tex.outputs["Color"], diff.inputs["Color"])
+    return new
+
+
+def make_objects():
+    objects = []
+    for o in desc["objects"]:
+        before = set(bpy.data.objects)
+        bpy.ops.wm.obj_import(filepath=rel(o["mesh"]), forward_axis="NEGATIVE_Z", up_axis="Y")
+        for obj in set(bpy.data.objects) - before:
+            # insitu: translate · rotate about +Y · scale, after the importer's Y-up -> Z-up turn
+            # (kept in the object's matrix); insitu's +Y is Blender's +Z.
+            s = o.get("scale", 1.0)
+            sx, sy, sz = s if isinstance(s, list) else (s, s, s)
+            S = Matrix.Diagonal((sx, sz, sy, 1.0))
+            R = Matrix.Rotation(math.radians(o.get("rotate", 0.0)), 4, "Z")
+            T = Matrix.Translation(to_blender(o.get("translate", [0, 0, 0])))
+            obj.matrix_world = T @ R @ S @ obj.matrix_world.copy()
+            for slot in obj.material_slots:
+                if slot.material:
+                    slot.material = lambertian_copy(slot.material)
+            objects.append(obj)
+    return objects
+
+
+def make_camera(name, eye, forward, up, angle_deg, sensor_fit="HORIZONTAL"):
+    data = bpy.data.cameras.new(name)
+    data.sensor_fit = sensor_fit
+    data.angle = math.radians(angle_deg)
+    data.clip_start, data.clip_end = 0.001, 10000.0
+    cam = bpy.data.objects.new(name, data)
+    bpy.context.scene.collection.objects.link(cam)
+    f, u = to_blender(forward).normalized(), to_blender(up)
+    right = f.cross(u).normalized()
+    u = right.cross(f).normalized()
+    # A Blender camera looks along its local −Z with +Y up and +X right.
+    rot = Matrix((right, u, -f)).transposed()
+    cam.matrix_world = Matrix.Translation(to_blender(eye)) @ rot.to_4x4()
+    return cam
+
+
+def render_to(path):
+    bpy.context.scene.render.filepath = path
+    bpy.ops.render.render(write_still=True)
+    print("validate: wrote", path, flush=True)
+
+
+# The six shots insitu reads: walls by the world direction they face (image up = +Y), the ceiling
+# and the floor with the faced wall −Z (the ceiling shot's bottom edge and the floor shot's top
+# edge point toward it).
+SHOTS = {
+    "+x": ((1, 0, 0), (0, 1, 0)), "-x": ((-1, 0, 0), (0, 1, 0)),
+    "+z": ((0, 0, 1), (0, 1, 0)), "-z": ((0, 0, -1), (0, 1, 0)),
+    "up": ((0, 1, 0), (0, 0, 1)), "down": ((0, -1, 0), (0, 0, -1)),
+}
+
+
+def main():
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    make_world(scene)
+    ground = make_ground() if desc.get("ground") else None
+    objects = make_objects()
+    c = desc["camera"]
+    eye, look = Vector(c["eye"]), Vector(c["look"])
+    camera = make_camera("photo", c["eye"], list(look - eye), [0, 1, 0], c["hfov_deg"])
+    samples, seed = desc.get("samples", {}), desc.get("seed", 1)
+
+    # The truth: the photo with the objects.
+    scene.camera = camera
+    setup_render(scene, samples.get("photo", 1024), c["width"], c["height"], seed)
+    render_to(os.path.join(out_dir, "truth.exr"))
+    # The truth again with another seed: its own noise, for the error's tolerance.
+    setup_render(scene, samples.get("photo", 1024), c["width"], c["height"], seed + 1)
+    render_to(os.path.join(out_dir, "truth2.exr"))
+    # The objects' coverage: only they are seen, over a transparent film.
+    if ground:
+        ground.visible_camera = False
+    scene.render.film_transparent = True
+    setup_render(scene, 16, c["width"], c["height"], seed)
+    render_to(os.path.join(out_dir, "coverage.exr"))
+    if ground:
+        ground.visible_camera = True
+    scene.render.film_transparent = False
+    # The empty room: the photo, and the six shots from the insertion point.
+    for obj in objects:
+        obj.hide_render = True
+    setup_render(scene, samples.get("photo", 1024), c["width"], c["height"], seed)
+    render_to(os.path.join(out_dir, "photo.exr"))
+    n = desc.get("shot_size", 128)
+    setup_render(scene, samples.get("shots", 256), n, n, seed)
+    shots = {}
+    for face, (forward, up) in SHOTS.items():
+        scene.camera = make_camera("shot" + face, desc["insertion"], forward, up, 90.0, "AUTO")
+        name = "shot_" + face.replace("+", "p").replace("-", "n") + ".exr"
+        render_to(os.path.join(out_dir, "shots", name))
+        shots[face] = "shots/" + name
+    shots["faced"] = "-z"
+    write_insitu_scene(shots)
+
+
+def copy_mesh(path):
+    """The OBJ and the MTL files it names, copied into OUT_DIR/meshes: the output stands alone."""
+    dest = os.path.join(out_dir, "meshes")
+    os.makedirs(dest, exist_ok=True)
+    shutil.copy(path, dest)
+    for line in open(path):
+        if line.startswith("mtllib "):
+            shutil.copy(os.path.join(os.path.dirname(path), line.split(None, 1)[1].strip()), dest)
+    return "meshes/" + os.path.basename(path)
+
+
+def write_insitu_scene(shots):
+    c = desc["camera"]
+    objects = []
+    for o in desc["objects"]:
+        item = {"mesh": copy_mesh(rel(o["mesh"])), "translate": o.get("translate", [0, 0, 0]),
+                "rotate": o.get("rotate", 0.0)}
+        if "scale" in o:
+            item["scale"] = o["scale"]
+        objects.append(item)
+    scene = {
+        "photo": "photo.exr",
+        "camera": {"eye": c["eye"], "look": c["look"], "hfov_deg": c["hfov_deg"]},
+        # The shots are in the photo's unit (one renderer, one exposure): factor 1.
+        "environment": {"shots": shots, "exposure": 1.0},
+        "local_scene": [{"plane": {"point": [0, 0, 0], "normal": [0, 1, 0]}}] if desc.get("ground") else [],
+        "objects": objects,
+        "render": {"integrator": "path", "spp": 64},
+        "output": {"image": "insitu.exr", "layers": "insitu.layers.exr"},
+    }
+    with open(os.path.join(out_dir, "scene.json"), "w") as f:
+        json.dump(scene, f, indent=2)
+    print("validate: wrote", os.path.join(out_dir, "scene.json"), flush=True)
+
+
+main()
