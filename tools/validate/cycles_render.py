@@ -12,7 +12,8 @@
 #    "scale": s}], "camera": {"eye": [...], "look": [...], "hfov_deg": 50, "width": 320,
 #    "height": 240}, "insertion": [x,y,z], "samples": {"photo": 1024, "shots": 256},
 #    "shot_size": 128, "seed": 1}
-# Paths in it are relative to the file. Every material is made a pure Lambertian (Diffuse BSDF,
+# A closed room adds "room": {"min": [...], "max": [...], "albedo": [...], "window": {...},
+# "lamp": {...}, "sun": {...}} (make_room below). Paths in it are relative to the file. Every material is made a pure Lambertian (Diffuse BSDF,
 # roughness 0) of the MTL's Kd or map_Kd, the reflectance model insitu's MTL reading gives a
 # material without Ks; the pixel filter is a 1-pixel box, insitu's.
 import json
@@ -101,6 +102,68 @@ def make_ground():
     return plane
 
 
+def quad(name, corners, mat):
+    """A one-sided rectangle from four corners in insitu's frame, counter-clockwise seen from the
+    side it faces."""
+    mesh = bpy.data.meshes.new(name)
+    mesh.from_pydata([to_blender(c) for c in corners], [], [(0, 1, 2, 3)])
+    obj = bpy.data.objects.new(name, mesh)
+    bpy.context.scene.collection.objects.link(obj)
+    obj.data.materials.append(mat)
+    return obj
+
+
+def wall_rects(lo, hi, hole):
+    """The rectangle [lo, hi]² minus an optional hole [hole_lo, hole_hi]², as up to four rectangles."""
+    if not hole:
+        return [(lo, hi)]
+    (u0, v0), (u1, v1) = lo, hi
+    (a0, b0), (a1, b1) = hole
+    return [((u0, v0), (a0, v1)), ((a1, v0), (u1, v1)), ((a0, v0), (a1, b0)), ((a0, b1), (a1, v1))]
+
+
+def make_room():
+    """A closed box room (walls, ceiling; the ground is the floor), facing inward, with an optional
+    window (a hole in the -x wall: "window": {"y": [y0, y1], "z": [z0, z1]}) and ceiling lamp (an
+    emitting square: "lamp": {"centre": [x, z], "size": s, "radiance": [r, g, b]})."""
+    r = desc["room"]
+    (x0, y0, z0), (x1, y1, z1) = r["min"], r["max"]
+    albedo = r.get("albedo", [0.6, 0.58, 0.55])
+    mat, _, _ = diffuse_material("walls", colour=tuple(albedo))
+    win = r.get("window")
+    hole = ((win["z"][0], win["y"][0]), (win["z"][1], win["y"][1])) if win else None
+    # -x wall in (z, y), facing +x: corners (x0, y, z) counter-clockwise seen from +x.
+    for k, ((za, ya), (zb, yb)) in enumerate(wall_rects((z0, y0), (z1, y1), hole)):
+        quad(f"wall_-x_{k}", [(x0, ya, zb), (x0, ya, za), (x0, yb, za), (x0, yb, zb)], mat)
+    quad("wall_+x", [(x1, y0, z0), (x1, y0, z1), (x1, y1, z1), (x1, y1, z0)], mat)
+    quad("wall_-z", [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0)], mat)
+    quad("wall_+z", [(x1, y0, z1), (x0, y0, z1), (x0, y1, z1), (x1, y1, z1)], mat)
+    quad("ceiling", [(x0, y1, z0), (x1, y1, z0), (x1, y1, z1), (x0, y1, z1)], mat)
+    lamp = r.get("lamp")
+    if lamp:
+        emit = bpy.data.materials.new("lamp")
+        emit.use_nodes = True
+        nt = emit.node_tree
+        nt.nodes.remove(nt.nodes["Principled BSDF"])
+        e = nt.nodes.new("ShaderNodeEmission")
+        e.inputs["Color"].default_value = (*lamp["radiance"], 1.0)
+        e.inputs["Strength"].default_value = 1.0
+        nt.links.new(e.outputs["Emission"], nt.nodes["Material Output"].inputs["Surface"])
+        (cx, cz), h = lamp["centre"], 0.5 * lamp["size"]
+        y = y1 - 1e-3  # just below the ceiling, facing down
+        quad("lamp", [(cx - h, y, cz - h), (cx - h, y, cz + h), (cx + h, y, cz + h), (cx + h, y, cz - h)], emit)
+    sun = r.get("sun")
+    if sun:
+        # A distant sun: direction (toward the sun, insitu frame), strength in W/m², angle in degrees.
+        data = bpy.data.lights.new("sun", "SUN")
+        data.energy = sun["strength"]
+        data.angle = math.radians(sun.get("angle_deg", 0.5))
+        light = bpy.data.objects.new("sun", data)
+        bpy.context.scene.collection.objects.link(light)
+        d = to_blender(sun["direction"]).normalized()
+        light.rotation_euler = (-d).to_track_quat("-Z", "Y").to_euler()
+
+
 def lambertian_copy(mat):
     """The imported material as a pure Diffuse BSDF of its base colour (value or texture)."""
     principled = next((n for n in mat.node_tree.nodes if n.type == "BSDF_PRINCIPLED"), None)
@@ -175,6 +238,8 @@ def main():
     scene = bpy.context.scene
     make_world(scene)
     ground = make_ground() if desc.get("ground") else None
+    if desc.get("room"):
+        make_room()
     objects = make_objects()
     c = desc["camera"]
     eye, look = Vector(c["eye"]), Vector(c["look"])
@@ -225,6 +290,12 @@ def copy_mesh(path):
     return "meshes/" + os.path.basename(path)
 
 
+def room_box():
+    """The room box insitu reads, with the shots' capture point, for a closed room."""
+    r = desc.get("room")
+    return {"room_box": {"min": r["min"], "max": r["max"], "capture": desc["insertion"]}} if r else {}
+
+
 def write_insitu_scene(shots):
     c = desc["camera"]
     objects = []
@@ -238,7 +309,7 @@ def write_insitu_scene(shots):
         "photo": "photo.exr",
         "camera": {"eye": c["eye"], "look": c["look"], "hfov_deg": c["hfov_deg"]},
         # The shots are in the photo's unit (one renderer, one exposure): factor 1.
-        "environment": {"shots": shots, "exposure": 1.0},
+        "environment": dict({"shots": shots, "exposure": 1.0}, **room_box()),
         "local_scene": [{"plane": {"point": [0, 0, 0], "normal": [0, 1, 0]}}] if desc.get("ground") else [],
         "objects": objects,
         "render": {"integrator": "path", "spp": 64},
