@@ -33,6 +33,7 @@
 // With environment.room_box the room is an emitting box (room_light.h): its faces carry the cube's
 // radiance projected from the capture point, and next-event estimation samples them as an area
 // light, with the pdf converted to solid angle at the shading point and MIS against the BSDF.
+// Its openings let distant light in (the sun through a window), sampled as portals.
 //
 // The local scene may hold meshes too (a real table, a step): they catch shadows like the planes
 // (with E(n) from the exact irradiance cube), block the environment for the objects, and show the
@@ -55,8 +56,7 @@ class PathIntegrator final : public Integrator {
   PathIntegrator(const RenderInputs& in, int max_depth)
       : in_(in),
         objects_(in.objects),
-        env_(*in.environment),
-        room_(env_, in.room_box, in.box_min, in.box_max, in.capture),
+        room_(*in.environment, in.room),
         max_depth_(std::max(1, max_depth)) {}
 
   CameraSample sample(const Ray& camera_ray, Sampler& sampler) const override {
@@ -97,9 +97,9 @@ class PathIntegrator final : public Integrator {
 
   // Inside the room box, with a tolerance of 10⁻⁴ of its size (a floor plane lies on its face).
   bool inside_room(const Vec3f& x) const {
-    if (!in_.room_box) return true;
-    const Vec3f slack = 1e-4f * (in_.box_max - in_.box_min);
-    return (x.array() >= (in_.box_min - slack).array()).all() && (x.array() <= (in_.box_max + slack).array()).all();
+    if (!in_.room) return true;
+    const Vec3f slack = 1e-4f * (in_.room->max - in_.room->min);
+    return (x.array() >= (in_.room->min - slack).array()).all() && (x.array() <= (in_.room->max + slack).array()).all();
   }
 
   // What a ray meets first of the local scene within (0, t_max): a plane (from its front) or a
@@ -264,8 +264,7 @@ class PathIntegrator final : public Integrator {
 
   const RenderInputs in_;
   const EmbreeScene* objects_;
-  EnvSampler env_;
-  RoomLight room_;  // refers to env_, declared before it
+  RoomLight room_;
   int max_depth_;
 };
 

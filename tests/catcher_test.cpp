@@ -204,10 +204,7 @@ TEST(Catcher, RoomBoxParallaxFavoursThePointNearTheWindow) {
     RenderInputs in;
     in.objects = &empty;
     in.environment = &env;
-    in.room_box = box;
-    in.box_min = Vec3f(-5, 0, -5);
-    in.box_max = Vec3f(5, 3, 5);
-    in.capture = Vec3f(0, 1.5f, 0);
+    if (box) in.room = RoomBox{Vec3f(-5, 0, -5), Vec3f(5, 3, 5), Vec3f(0, 1.5f, 0), {}};
     CatcherPlane floor;
     floor.point = Vec3f::Zero();
     floor.normal = Vec3f(0, 1, 0);

@@ -28,8 +28,15 @@ struct EnvironmentSpec {
   std::optional<double> hfov_deg;    // for every shot that does not give its own
   int face_size = 0;                 // 0: natural size of the input
   // Optional parallax correction: the room as a box, and where the environment was captured.
+  // Openings (windows, open doors): axis-aligned rectangles on the box's walls, through which the
+  // light is distant (DESIGN.md "The room's light is not distant").
+  struct Opening {
+    Vec3d min = Vec3d::Zero(), max = Vec3d::Zero();  // equal on the wall's axis
+    int axis = 0;                                      // the wall's: 0 x, 1 y, 2 z
+  };
   struct RoomBox {
     Vec3d min = Vec3d::Zero(), max = Vec3d::Zero(), capture = Vec3d::Zero();
+    std::vector<Opening> openings;
   };
   std::optional<RoomBox> room_box;
   // How shots are brought into the photo's radiance unit: auto (EXIF when the photo and every

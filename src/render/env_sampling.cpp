@@ -6,7 +6,8 @@
 
 namespace insitu {
 
-EnvSampler::EnvSampler(const CubeMap& radiance) : cube_(&radiance), n_(radiance.size()) {
+EnvSampler::EnvSampler(const CubeMap& radiance, const TexelShare& share, bool mis_compensation)
+    : cube_(&radiance), n_(radiance.size()) {
   const std::size_t count = std::size_t(6) * n_ * n_;
   std::vector<double> w(count), y(count), omega(count);
   double mean_y = 0;
@@ -20,7 +21,8 @@ EnvSampler::EnvSampler(const CubeMap& radiance) : cube_(&radiance), n_(radiance.
       }
   double total = 0;
   for (std::size_t k = 0; k < count; ++k) {
-    w[k] = std::max(0.0, y[k] - mean_y) * omega[k];  // MIS compensation
+    const int f = int(k / (std::size_t(n_) * n_)), j = int((k / std::size_t(n_)) % std::size_t(n_)), i = int(k % std::size_t(n_));
+    w[k] = std::max(0.0, y[k] - (mis_compensation ? mean_y : 0.0)) * omega[k] * (share ? share(f, i, j) : 1.0);
     total += w[k];
   }
   // A floor so that every texel can be drawn (also keeps a black environment well defined).

@@ -10,6 +10,7 @@
 #include "core/camera.h"
 #include "light/cubemap.h"
 #include "render/embree_scene.h"
+#include "render/room_light.h"
 #include "light/irradiance.h"
 #include "core/sampler.h"
 
@@ -37,9 +38,9 @@ struct RenderInputs {
   std::vector<CatcherMesh> catcher_mesh_info;            // by mesh index
   const IrradianceField* catcher_irradiance = nullptr;   // E(n) without objects, for the meshes
   const Image* photo_linear = nullptr;  // the real room as the camera saw it
-  // Parallax correction of environment lookups (path): the room box and the capture point.
-  bool room_box = false;
-  Vec3f box_min = Vec3f::Zero(), box_max = Vec3f::Zero(), capture = Vec3f::Zero();
+  // The room as an emitting box with openings (path; room_light.h): its walls, where the shots
+  // were taken, and its windows.
+  std::optional<RoomBox> room;
   const Camera* camera = nullptr;
 };
 

@@ -1,23 +1,116 @@
 #include "render/room_light.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
-namespace insitu {
+#include "core/colour.h"
+#include "light/texel_geometry.h"
 
-RoomLight::RoomLight(const EnvSampler& env, bool box, const Vec3f& box_min, const Vec3f& box_max, const Vec3f& capture)
-    : env_(&env), box_(box), min_(box_min), max_(box_max), capture_(capture) {}
+namespace insitu {
+namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+// The two axes of a face across `axis`.
+int other_axis(int axis, int k) { return (axis + 1 + k) % 3; }
+
+float rect_area(const RoomOpening& o) {
+  return (o.max[other_axis(o.axis, 0)] - o.min[other_axis(o.axis, 0)]) * (o.max[other_axis(o.axis, 1)] - o.min[other_axis(o.axis, 1)]);
+}
+
+}  // namespace
+
+RoomLight::RoomLight(const CubeMap& cube, std::optional<RoomBox> box) : box_(std::move(box)), env_(cube) {
+  if (box_ && !box_->openings.empty()) set_strategies(cube);
+}
+
+// The share of each texel (f, i, j) whose directions from c leave the box through an opening,
+// from 4 × 4 directions per texel: a sun texel across the window's edge belongs to both parts.
+std::vector<float> RoomLight::outside_shares(int n) const {
+  const int m = 4;
+  std::vector<float> share(std::size_t(6) * n * n);
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        int through = 0;
+        for (int b = 0; b < m; ++b)
+          for (int a = 0; a < m; ++a) {
+            const float s = (float(i) + (float(a) + 0.5f) / m) / float(n), t = (float(j) + (float(b) + 0.5f) / m) / float(n);
+            const Vec3f d = face_to_direction(f, s, t).normalized();
+            float t_exit = 0;
+            int axis = 0;
+            through += exit(box_->capture, d, &t_exit, &axis) && openings_at(box_->capture + t_exit * d, axis) > 0;
+          }
+        share[(std::size_t(f) * n + j) * n + i] = float(through) / float(m * m);
+      }
+  return share;
+}
+
+// The wall's radiance in a texel across an opening's edge: the mean of the texels within two of it
+// on its face that c saw wholly on a wall (the texel's own value where there is none).
+Rgb RoomLight::wall_neighbours(const CubeMap& cube, const std::vector<float>& share, int f, int i, int j) const {
+  const int n = cube.size();
+  Rgb sum = Rgb::Zero();
+  int count = 0;
+  for (int b = std::max(0, j - 2); b <= std::min(n - 1, j + 2); ++b)
+    for (int a = std::max(0, i - 2); a <= std::min(n - 1, i + 2); ++a)
+      if (share[(std::size_t(f) * n + b) * n + a] == 0.0f) sum += cube.texel(f, a, b), ++count;
+  return count > 0 ? Rgb(sum / float(count)) : cube.texel(f, i, j);
+}
+
+// With openings: the cube split into what c saw of the walls and of the outside. A texel wholly on
+// one side is that side's (and the other's fallback). A texel across an opening's edge, of share
+// s outside, mixes L = (1 − s) L_wall + s L_out: L_wall is taken from its wall neighbours and
+// L_out = (L − (1 − s) L_wall)/s ≥ 0, so that the sun in a texel at a window's edge lights the
+// room through the window, not as a glowing strip of wall beside it, and the texel's energy seen
+// from c is kept. Each side is sampled in proportion to its light and its share of the texel.
+void RoomLight::set_strategies(const CubeMap& cube) {
+  const int n = cube.size();
+  const std::vector<float> outside_share = outside_shares(n);
+  auto share_of = [&](int f, int i, int j) { return double(outside_share[(std::size_t(f) * n + j) * n + i]); };
+  wall_cube_ = cube;
+  outside_cube_ = cube;
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const float s_out = float(share_of(f, i, j));
+        if (s_out == 0.0f || s_out == 1.0f) continue;
+        const Rgb wall = wall_neighbours(cube, outside_share, f, i, j);
+        wall_cube_.set_texel(f, i, j, wall);
+        outside_cube_.set_texel(f, i, j, ((cube.texel(f, i, j) - (1 - s_out) * wall) / s_out).max(0.0f));
+      }
+  wall_cube_.update_borders();
+  outside_cube_.update_borders();
+  double power_out = 0, power_wall = 0;
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const double omega = texel_solid_angle(i, j, n);
+        power_out += share_of(f, i, j) * omega * std::max(0.0f, luminance(outside_cube_.texel(f, i, j)));
+        power_wall += (1 - share_of(f, i, j)) * omega * std::max(0.0f, luminance(wall_cube_.texel(f, i, j)));
+      }
+  walls_.emplace(wall_cube_, [&](int f, int i, int j) { return 1.0 - share_of(f, i, j); });
+  outside_.emplace(outside_cube_, share_of, /*mis_compensation=*/false);
+  const double share = power_out + power_wall > 0 ? power_out / (power_out + power_wall) : 0.5;
+  const float p_open = float(std::clamp(share, 0.2, 0.8));
+  p_wall_ = 1 - p_open;
+  p_dir_ = p_area_ = 0.5f * p_open;
+  for (const RoomOpening& o : box_->openings) opening_cdf_.push_back(opening_area_ += rect_area(o));
+  for (float& c : opening_cdf_) c /= opening_area_;
+  opening_cdf_.back() = 1.0f;
+}
 
 bool RoomLight::inside(const Vec3f& x) const {
-  return (x.array() > min_.array()).all() && (x.array() < max_.array()).all();
+  return box_ && (x.array() > box_->min.array()).all() && (x.array() < box_->max.array()).all();
 }
 
 bool RoomLight::exit(const Vec3f& p, const Vec3f& dir, float* t, int* axis) const {
-  float t_exit = std::numeric_limits<float>::infinity();
+  float t_exit = kInfinity;
   int a = -1;
   for (int k = 0; k < 3; ++k) {
     if (dir[k] == 0) continue;
-    const float tk = ((dir[k] > 0 ? max_[k] : min_[k]) - p[k]) / dir[k];
+    const float tk = ((dir[k] > 0 ? box_->max[k] : box_->min[k]) - p[k]) / dir[k];
     if (tk < t_exit) t_exit = tk, a = k;
   }
   if (a < 0 || !(t_exit > 0) || !std::isfinite(t_exit)) return false;
@@ -26,48 +119,113 @@ bool RoomLight::exit(const Vec3f& p, const Vec3f& dir, float* t, int* axis) cons
   return true;
 }
 
-RoomSample RoomLight::sample(const Vec3f& x, float u_texel, float u_s, float u_t) const {
-  const EnvSample es = env_->sample(u_texel, u_s, u_t);
-  RoomSample out;
-  if (!box_ || !inside(x)) {
-    out = {es.dir, std::numeric_limits<float>::infinity(), es.pdf, env_->radiance(es.dir)};
-    return out;
+int RoomLight::openings_at(const Vec3f& q, int axis) const {
+  int count = 0;
+  for (const RoomOpening& o : box_->openings) {
+    if (o.axis != axis || std::abs(q[axis] - o.min[axis]) > 1e-4f * (box_->max - box_->min).maxCoeff()) continue;
+    const int a = other_axis(axis, 0), b = other_axis(axis, 1);
+    count += q[a] >= o.min[a] && q[a] <= o.max[a] && q[b] >= o.min[b] && q[b] <= o.max[b];
   }
-  float t_c = 0;
-  int axis = 0;
-  if (!exit(capture_, es.dir, &t_c, &axis)) return out;
-  const Vec3f q = capture_ + t_c * es.dir, d = q - x;
-  const float dist = d.norm();
-  if (!(dist > 0)) return out;
-  out.dir = d / dist;
-  out.distance = dist;
-  // cos θ_c = |ω_c[axis]|, cos θ_x = |ω[axis]|: the face's normal is that axis.
-  const float cos_c = std::abs(es.dir[axis]), cos_x = std::abs(out.dir[axis]);
-  out.pdf = cos_x > 0 ? es.pdf * cos_c / (t_c * t_c) * (dist * dist) / cos_x : 0.0f;
-  out.radiance = env_->radiance(es.dir);
-  return out;
+  return count;
 }
 
-float RoomLight::pdf(const Vec3f& x, const Vec3f& dir) const {
-  if (!box_ || !inside(x)) return env_->pdf(dir);
-  float t_x = 0;
-  int axis = 0;
-  if (!exit(x, dir, &t_x, &axis)) return 0.0f;
-  const Vec3f v = x + t_x * dir - capture_;
+RoomLight::Exit RoomLight::locate(const Vec3f& x, const Vec3f& dir) const {
+  Exit e;
+  if (!exit(x, dir, &e.t, &e.axis)) return e;
+  e.valid = true;
+  e.q = x + e.t * dir;
+  e.q[e.axis] = dir[e.axis] > 0 ? box_->max[e.axis] : box_->min[e.axis];
+  e.openings = openings_at(e.q, e.axis);
+  return e;
+}
+
+float RoomLight::pdf(const Vec3f& dir, const Exit& e) const {
+  if (!e.valid) return 0.0f;
+  const float cos_x = std::abs(dir[e.axis]);
+  if (!(cos_x > 0)) return 0.0f;
+  if (e.openings > 0)  // directional and area portal strategies
+    return p_dir_ * outside_->pdf(dir) + p_area_ * float(e.openings) * e.t * e.t / (opening_area_ * cos_x);
+  const Vec3f v = e.q - box_->capture;
   const float t_c = v.norm();
   if (!(t_c > 0)) return 0.0f;
   const Vec3f w_c = v / t_c;
-  const float cos_c = std::abs(w_c[axis]), cos_x = std::abs(dir[axis]);
-  return cos_x > 0 ? env_->pdf(w_c) * cos_c / (t_c * t_c) * (t_x * t_x) / cos_x : 0.0f;
+  // cos θ_c = |ω_c[axis]|: the face's normal is that axis.
+  const float cos_c = std::abs(w_c[e.axis]);
+  const EnvSampler& walls = walls_ ? *walls_ : env_;
+  return p_wall_ * walls.pdf(w_c) * cos_c / (t_c * t_c) * (e.t * e.t) / cos_x;
+}
+
+float RoomLight::pdf(const Vec3f& x, const Vec3f& dir) const {
+  if (!inside(x)) return env_.pdf(dir);
+  return pdf(dir, locate(x, dir));
+}
+
+// Through an opening the light is distant (cube by direction); a wall shows what c saw of it.
+Rgb RoomLight::radiance(const Vec3f& dir, const Exit& e) const {
+  if (!e.valid) return env_.radiance(dir);
+  if (e.openings > 0) return outside_ ? outside_->radiance(dir) : env_.radiance(dir);
+  const Vec3f v = e.q - box_->capture;
+  return (walls_ ? *walls_ : env_).radiance(v.squaredNorm() > 0 ? Vec3f(v.normalized()) : dir);
 }
 
 Rgb RoomLight::radiance(const Vec3f& x, const Vec3f& dir) const {
-  if (!box_ || !inside(x)) return env_->radiance(dir);
-  float t_x = 0;
+  return inside(x) ? radiance(dir, locate(x, dir)) : env_.radiance(dir);
+}
+
+// The sample along dir, which leaves the box at e: the mixture's pdf and the radiance there, as
+// pdf() and radiance() give them.
+RoomSample RoomLight::along(const Vec3f& dir, const Exit& e) const {
+  RoomSample s;
+  if (!e.valid) return s;
+  s.radiance = radiance(dir, e);
+  s.pdf = s.radiance.allFinite() ? pdf(dir, e) : 0.0f;
+  s.dir = dir;
+  s.distance = e.t;
+  return s;
+}
+
+RoomSample RoomLight::sample_wall(const Vec3f& x, float u, float u_s, float u_t) const {
+  const EnvSample es = (walls_ ? *walls_ : env_).sample(u, u_s, u_t);
+  float t_c = 0;
   int axis = 0;
-  if (!exit(x, dir, &t_x, &axis)) return env_->radiance(dir);
-  const Vec3f v = x + t_x * dir - capture_;
-  return env_->radiance(v.squaredNorm() > 0 ? Vec3f(v.normalized()) : dir);
+  if (!exit(box_->capture, es.dir, &t_c, &axis)) return {};
+  const Vec3f d = box_->capture + t_c * es.dir - x;
+  const float dist = d.norm();
+  if (!(dist > 0)) return {};
+  const Exit e = locate(x, d / dist);
+  return e.openings == 0 ? along(d / dist, e) : RoomSample{};  // an opening: the portals' part
+}
+
+RoomSample RoomLight::sample_outside(const Vec3f& x, float u, float u_s, float u_t) const {
+  const EnvSample es = outside_->sample(u, u_s, u_t);
+  const Exit e = locate(x, es.dir);
+  return e.openings > 0 ? along(es.dir, e) : RoomSample{};
+}
+
+RoomSample RoomLight::sample_portal(const Vec3f& x, float u, float u_s, float u_t) const {
+  const std::size_t k = std::size_t(std::lower_bound(opening_cdf_.begin(), opening_cdf_.end(), u) - opening_cdf_.begin());
+  const RoomOpening& o = box_->openings[std::min(k, box_->openings.size() - 1)];
+  Vec3f q = o.min;
+  const int a = other_axis(o.axis, 0), b = other_axis(o.axis, 1);
+  q[a] += u_s * (o.max[a] - o.min[a]);
+  q[b] += u_t * (o.max[b] - o.min[b]);
+  const Vec3f d = q - x;
+  const float dist = d.norm();
+  if (!(dist > 0)) return {};
+  const Exit e = locate(x, d / dist);
+  return e.openings > 0 ? along(d / dist, e) : RoomSample{};
+}
+
+RoomSample RoomLight::sample(const Vec3f& x, float u_pick, float u_s, float u_t) const {
+  if (!inside(x)) {
+    const EnvSample es = env_.sample(u_pick, u_s, u_t);
+    return {es.dir, kInfinity, es.pdf, env_.radiance(es.dir)};
+  }
+  // One of the strategies, chosen by u_pick, which is then stretched back onto [0, 1).
+  auto stretch = [](float u, float lo, float p) { return std::min((u - lo) / p, std::nextafter(1.0f, 0.0f)); };
+  if (u_pick < p_wall_) return sample_wall(x, stretch(u_pick, 0, p_wall_), u_s, u_t);
+  if (u_pick < p_wall_ + p_dir_) return sample_outside(x, stretch(u_pick, p_wall_, p_dir_), u_s, u_t);
+  return sample_portal(x, stretch(u_pick, p_wall_ + p_dir_, p_area_), u_s, u_t);
 }
 
 }  // namespace insitu

@@ -1,44 +1,111 @@
-// The room as an emitter (issue 12, item 1): with a room box, the box's faces carry the six
-// shots' radiance, projected from the capture point c, and are sampled as an area light.
+// The room as an emitter (issue 12): with a room box, the box's faces carry the six shots'
+// radiance, projected from the capture point c, and are sampled as an area light; its openings
+// (windows, open doors) let in distant light, sampled as portals.
 //
-// A point q on the box emits toward the room what the capture point saw in its direction:
+// Walls. A point q on a wall emits toward the room what the capture point saw in its direction:
 // L(q) = cube(ω_c), ω_c = (q − c)/|q − c| (the box projection of real-time engines). Sampling
-// draws ω_c from the cube's own distribution (env_sampling.h, density p_ω per steradian at c),
-// follows it to the box at q, and converts to the shading point x:
+// draws ω_c from the distribution of the texels c saw on the walls (env_sampling.h, density p_ω
+// per steradian at c), follows it to the box at q, and converts to the shading point x:
 //   area density on the box   p_A(q) = p_ω(ω_c) · cos θ_c / |q − c|²
 //   solid angle at x          p_x(ω) = p_A(q) · |q − x|² / cos θ_x
 // with θ_c, θ_x the angles between the face normal at q and the directions to c and to x. The
 // radiance found along a direction and the density of drawing it then describe the same emitter,
 // so bright texels are drawn where they light x (a cube sampled as seen from c, but looked up
 // through the box, gives fireflies: its pdf has nothing to do with what arrives at x).
-// A point outside the box sees the cube as distant light (by direction).
+//
+// Openings. Light through an opening is distant: a direction ω from x that leaves the box through
+// an opening carries cube(ω), whatever x is (texels across an opening's edge are split between
+// the wall and the outside: set_strategies) — the sun through a window falls on the patch of the
+// room it reaches, not on every point that sees the window. Where c's own ray along ω met a wall
+// (a direction through the opening that the capture point never saw outside), cube(ω) is still
+// what is used: the wall c saw there, a dim stand-in for an outside nobody photographed. Two
+// portal strategies draw such directions (after Bitterli et al. 2015, "Portal-masked environment
+// map sampling", without its rectified parametrisation):
+//   directional  ω from the distribution of the texels c saw through the openings, luminance ×
+//                solid angle (no MIS compensation: BSDF samples seldom find a window), kept only
+//                if ω leaves through an opening from x;  p(ω) = p_out(ω)
+//   area         a point uniformly on the openings' area A (an opening chosen by area), ω toward it;
+//                p(ω) = |q − x|² / (A · cos θ_x)
+// The first finds the sun through the window where it shines; the second the dim sky that the
+// first misses where the sun does not reach.
+//
+// One sample is drawn from the mixture of the three (probabilities p_wall, ½ p_open, ½ p_open with
+// p_open = the openings' share of c's irradiance-like power Σ Y·ΔΩ, clamped to [0.2, 0.8]); its
+// pdf is the mixture's, so that MIS against the BSDF (and the sample's weight) sees one light. A
+// strategy's draw that lands where the strategy has no density (a wall sample in an opening) is
+// returned with pdf 0: each strategy's density stays what pdf() says, and the mixture covers
+// every direction that carries light.
+//
+// A point outside the box, and every point without a box, sees the cube as distant light.
 #pragma once
+#include <optional>
+#include <vector>
+
 #include "render/env_sampling.h"
 
 namespace insitu {
 
+// An axis-aligned rectangle on the wall min[axis] = max[axis] of the box.
+struct RoomOpening {
+  int axis = 0;
+  Vec3f min = Vec3f::Zero(), max = Vec3f::Zero();
+};
+
+struct RoomBox {
+  Vec3f min = Vec3f::Zero(), max = Vec3f::Zero(), capture = Vec3f::Zero();
+  std::vector<RoomOpening> openings;
+};
+
 struct RoomSample {
   Vec3f dir = Vec3f::Zero();  // unit, from x toward the sampled point
   float distance = 0;         // to the sampled point on the box
-  float pdf = 0;              // per steradian at x
+  float pdf = 0;              // per steradian at x (the mixture's)
   Rgb radiance = Rgb::Zero();
 };
 
 class RoomLight {
  public:
-  // Without a box (`box` false) every call is the distant cube's.
-  RoomLight(const EnvSampler& env, bool box, const Vec3f& box_min, const Vec3f& box_max, const Vec3f& capture);
-  RoomSample sample(const Vec3f& x, float u_texel, float u_s, float u_t) const;
+  // Without a box every call is the distant cube's.
+  RoomLight(const CubeMap& cube, std::optional<RoomBox> box);
+  RoomLight(const RoomLight&) = delete;  // its samplers refer to its own cubes
+  RoomLight& operator=(const RoomLight&) = delete;
+  RoomSample sample(const Vec3f& x, float u_pick, float u_s, float u_t) const;
   float pdf(const Vec3f& x, const Vec3f& dir) const;       // of sample() producing dir at x
   Rgb radiance(const Vec3f& x, const Vec3f& dir) const;     // arriving at x along dir
   // The distance from p to the box along dir, and the axis of the face it leaves through (p inside).
   bool exit(const Vec3f& p, const Vec3f& dir, float* t, int* axis) const;
+  // How many openings hold the point q of the box's face across `axis` (0: a wall).
+  int openings_at(const Vec3f& q, int axis) const;
+  float opening_probability() const { return p_dir_ + p_area_; }
 
  private:
+  struct Exit {
+    bool valid = false;
+    float t = 0;
+    int axis = 0, openings = 0;
+    Vec3f q = Vec3f::Zero();
+  };
   bool inside(const Vec3f& x) const;
-  const EnvSampler* env_;
-  bool box_;
-  Vec3f min_, max_, capture_;
+  Exit locate(const Vec3f& x, const Vec3f& dir) const;
+  float pdf(const Vec3f& dir, const Exit& e) const;
+  Rgb radiance(const Vec3f& dir, const Exit& e) const;
+  RoomSample along(const Vec3f& dir, const Exit& e) const;
+  RoomSample sample_wall(const Vec3f& x, float u, float u_s, float u_t) const;
+  RoomSample sample_outside(const Vec3f& x, float u, float u_s, float u_t) const;
+  RoomSample sample_portal(const Vec3f& x, float u, float u_s, float u_t) const;
+  void set_strategies(const CubeMap& cube);
+  std::vector<float> outside_shares(int n) const;
+
+  Rgb wall_neighbours(const CubeMap& cube, const std::vector<float>& share, int f, int i, int j) const;
+
+  std::optional<RoomBox> box_;
+  EnvSampler env_;                     // the whole cube: distant light, and the walls without openings
+  CubeMap wall_cube_, outside_cube_;   // with openings: what c saw on the walls, and outside
+  std::optional<EnvSampler> walls_;    // sampling them (they refer to the cubes above)
+  std::optional<EnvSampler> outside_;
+  float p_wall_ = 1, p_dir_ = 0, p_area_ = 0;
+  std::vector<float> opening_cdf_;     // by area; opening_cdf_.back() = 1
+  float opening_area_ = 0;
 };
 
 }  // namespace insitu

@@ -188,10 +188,9 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress) 
   inputs.environment = &scene.environment;
   inputs.photo_linear = &scene.photo_linear;
   if (const auto& box = scene.spec.environment.room_box) {
-    inputs.room_box = true;
-    inputs.box_min = box->min.cast<float>();
-    inputs.box_max = box->max.cast<float>();
-    inputs.capture = box->capture.cast<float>();
+    RoomBox room{box->min.cast<float>(), box->max.cast<float>(), box->capture.cast<float>(), {}};
+    for (const auto& o : box->openings) room.openings.push_back({o.axis, o.min.cast<float>(), o.max.cast<float>()});
+    inputs.room = room;
   }
   inputs.camera = &scene.camera;
   // Everything before the sample loop is preparation: the catcher's irradiance included.

@@ -1,6 +1,7 @@
 #include "core/output_paths.h"
 #include "scene/scene_file.h"
 
+#include <cmath>
 #include <filesystem>
 #include <tuple>
 #include <fmt/format.h>
@@ -162,6 +163,39 @@ ShotSpec parse_shot(const JsonValue& v, const fs::path& dir) {
   return shot;
 }
 
+// An opening: a rectangle on one wall of the box. One coordinate of min and max equals that
+// wall's plane (within 10⁻³ of the box's size, then snapped onto it); the other two span a
+// non-empty range inside the wall.
+EnvironmentSpec::Opening parse_opening(const JsonValue& v, const EnvironmentSpec::RoomBox& box) {
+  JsonObject o(v);
+  EnvironmentSpec::Opening op;
+  op.min = o.get("min").vec3();
+  op.max = o.get("max").vec3();
+  o.finish();
+  const double tol = 1e-3 * (box.max - box.min).maxCoeff();
+  int wall_axis = -1;
+  for (int k = 0; k < 3; ++k) {
+    if (std::abs(op.max[k] - op.min[k]) > tol) continue;
+    for (const double plane : {box.min[k], box.max[k]})
+      if (std::abs(op.min[k] - plane) <= tol && std::abs(op.max[k] - plane) <= tol) wall_axis = k, op.min[k] = op.max[k] = plane;
+  }
+  if (wall_axis < 0) v.fail("an opening lies on a wall of the box: one coordinate of min and max must equal the box's min or max");
+  op.axis = wall_axis;
+  for (int k = 0; k < 3; ++k) {
+    if (k == wall_axis) continue;
+    if (!(op.max[k] > op.min[k])) v.fail("max must exceed min along the wall");
+    if (op.min[k] < box.min[k] - tol || op.max[k] > box.max[k] + tol) v.fail("the opening reaches beyond its wall");
+  }
+  return op;
+}
+
+std::vector<EnvironmentSpec::Opening> parse_openings(const JsonValue& v, const EnvironmentSpec::RoomBox& box) {
+  if (!v.is_array()) v.fail("expected an array of openings");
+  std::vector<EnvironmentSpec::Opening> out;
+  for (std::size_t i = 0; i < v.size(); ++i) out.push_back(parse_opening(v.element(i), box));
+  return out;
+}
+
 EnvironmentSpec parse_environment(const JsonValue& v, const fs::path& dir) {
   EnvironmentSpec e;
   e.where = v.where();
@@ -191,6 +225,7 @@ EnvironmentSpec parse_environment(const JsonValue& v, const fs::path& dir) {
     if (!(box.max.array() > box.min.array()).all()) b.fail("max must exceed min on every axis");
     if (!((box.capture.array() > box.min.array()).all() && (box.capture.array() < box.max.array()).all()))
       cap.fail("the capture point must lie inside the box");
+    if (auto ops = b.find("openings")) box.openings = parse_openings(*ops, box);
     b.finish();
     e.room_box = box;
   }

@@ -297,6 +297,12 @@ def more_cases():
             ("hfov_zero", dict(shots, hfov_deg=0), "hfov_deg"), ("exposure_word", {"shots": shots, "exposure": "manual"}, "exposure"),
             ("room_box_inverted", {"shots": shots, "room_box": {"min": [1, 1, 1], "max": [0, 0, 0], "capture": [0.5, 0.5, 0.5]}}, "max"),
             ("capture_outside", {"shots": shots, "room_box": {"min": [0, 0, 0], "max": [1, 1, 1], "capture": [2, 0.5, 0.5]}}, "capture"),
+            ("opening_off_the_walls", {"shots": shots, "room_box": {"min": [0, 0, 0], "max": [1, 1, 1], "capture": [0.5, 0.5, 0.5],
+                                                               "openings": [{"min": [0.5, 0.2, 0.2], "max": [0.5, 0.8, 0.8]}]}}, "lies on a wall"),
+            ("opening_beyond_its_wall", {"shots": shots, "room_box": {"min": [0, 0, 0], "max": [1, 1, 1], "capture": [0.5, 0.5, 0.5],
+                                                                  "openings": [{"min": [0, 0.2, 0.2], "max": [0, 1.8, 0.8]}]}}, "beyond"),
+            ("opening_empty", {"shots": shots, "room_box": {"min": [0, 0, 0], "max": [1, 1, 1], "capture": [0.5, 0.5, 0.5],
+                                                        "openings": [{"min": [0, 0.2, 0.2], "max": [0, 0.2, 0.8]}]}}, "along the wall"),
             ("image_and_shots", {"image": "env.exr", "shots": shots}, "not both"), ("exif_for_image", {"image": "env.exr", "exposure": "exif"}, "factor")]:
         e = env if ("shots" in env or "image" in env) else {"shots": env}
         case("environment_" + name, ["render", "scene.json"], message, files=six_shots(), scene=scene_with(environment=e))

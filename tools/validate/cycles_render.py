@@ -162,6 +162,31 @@ def make_room():
         bpy.context.scene.collection.objects.link(light)
         d = to_blender(sun["direction"]).normalized()
         light.rotation_euler = (-d).to_track_quat("-Z", "Y").to_euler()
+        sun_disc(d, sun["strength"], data.angle)
+
+
+def sun_disc(d, irradiance, angle_rad):
+    """What a camera sees of the sun: a Cycles sun lamp lights the scene but is invisible to camera
+    rays, so shots from inside would miss it. A distant emitting disc of the sun's angular diameter,
+    visible to camera rays only, of radiance L = E / Ω (Ω = π tan²(angle/2), the disc's solid angle
+    seen from the room), puts the sun into the shots with the irradiance E the lamp gives; the
+    lamp still does the lighting (the disc is invisible to every other ray)."""
+    distance = 1.0e3  # inside the cameras' clip range (make_camera: 10 km)
+    radius = distance * math.tan(0.5 * angle_rad)
+    bpy.ops.mesh.primitive_circle_add(vertices=32, radius=radius, fill_type="NGON", location=d * distance)
+    disc = bpy.context.active_object
+    disc.rotation_euler = d.to_track_quat("Z", "Y").to_euler()
+    omega = math.pi * math.tan(0.5 * angle_rad) ** 2
+    emit = bpy.data.materials.new("sun_disc")
+    emit.use_nodes = True
+    nt = emit.node_tree
+    nt.nodes.remove(nt.nodes["Principled BSDF"])
+    e = nt.nodes.new("ShaderNodeEmission")
+    e.inputs["Strength"].default_value = irradiance / omega
+    nt.links.new(e.outputs["Emission"], nt.nodes["Material Output"].inputs["Surface"])
+    disc.data.materials.append(emit)
+    for ray in ("visible_diffuse", "visible_glossy", "visible_transmission", "visible_volume_scatter", "visible_shadow"):
+        setattr(disc, ray, False)
 
 
 def lambertian_copy(mat):
@@ -293,7 +318,14 @@ def copy_mesh(path):
 def room_box():
     """The room box insitu reads, with the shots' capture point, for a closed room."""
     r = desc.get("room")
-    return {"room_box": {"min": r["min"], "max": r["max"], "capture": desc["insertion"]}} if r else {}
+    if not r:
+        return {}
+    box = {"min": r["min"], "max": r["max"], "capture": desc["insertion"]}
+    win = r.get("window")
+    if win:  # the hole in the -x wall, as an opening (DESIGN.md: one coordinate on the wall's plane)
+        x0 = r["min"][0]
+        box["openings"] = [{"min": [x0, win["y"][0], win["z"][0]], "max": [x0, win["y"][1], win["z"][1]]}]
+    return {"room_box": box}
 
 
 def write_insitu_scene(shots):
