@@ -8,11 +8,15 @@
 // combined by multiple importance sampling with the power heuristic (Veach 1997, §9.2). Escaping
 // rays take the cube's nearest texel, the same piecewise-constant function the `exact` irradiance
 // integrates. A ray from an object that meets the local scene sees the real surface as it is with
-// the objects present, so that the objects see their own shadows on it (issue 12): the surface is
-// shaded like the catcher below (its albedo from the photo, a sample of the room's light that the
-// objects can block, one cosine bounce that traces the objects), not looked up in the photo, which
-// holds no shadow of them. The local scene emits nothing, so directions toward it are reached by
-// BSDF sampling only (weight 1; the environment sample toward them counts as occluded). Russian
+// the objects present, so that the objects see their own shadows on it (issue 12), not as the
+// photo alone shows it, which holds no shadow of them: it sees P + (W − N), the photo's radiance P there (or the room's light
+// along the ray where the photo does not show the point) plus the change the objects make, W − N,
+// estimated as for the catcher below (its albedo from the photo, a sample of the room's light that
+// the objects can block, one cosine bounce that traces the objects). W − N is 0 bit for bit where no object interferes, and P does not
+// depend on the surface's albedo, which only scales the change. (A surface whose albedo the scene
+// gives is the model's alone: it sees W.) The local scene emits nothing to
+// the room light's samples, so directions toward it are reached by BSDF sampling only (weight 1;
+// the environment sample toward them counts as occluded). Russian
 // roulette from the third bounce on, survival
 // probability min(0.95, max throughput). Materials: bsdf.h — Lambertian ρ = Kd × map_Kd, plus a
 // glossy GGX lobe where the MTL gives Ks (roughness from Ns).
@@ -22,7 +26,8 @@
 // shadow on the environment sample, and what the BSDF sample sees of them, traced as above) and
 // without them. Where no object interferes the two are bitwise equal, so the photo there is left
 // exactly as it was. The albedo is the plane's, or, by default, the photo's: ρ = π P / E with E
-// the exact irradiance at the plane's normal. One bounce at the catcher: its own light on the
+// the exact irradiance at the plane's normal; in a room box, the room's irradiance at the point
+// (plane_irradiance.h), which varies over the floor (the sun through a window reaches a patch). One bounce at the catcher: its own light on the
 // objects and on itself is already in the photo.
 //
 // Rays leave a surface from p + n_g·ε with ε = 10⁻⁵·max(1 mm, |p|_∞): an offset relative to the
@@ -42,6 +47,7 @@
 
 #include "render/bsdf.h"
 #include "render/env_sampling.h"
+#include "render/plane_irradiance.h"
 #include "render/room_light.h"
 #include "core/sampling.h"
 #include "integrators/registry.h"
@@ -57,7 +63,12 @@ class PathIntegrator final : public Integrator {
       : in_(in),
         objects_(in.objects),
         room_(*in.environment, in.room),
-        max_depth_(std::max(1, max_depth)) {}
+        max_depth_(std::max(1, max_depth)) {
+    // In a room box the irradiance behind a photo-derived albedo varies over the plane.
+    if (in_.room)
+      for (const CatcherPlane& p : in_.planes)
+        plane_irradiance_.push_back(p.albedo_from_photo ? std::make_unique<PlaneIrradiance>(room_, *in_.room, p.point, p.normal) : nullptr);
+  }
 
   CameraSample sample(const Ray& camera_ray, Sampler& sampler) const override {
     CameraSample out;
@@ -117,7 +128,9 @@ class PathIntegrator final : public Integrator {
     const int k = hit_plane(ray, t_max, &t);
     if (k >= 0) {
       const CatcherPlane& p = in_.planes[std::size_t(k)];
-      c = {true, t, ray.origin + t * ray.dir, p.normal, p.albedo_from_photo, p.albedo, p.irradiance};
+      const Vec3f x = ray.origin + t * ray.dir;
+      const PlaneIrradiance* grid = plane_irradiance_.empty() ? nullptr : plane_irradiance_[std::size_t(k)].get();
+      c = {true, t, x, p.normal, p.albedo_from_photo, p.albedo, grid ? grid->at(x) : p.irradiance};
       t_max = t;
     }
     if (in_.catcher_meshes && !in_.catcher_meshes->empty()) {
@@ -185,8 +198,10 @@ class PathIntegrator final : public Integrator {
       ray = {origin, wi};
       hit = objects_->intersect(ray);
       if (const CatcherHit c = find_catcher(ray, hit.valid() ? hit.t : kInfinity); c.valid) {
-        // The real surface, shaded with the objects present: they see their own shadows on it.
-        L += throughput * estimate_catcher(c, wi, sampler, depth).with;
+        // The real surface as photographed, changed by the objects (differential rendering once
+        // more): they see their own shadows and light on it.
+        const CatcherEstimate e = estimate_catcher(c, wi, sampler, depth);
+        L += throughput * (c.albedo_from_photo ? Rgb(room_radiance(c.x, wi) + e.with - e.without) : e.with);
         break;
       }
       if (!hit.valid()) {
@@ -266,6 +281,7 @@ class PathIntegrator final : public Integrator {
   const EmbreeScene* objects_;
   RoomLight room_;
   int max_depth_;
+  std::vector<std::unique_ptr<PlaneIrradiance>> plane_irradiance_;  // by plane, with a room box
 };
 
 }  // namespace
