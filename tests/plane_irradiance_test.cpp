@@ -59,14 +59,9 @@ TEST(PlaneIrradiance, EstimateAgreesWithBruteForce) {
 TEST(PlaneIrradiance, SunlitPatchStandsOut) {
   const Vec3f to_sun = Vec3f(-1.0f, 0.45f, 0.25f).normalized();
   const int n = 64;
-  CubeMap cube(n);
-  for (int f = 0; f < 6; ++f)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) cube.set_texel(f, i, j, Rgb::Constant(0.1f));
+  const CubeMap cube = test::sun_cube(n, to_sun, 0.1f, 1e4f);
   const FaceCoord sun = direction_to_face(to_sun);
   const int si = int(sun.s * n), sj = int(sun.t * n);
-  cube.set_texel(sun.face, si, sj, Rgb::Constant(1e4f));
-  cube.update_borders();
   const RoomBox box{kBox.min, kBox.max, kBox.capture, {{0, Vec3f(-2.5f, 0.9f, -2.2f), Vec3f(-2.5f, 2.3f, -0.2f)}}};
   const RoomLight room(cube, box);
   const PlaneIrradiance floor(room, box, Vec3f::Zero(), Vec3f(0, 1, 0), 64, 256);

@@ -166,17 +166,9 @@ TEST(RoomLight, WithOpeningsPdfIntegratesToTheKeptFraction) {
 // leaves through the window, at full radiance, and no other point: light through an opening is
 // distant. A wall keeps the box projection.
 TEST(RoomLight, SunThroughTheWindowFallsOnlyWhereTheWindowLetsItIn) {
-  const Vec3f c(-0.2f, 0.9f, -1.2f), to_sun = Vec3f(-1.0f, 0.45f, 0.25f).normalized();
+  const Vec3f to_sun = Vec3f(-1.0f, 0.45f, 0.25f).normalized();
   // 64² faces: the sun's texel (1.4°) lies well inside the window as c sees it.
-  const int n = 64;
-  CubeMap cube(n);
-  for (int f = 0; f < 6; ++f)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) cube.set_texel(f, i, j, Rgb::Constant(0.1f));
-  const FaceCoord sun = direction_to_face(to_sun);
-  cube.set_texel(sun.face, int(sun.s * n), int(sun.t * n), Rgb::Constant(1e4f));
-  cube.update_borders();
-  const Room r(cube, {{0, Vec3f(-2.5f, 0.9f, -2.2f), Vec3f(-2.5f, 2.3f, -0.2f)}});
+  const Room r(test::sun_cube(64, to_sun, 0.1f, 1e4f), {{0, Vec3f(-2.5f, 0.9f, -2.2f), Vec3f(-2.5f, 2.3f, -0.2f)}});
   // From (0.9, 0.5, −2.35) the sun's ray leaves through the window; from (1.5, 0.5, 2) it meets the −x wall.
   const Vec3f lit(0.9f, 0.5f, -2.35f), shade(1.5f, 0.5f, 2.0f);
   EXPECT_EQ(r.light.radiance(lit, to_sun)[0], 1e4f);
