@@ -9,16 +9,16 @@
 // rays take the cube's nearest texel, the same piecewise-constant function the `exact` irradiance
 // integrates. A ray from an object that meets the local scene sees the real surface as it is with
 // the objects present, so that the objects see their own shadows on it (issue 12), not as the
-// photo alone shows it, which holds no shadow of them: it sees P + (W − N), the photo's radiance P there (or the room's light
-// along the ray where the photo does not show the point) plus the change the objects make, W − N,
-// estimated as for the catcher below (its albedo from the photo, a sample of the room's light that
-// the objects can block, one cosine bounce that traces the objects). W − N is 0 bit for bit where no object interferes, and P does not
-// depend on the surface's albedo, which only scales the change. (A surface whose albedo the scene
-// gives is the model's alone: it sees W.) The local scene emits nothing to
-// the room light's samples, so directions toward it are reached by BSDF sampling only (weight 1;
-// the environment sample toward them counts as occluded). Russian
-// roulette from the third bounce on, survival
-// probability min(0.95, max throughput). Materials: bsdf.h — Lambertian ρ = Kd × map_Kd, plus a
+// photo alone shows it, which holds no shadow of them: it sees P + (W − N), the photo's radiance P
+// there (or the room's light along the ray where the photo does not show the point) plus the
+// change the objects make, W − N, estimated as for the catcher below (its albedo from the photo, a
+// sample of the room's light that the objects can block, one cosine bounce that traces the
+// objects). W − N is 0 bit for bit where no object interferes, and P does not depend on the
+// surface's albedo, which only scales the change. (A surface whose albedo the scene gives is the
+// model's alone: it sees W.) The floor and the meshes of the local scene emit nothing to the room
+// light's samples, so directions toward them are reached by BSDF sampling only (weight 1; the
+// environment sample toward them counts as occluded). Russian roulette from the third bounce on,
+// survival probability min(0.95, max throughput). Materials: bsdf.h — Lambertian ρ = Kd × map_Kd, plus a
 // glossy GGX lobe where the MTL gives Ks (roughness from Ns).
 //
 // Catcher. A camera sample that meets the local scene (a plane or a mesh) before any object estimates
@@ -27,8 +27,8 @@
 // without them. Where no object interferes the two are bitwise equal, so the photo there is left
 // exactly as it was. The albedo is the plane's, or, by default, the photo's: ρ = π P / E with E
 // the exact irradiance at the plane's normal; in a room box, the room's irradiance at the point
-// (plane_irradiance.h), which varies over the floor (the sun through a window reaches a patch). One bounce at the catcher: its own light on the
-// objects and on itself is already in the photo.
+// (plane_irradiance.h), which varies over the floor (the sun through a window reaches a patch).
+// One bounce at the catcher: its own light on the objects and on itself is already in the photo.
 //
 // Rays leave a surface from p + n_g·ε with ε = 10⁻⁵·max(1 mm, |p|_∞): an offset relative to the
 // position's magnitude, so that objects of a millimetre and of a kilometre are treated alike.
@@ -38,12 +38,21 @@
 // With environment.room_box the room is an emitting box (room_light.h): its faces carry the cube's
 // radiance projected from the capture point, and next-event estimation samples them as an area
 // light, with the pdf converted to solid angle at the shading point and MIS against the BSDF.
-// Its openings let distant light in (the sun through a window), sampled as portals.
+// Its openings let distant light in (the sun through a window), sampled as portals. Its walls
+// (every face but the openings) are local-scene surfaces too (issue 12, item 3): a camera ray
+// that meets a wall catches the objects' shadows and light there like the floor, with ρ from the
+// photo and the wall's irradiance grid; an object's ray that meets a wall sees the emitter's
+// radiance, weighed by MIS against the room light's samples of it, plus the change W − N the
+// objects make there (weight 1: only BSDF samples find it). The room light's own samples are not
+// blocked by the walls they land on. A plane lying on a wall (the floor) takes precedence. ρ ≤ 1:
+// a photo brighter than a white surface would be there is emission (a ceiling lamp), which the
+// objects cannot shadow.
 //
 // The local scene may hold meshes too (a real table, a step): they catch shadows like the planes
 // (with E(n) from the exact irradiance cube), block the environment for the objects, and show the
 // photo to them.
 #include <algorithm>
+#include <array>
 
 #include "render/bsdf.h"
 #include "render/env_sampling.h"
@@ -65,15 +74,23 @@ class PathIntegrator final : public Integrator {
         room_(*in.environment, in.room),
         max_depth_(std::max(1, max_depth)) {
     // In a room box the irradiance behind a photo-derived albedo varies over the plane.
-    if (in_.room)
-      for (const CatcherPlane& p : in_.planes)
-        plane_irradiance_.push_back(p.albedo_from_photo ? std::make_unique<PlaneIrradiance>(room_, *in_.room, p.point, p.normal) : nullptr);
+    if (!in_.room) return;
+    for (const CatcherPlane& p : in_.planes)
+      plane_irradiance_.push_back(p.albedo_from_photo ? std::make_unique<PlaneIrradiance>(room_, *in_.room, p.point, p.normal) : nullptr);
+    // The box's faces catch too (by face: +x, −x, +y, −y, +z, −z; normals into the room).
+    for (int face = 0; face < 6; ++face) {
+      const int axis = face / 2;
+      Vec3f point = in_.room->min, normal = Vec3f::Zero();
+      if (face % 2 == 0) point[axis] = in_.room->max[axis];
+      normal[axis] = face % 2 == 0 ? -1.0f : 1.0f;
+      wall_irradiance_[std::size_t(face)] = std::make_unique<PlaneIrradiance>(room_, *in_.room, point, normal, 32);
+    }
   }
 
   CameraSample sample(const Ray& camera_ray, Sampler& sampler) const override {
     CameraSample out;
     const Hit hit = objects_->intersect(camera_ray);
-    const CatcherHit c = find_catcher(camera_ray, hit.valid() ? hit.t : kInfinity);
+    const CatcherHit c = find_catcher(camera_ray, hit.valid() ? hit.t : kInfinity, /*walls=*/true);
     if (c.valid) {
       catcher(camera_ray, c, sampler, out);
       return out;
@@ -121,8 +138,25 @@ class PathIntegrator final : public Integrator {
     Vec3f x = Vec3f::Zero(), n = Vec3f::Zero();
     bool albedo_from_photo = true;
     Rgb albedo = Rgb::Zero(), irradiance = Rgb::Zero();
+    bool wall = false;  // a face of the room box: also the room's emitter
   };
-  CatcherHit find_catcher(const Ray& ray, float t_max) const {
+  // A wall of the room box (not an opening) that a ray from inside the box leaves through, before
+  // t_max: the real walls catch the objects' shadows and light like the floor.
+  bool hit_wall(const Ray& ray, float t_max, CatcherHit* c) const {
+    float t = 0;
+    int axis = 0;
+    if (!in_.room || !room_.inside(ray.origin) || !room_.exit(ray.origin, ray.dir, &t, &axis) || !(t < t_max)) return false;
+    const bool max_side = ray.dir[axis] > 0;
+    Vec3f x = ray.origin + t * ray.dir, n = Vec3f::Zero();
+    x[axis] = max_side ? in_.room->max[axis] : in_.room->min[axis];
+    if (room_.openings_at(x, axis) > 0) return false;
+    n[axis] = max_side ? -1.0f : 1.0f;
+    const PlaneIrradiance& grid = *wall_irradiance_[std::size_t(2 * axis + (max_side ? 0 : 1))];
+    *c = {true, t, x, n, true, Rgb::Zero(), grid.at(x), true};
+    return true;
+  }
+
+  CatcherHit find_catcher(const Ray& ray, float t_max, bool walls = false) const {
     CatcherHit c;
     float t = 0;
     const int k = hit_plane(ray, t_max, &t);
@@ -142,6 +176,8 @@ class PathIntegrator final : public Integrator {
              in_.catcher_irradiance->irradiance(sp.ng_world)};
       }
     }
+    // A wall behind a plane that lies on it (the floor on the box's floor) is the plane.
+    if (CatcherHit w; walls && hit_wall(ray, (c.valid ? c.t : t_max) * (1 - 1e-4f), &w)) c = w;
     return c;
   }
 
@@ -197,11 +233,14 @@ class PathIntegrator final : public Integrator {
       throughput *= bs.weight;
       ray = {origin, wi};
       hit = objects_->intersect(ray);
-      if (const CatcherHit c = find_catcher(ray, hit.valid() ? hit.t : kInfinity); c.valid) {
+      if (const CatcherHit c = find_catcher(ray, hit.valid() ? hit.t : kInfinity, /*walls=*/true); c.valid) {
         // The real surface as photographed, changed by the objects (differential rendering once
-        // more): they see their own shadows and light on it.
+        // more): they see their own shadows and light on it. A wall is the room's emitter too:
+        // its light is weighed against the room light's samples of it.
         const CatcherEstimate e = estimate_catcher(c, wi, sampler, depth);
-        L += throughput * (c.albedo_from_photo ? Rgb(room_radiance(c.x, wi) + e.with - e.without) : e.with);
+        const Rgb photo = c.wall ? Rgb(env_radiance(ray.origin, wi) * power_heuristic(bs.pdf, room_.pdf(ray.origin, wi)))
+                                 : room_radiance(c.x, wi);
+        L += throughput * (c.albedo_from_photo ? Rgb(photo + e.with - e.without) : e.with);
         break;
       }
       if (!hit.valid()) {
@@ -217,14 +256,16 @@ class PathIntegrator final : public Integrator {
     return L;
   }
 
-  // ρ/π of a local-scene point met along `dir`: the surface's, or the photo's P/E (E the exact
-  // irradiance at its normal without objects), P where the photo sees the point, else the room's
-  // light along `dir` (what the capture point saw in that direction: the real surface beyond).
+  // ρ/π of a local-scene point met along `dir`: the surface's, or the photo's P/E (E the room's
+  // irradiance there without objects), P where the photo sees the point, else the room's light
+  // along `dir` (what the capture point saw in that direction: the real surface beyond). ρ is at
+  // most 1: radiance beyond what a white surface reflects is emission (a lamp in the ceiling), which
+  // the objects cannot shadow and must not be reflected as if it were an albedo of 100.
   Rgb albedo_over_pi(const CatcherHit& c, const Vec3f& dir) const {
     if (!c.albedo_from_photo) return c.albedo / kPiF;
     const Rgb P = room_radiance(c.x, dir);
     Rgb rho_over_pi;
-    for (int k = 0; k < 3; ++k) rho_over_pi[k] = c.irradiance[k] > 0 ? P[k] / c.irradiance[k] : 0.0f;
+    for (int k = 0; k < 3; ++k) rho_over_pi[k] = c.irradiance[k] > 0 ? std::min(P[k] / c.irradiance[k], 1.0f / kPiF) : 0.0f;
     return rho_over_pi;
   }
 
@@ -282,6 +323,7 @@ class PathIntegrator final : public Integrator {
   RoomLight room_;
   int max_depth_;
   std::vector<std::unique_ptr<PlaneIrradiance>> plane_irradiance_;  // by plane, with a room box
+  std::array<std::unique_ptr<PlaneIrradiance>, 6> wall_irradiance_;  // by face of the room box
 };
 
 }  // namespace

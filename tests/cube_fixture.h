@@ -19,6 +19,16 @@ inline CubeMap random_cube(int n, unsigned seed) {
   return c;
 }
 
+// Every texel `value`.
+inline CubeMap constant_cube(int n, const Rgb& value) {
+  CubeMap c(n);
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) c.set_texel(f, i, j, value);
+  c.update_borders();
+  return c;
+}
+
 // Every texel `sky`, and the one texel holding the direction to_sun `sun`.
 inline CubeMap sun_cube(int n, const Vec3f& to_sun, float sky, float sun) {
   CubeMap c(n);

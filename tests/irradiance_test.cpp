@@ -6,6 +6,7 @@
 
 #include <cstring>
 
+#include "cube_fixture.h"
 #include "light/environment.h"
 #include "light/equirect.h"
 #include "light/gaussian_irradiance.h"
@@ -17,14 +18,7 @@
 namespace insitu {
 namespace {
 
-CubeMap constant_cube(int n, const Rgb& L) {
-  CubeMap c(n);
-  for (int f = 0; f < 6; ++f)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) c.set_texel(f, i, j, L);
-  c.update_borders();
-  return c;
-}
+using test::constant_cube;
 
 std::vector<Vec3d> random_normals(int count, unsigned seed) {
   std::mt19937 rng(seed);

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "cube_fixture.h"
 #include "box_fixture.h"
 #include "integrators/registry.h"
 #include "light/equirect.h"
@@ -30,11 +31,7 @@ Estimate estimate(const Integrator& integ, const Ray& ray, int samples, std::uin
 // its standard error, for `irradiance` exactly — at 1 mm, 1 m and 1 km.
 TEST(Path, WhiteFurnaceAtEveryScale) {
   test::TempDir dir;
-  CubeMap env(8);
-  for (int f = 0; f < 6; ++f)
-    for (int j = 0; j < 8; ++j)
-      for (int i = 0; i < 8; ++i) env.set_texel(f, i, j, Rgb(0.7f, 0.7f, 0.7f));
-  env.update_borders();
+  const CubeMap env = test::constant_cube(8, Rgb(0.7f, 0.7f, 0.7f));
   for (double scale : {1e-3, 1.0, 1e3}) {
     const EmbreeScene box = test::make_box(dir, "1 1 1", scale);
     RenderInputs in;
@@ -102,11 +99,7 @@ CatcherPlane floor_plane(float albedo) {
 // bounces between it and the real floor, which the objects' paths now shade rather than look up.
 TEST(Path, WhiteFurnaceWithTheLocalScene) {
   test::TempDir dir;
-  CubeMap env(8);
-  for (int f = 0; f < 6; ++f)
-    for (int j = 0; j < 8; ++j)
-      for (int i = 0; i < 8; ++i) env.set_texel(f, i, j, Rgb::Constant(0.7f));
-  env.update_borders();
+  const CubeMap env = test::constant_cube(8, Rgb::Constant(0.7f));
   const EmbreeScene box = test::make_box(dir, "1 1 1", 1.0, Vec3d(0, 1.001, 0));
   RenderInputs in;
   in.objects = &box;
@@ -128,11 +121,7 @@ TEST(Path, WhiteFurnaceWithTheLocalScene) {
 // (planes catch from their front only).
 TEST(Path, ObjectsSeeTheirOwnShadowsOnTheLocalScene) {
   test::TempDir dir;
-  CubeMap env(8);
-  for (int f = 0; f < 6; ++f)
-    for (int j = 0; j < 8; ++j)
-      for (int i = 0; i < 8; ++i) env.set_texel(f, i, j, Rgb::Constant(1.0f));
-  env.update_borders();
+  const CubeMap env = test::constant_cube(8, Rgb::Constant(1.0f));
   const EmbreeScene box = test::make_box(dir, "0.8 0.8 0.8", 1.0, Vec3d(0, 1.01, 0));
   RenderInputs in;
   in.objects = &box;
@@ -143,6 +132,38 @@ TEST(Path, ObjectsSeeTheirOwnShadowsOnTheLocalScene) {
   const float unshadowed = 0.8f * 0.5f;
   EXPECT_LT(e.mean[0], 0.05f * unshadowed) << "se " << e.se[0];
   EXPECT_GT(e.mean[0], 0.0f);  // some light leaks in through the gap
+}
+
+// Walls that catch (issue 12): in a constant room of radiance 1, a wall point beside a 2 m box
+// standing 10 cm from the +x wall loses much of the room's light to the box (with < without),
+// while the −x wall across the room barely changes. Without objects the wall reflects what the
+// room shows there: ρ from the photo (here the room light itself, 1) and the wall's irradiance.
+TEST(Path, WallsOfTheRoomBoxCatchShadows) {
+  test::TempDir dir;
+  const CubeMap env = test::constant_cube(8, Rgb::Constant(1.0f));
+  const EmbreeScene box = test::make_box(dir, "0.5 0.5 0.5", 1.0, Vec3d(3.9, 1.5, 0));
+  RenderInputs in;
+  in.objects = &box;
+  in.environment = &env;
+  in.room = RoomBox{Vec3f(-5, 0, -5), Vec3f(5, 3, 5), Vec3f(0, 1.5f, 0), {}};
+  const auto path = make_integrator("path", in);
+  auto walls = [&](const Ray& ray) {
+    Eigen::Array2d sum = Eigen::Array2d::Zero();
+    const int count = 4000;
+    for (int k = 0; k < count; ++k) {
+      Sampler s(9, 0, std::uint64_t(k));
+      const CameraSample cs = path->sample(ray, s);
+      EXPECT_EQ(cs.coverage, 0.0f);
+      sum += Eigen::Array2d(cs.with_objects[0], cs.without_objects[0]);
+    }
+    return Eigen::Array2d(sum / count);
+  };
+  const Eigen::Array2d beside = walls({Vec3f(4.5f, 1.5f, 4), Vec3f(0.5f, 0, -2.7f).normalized()});
+  const Eigen::Array2d across = walls({Vec3f(0, 1.5f, 0), Vec3f(-1, 0, 0)});
+  EXPECT_NEAR(beside[1], 1.0, 0.05);
+  EXPECT_NEAR(across[1], 1.0, 0.05);
+  EXPECT_LT(beside[0], 0.8 * beside[1]);
+  EXPECT_GT(across[0], 0.97 * across[1]);
 }
 
 }  // namespace

@@ -14,11 +14,7 @@ const RoomBox kBox{Vec3f(-2.5f, 0, -3), Vec3f(2.5f, 2.6f, 3), Vec3f(-0.2f, 0.9f,
 
 // A closed room of constant radiance L, window or not, gives E = π L everywhere on the floor.
 TEST(PlaneIrradiance, ConstantRoomGivesPiL) {
-  CubeMap cube(8);
-  for (int f = 0; f < 6; ++f)
-    for (int j = 0; j < 8; ++j)
-      for (int i = 0; i < 8; ++i) cube.set_texel(f, i, j, Rgb::Constant(0.7f));
-  cube.update_borders();
+  const CubeMap cube = test::constant_cube(8, Rgb::Constant(0.7f));
   const RoomLight room(cube, kBox);
   const PlaneIrradiance floor(room, kBox, Vec3f::Zero(), Vec3f(0, 1, 0), 16, 256);
   for (const Vec3f& x : {Vec3f(0, 0, 0), Vec3f(-2.4f, 0, 2.9f), Vec3f(1.3f, 0, -1.7f)})

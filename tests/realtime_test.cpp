@@ -2,6 +2,7 @@
 
 #include <random>
 
+#include "cube_fixture.h"
 #include "light/gaussian_irradiance.h"
 #include "integrators/registry.h"
 #include "render/mesh.h"
@@ -32,11 +33,7 @@ TEST(Realtime, ConstantEnvironmentGivesBaseColourTimesRadiance) {
   std::vector<Mesh> meshes;
   meshes.push_back(load_obj(dir.write("s.obj", obj), w));
   const EmbreeScene scene(std::move(meshes));
-  CubeMap env(8);
-  for (int f = 0; f < 6; ++f)
-    for (int j = 0; j < 8; ++j)
-      for (int i = 0; i < 8; ++i) env.set_texel(f, i, j, Rgb(2.0f, 3.0f, 1e4f));
-  env.update_borders();
+  const CubeMap env = test::constant_cube(8, Rgb(2.0f, 3.0f, 1e4f));
   RenderInputs in;
   in.objects = &scene;
   in.environment = &env;

@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "cube_fixture.h"
 #include "core/camera.h"
 #include "light/irradiance.h"
 #include "output/settings.h"
@@ -127,22 +128,13 @@ std::vector<std::string> registered_names() {
   return names;
 }
 
-CubeMap constant_cube(int size, float value) {
-  CubeMap env(size);
-  for (int f = 0; f < 6; ++f)
-    for (int j = 0; j < size; ++j)
-      for (int i = 0; i < size; ++i) env.set_texel(f, i, j, Rgb::Constant(value));
-  env.update_borders();
-  return env;
-}
-
 // Furnace: a convex Lambertian object of albedo ρ in a constant environment L has radiance ρ·L
 // everywhere, whatever the integrator (the blur of a constant is that constant; E = πL; a convex
 // object neither shadows nor lights itself) — within 4 standard errors of the mean over the
 // samples, plus 1e-3 relative for the float arithmetic of the blur and the irradiance cube.
 TEST_P(EveryIntegrator, FurnaceConvexObjectReflectsAlbedoTimesRadiance) {
   test::TempDir dir;
-  const CubeMap env = constant_cube(8, 0.5f);
+  const CubeMap env = test::constant_cube(8, Rgb::Constant(0.5f));
   const EmbreeScene box = test::make_box(dir, "0.8 0.6 0.4", 1.0);
   RenderInputs in;
   in.objects = &box;

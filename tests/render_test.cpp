@@ -20,10 +20,26 @@ std::optional<double> floor_z(const Camera& cam, const Vec2d& uv, double x_lo, d
   return (cam.R_cam_from_world * p + cam.t_cam_from_world).z();
 }
 
+// The face of the room box [lo, hi] that the ray through uv leaves by (2·axis + 0 for the max
+// side, 1 for the min side) and the exit's camera-space z.
+std::pair<int, double> wall_z(const Camera& cam, const Vec2d& uv, const Vec3d& lo, const Vec3d& hi) {
+  const Ray r = cam.ray(uv);
+  const Vec3d o = r.origin.cast<double>(), d = r.dir.cast<double>();
+  double t_exit = 1e300;
+  int face = -1;
+  for (int k = 0; k < 3; ++k) {
+    if (d[k] == 0) continue;
+    const double t = ((d[k] > 0 ? hi[k] : lo[k]) - o[k]) / d[k];
+    if (t < t_exit) t_exit = t, face = 2 * k + (d[k] > 0 ? 0 : 1);
+  }
+  return {face, (cam.R_cam_from_world * (o + t_exit * d) + cam.t_cam_from_world).z()};
+}
+
 // depth.Z is camera-space z, as Cycles and Nuke read it: in every pixel whose four corners all
 // see the floor, it lies between the corners' z (z is monotonic across a pixel of a plane);
 // where no corner sees anything it is the documented no-hit value. With a room box the floor ends
-// at the walls: beyond them is no hit, never a distance of 10⁷.
+// at the walls, and the walls are local-scene surfaces too: every pixel sees the floor or a wall,
+// never a distance of 10⁷, and a pixel whose corners all see one wall lies between their z.
 TEST(Render, DepthIsCameraSpaceZAndNoHitIsDocumented) {
   test::SceneFixture fx;
   for (const bool box : {false, true}) {
@@ -40,7 +56,7 @@ TEST(Render, DepthIsCameraSpaceZAndNoHitIsDocumented) {
     }
     const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
     const RenderResult r = render_scene(s);
-    int floor_pixels = 0, empty_pixels = 0;
+    int floor_pixels = 0, empty_pixels = 0, wall_pixels = 0;
     for (int y = 0; y < s.camera.height; ++y)
       for (int x = 0; x < s.camera.width; ++x) {
         std::vector<double> zs;
@@ -48,7 +64,18 @@ TEST(Render, DepthIsCameraSpaceZAndNoHitIsDocumented) {
           if (auto z = floor_z(s.camera, {x + c % 2, y + c / 2}, x_lo, x_hi, z_lo, z_hi)) zs.push_back(*z);
         const float depth = *r.layers.depth.at(x, y);
         ASSERT_TRUE(std::isfinite(depth));
-        if (zs.size() == 4) {
+        if (box && zs.empty()) {
+          std::vector<double> wz;
+          for (int c = 0; c < 4; ++c) {
+            const auto [face, z] = wall_z(s.camera, {x + c % 2, y + c / 2}, Vec3d(-1, 0, -4), Vec3d(2, 2.5, 2));
+            if (face == wall_z(s.camera, {x, y}, Vec3d(-1, 0, -4), Vec3d(2, 2.5, 2)).first) wz.push_back(z);
+          }
+          if (wz.size() < 4) continue;
+          ++wall_pixels;
+          const auto [lo, hi] = std::minmax_element(wz.begin(), wz.end());
+          EXPECT_GE(depth, *lo * (1 - 1e-5)) << x << "," << y << " wall";
+          EXPECT_LE(depth, *hi * (1 + 1e-5)) << x << "," << y << " wall";
+        } else if (zs.size() == 4) {
           ++floor_pixels;
           const auto [lo, hi] = std::minmax_element(zs.begin(), zs.end());
           EXPECT_GE(depth, *lo * (1 - 1e-5)) << x << "," << y << " box " << box;
@@ -59,7 +86,8 @@ TEST(Render, DepthIsCameraSpaceZAndNoHitIsDocumented) {
         }
       }
     EXPECT_GT(floor_pixels, 100);
-    EXPECT_GT(empty_pixels, 20) << "the view should show some sky (no box) or beyond the walls (box)";
+    if (box) EXPECT_GT(wall_pixels, 20) << "the view should show the walls";
+    else EXPECT_GT(empty_pixels, 20) << "the view should show some sky";
   }
 }
 

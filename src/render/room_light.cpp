@@ -61,10 +61,14 @@ Rgb RoomLight::wall_neighbours(const CubeMap& cube, const std::vector<float>& sh
 
 // With openings: the cube split into what c saw of the walls and of the outside. A texel wholly on
 // one side is that side's (and the other's fallback). A texel across an opening's edge, of share
-// s outside, mixes L = (1 − s) L_wall + s L_out: L_wall is taken from its wall neighbours and
-// L_out = (L − (1 − s) L_wall)/s ≥ 0, so that the sun in a texel at a window's edge lights the
-// room through the window, not as a glowing strip of wall beside it, and the texel's energy seen
-// from c is kept. Each side is sampled in proportion to its light and its share of the texel.
+// s outside, mixes L = (1 − s) L_wall + s L_out: L_wall is taken from its wall neighbours, so that
+// the sun in a texel at a window's edge lights the room through the window, not as a glowing strip
+// of wall beside it. What c saw outside, s·L_out = L − (1 − s) L_wall ≥ 0, is taken as all the
+// outside light in the texel (its radiance over the whole texel): a point that sees the whole
+// texel through the window then receives the sun's energy that c saw, not 1/s times it, which
+// a sun at the window's edge would give if L_out filled the texel. (For an even sky it
+// underestimates the thin ring of texels along the window's edge by s.) Each side is sampled in
+// proportion to its light and its share of the texel.
 void RoomLight::set_strategies(const CubeMap& cube) {
   const int n = cube.size();
   const std::vector<float> outside_share = outside_shares(n);
@@ -78,7 +82,7 @@ void RoomLight::set_strategies(const CubeMap& cube) {
         if (s_out == 0.0f || s_out == 1.0f) continue;
         const Rgb wall = wall_neighbours(cube, outside_share, f, i, j);
         wall_cube_.set_texel(f, i, j, wall);
-        outside_cube_.set_texel(f, i, j, ((cube.texel(f, i, j) - (1 - s_out) * wall) / s_out).max(0.0f));
+        outside_cube_.set_texel(f, i, j, (cube.texel(f, i, j) - (1 - s_out) * wall).max(0.0f));
       }
   wall_cube_.update_borders();
   outside_cube_.update_borders();

@@ -77,6 +77,7 @@ class RoomLight {
   // How many openings hold the point q of the box's face across `axis` (0: a wall).
   int openings_at(const Vec3f& q, int axis) const;
   float opening_probability() const { return p_dir_ + p_area_; }
+  bool inside(const Vec3f& x) const;  // strictly inside the box (false without one)
 
  private:
   struct Exit {
@@ -85,7 +86,6 @@ class RoomLight {
     int axis = 0, openings = 0;
     Vec3f q = Vec3f::Zero();
   };
-  bool inside(const Vec3f& x) const;
   Exit locate(const Vec3f& x, const Vec3f& dir) const;
   float pdf(const Vec3f& dir, const Exit& e) const;
   Rgb radiance(const Vec3f& dir, const Exit& e) const;

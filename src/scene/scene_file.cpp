@@ -196,6 +196,21 @@ std::vector<EnvironmentSpec::Opening> parse_openings(const JsonValue& v, const E
   return out;
 }
 
+EnvironmentSpec::RoomBox parse_room_box(const JsonValue& v) {
+  JsonObject b(v);
+  EnvironmentSpec::RoomBox box;
+  box.min = b.get("min").vec3();
+  box.max = b.get("max").vec3();
+  const JsonValue cap = b.get("capture");
+  box.capture = cap.vec3();
+  if (!(box.max.array() > box.min.array()).all()) b.fail("max must exceed min on every axis");
+  if (!((box.capture.array() > box.min.array()).all() && (box.capture.array() < box.max.array()).all()))
+    cap.fail("the capture point must lie inside the box");
+  if (auto ops = b.find("openings")) box.openings = parse_openings(*ops, box);
+  b.finish();
+  return box;
+}
+
 EnvironmentSpec parse_environment(const JsonValue& v, const fs::path& dir) {
   EnvironmentSpec e;
   e.where = v.where();
@@ -215,20 +230,7 @@ EnvironmentSpec parse_environment(const JsonValue& v, const fs::path& dir) {
     }
   }
   if (auto n = o.find("face_size")) e.face_size = int(n->integer(1, 4096));
-  if (auto rb = o.find("room_box")) {
-    JsonObject b(*rb);
-    EnvironmentSpec::RoomBox box;
-    box.min = b.get("min").vec3();
-    box.max = b.get("max").vec3();
-    const JsonValue cap = b.get("capture");
-    box.capture = cap.vec3();
-    if (!(box.max.array() > box.min.array()).all()) b.fail("max must exceed min on every axis");
-    if (!((box.capture.array() > box.min.array()).all() && (box.capture.array() < box.max.array()).all()))
-      cap.fail("the capture point must lie inside the box");
-    if (auto ops = b.find("openings")) box.openings = parse_openings(*ops, box);
-    b.finish();
-    e.room_box = box;
-  }
+  if (auto rb = o.find("room_box")) e.room_box = parse_room_box(*rb);
   if (auto img = o.find("image")) {
     if (o.has("shots")) o.fail("give 'image' or 'shots', not both");
     e.image = existing_file(*img, dir);
