@@ -1,34 +1,50 @@
 // Integrator `irradiance`: objects shaded by an irradiance field, without visibility.
 //
-//   L_o(x) = ρ(x) · E(n(x)) / π
+//   L_o(x) = ρ(x) · E(x, n(x)) / π
 //
 // ρ = Kd × map_Kd(uv) (Lambertian), n the shading normal facing the camera, E one of the
-// irradiance modes of irradiance.h (gaussian | sh9 | exact). No shadows, no occlusion between objects, no bounce light: what a real-time engine with
-// a better irradiance than the legacy blur would draw. With mode `gaussian` it equals `realtime`.
+// irradiance modes of irradiance.h: gaussian | sh9 | exact look the cube up by the normal alone;
+// volume (render/irradiance_volume.h) also by the position, from SH9 probes of the emitting room
+// box and its openings (it needs environment.room_box). No shadows, no occlusion between objects,
+// no bounce light: what a real-time engine with a better irradiance than the legacy blur would
+// draw. With mode `gaussian` it equals `realtime`.
 //
 // Parameters:
-//   irradiance  the irradiance mode: "gaussian", "sh9" or "exact" (default "exact"); flat as
-//               render.irradiance (DESIGN.md), or render.irradiance.irradiance in its own object.
+//   irradiance  the irradiance mode: "gaussian", "sh9", "exact" or "volume" (default "exact"); flat
+//               as render.irradiance (DESIGN.md), or render.irradiance.irradiance in its own object.
+#include <stdexcept>
+
 #include "integrators/registry.h"
 #include "light/irradiance.h"
+#include "render/irradiance_volume.h"
 
 namespace insitu {
 namespace {
 
 class IrradianceIntegrator final : public Integrator {
  public:
-  IrradianceIntegrator(const RenderInputs& in, IrradianceMode mode)
-      : objects_(in.objects), field_(make_irradiance(mode, *in.environment)) {}
+  IrradianceIntegrator(const RenderInputs& in, IrradianceMode mode) : objects_(in.objects) {
+    if (is_directional(mode)) {
+      field_ = make_irradiance(mode, *in.environment);
+      return;
+    }
+    if (!in.room) throw std::invalid_argument("the volume irradiance mode needs environment.room_box");
+    room_ = std::make_unique<RoomLight>(*in.environment, in.room);
+    volume_ = std::make_unique<IrradianceVolume>(*room_, *in.room);
+  }
 
   CameraSample sample(const Ray& ray, Sampler&) const override {
     CameraSample out;
-    if (const auto sp = first_hit(*objects_, ray, out)) out.radiance = out.albedo * field_->irradiance(sp->ns_world) / kPiF;
+    if (const auto sp = first_hit(*objects_, ray, out))
+      out.radiance = out.albedo * (field_ ? field_->irradiance(sp->ns_world) : volume_->irradiance(sp->p_world, sp->ns_world)) / kPiF;
     return out;
   }
 
  private:
   const EmbreeScene* objects_;
-  std::unique_ptr<IrradianceField> field_;
+  std::unique_ptr<IrradianceField> field_;  // a directional mode
+  std::unique_ptr<RoomLight> room_;         // or the volume, from the room's light
+  std::unique_ptr<IrradianceVolume> volume_;
 };
 
 }  // namespace

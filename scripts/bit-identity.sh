@@ -18,7 +18,7 @@ for integrator in realtime irradiance path; do
   "$insitu" render "$scene" --integrator "$integrator" --spp 4 -o "$out/$integrator.exr" --layers "$out/$integrator.layers.exr" >/dev/null 2>&1
 done
 # The irradiance integrator above ran in its default mode, exact; now the other modes.
-for irradiance in gaussian sh9; do
+for irradiance in gaussian sh9 volume; do
   "$insitu" render "$scene" --integrator irradiance --irradiance "$irradiance" --spp 4 -o "$out/irradiance-$irradiance.exr" --layers "$out/irradiance-$irradiance.layers.exr" >/dev/null 2>&1
 done
 for tonemap in photo adaptive_log reinhard linear; do

@@ -170,7 +170,7 @@ TEST(Cli, IrradianceIntegratorWithGaussianEqualsRealtime) {
   EXPECT_EQ(read_image_file(fx.dir.file("a.png")).stored.data, read_image_file(fx.dir.file("b.png")).stored.data);
   auto j = fx.scene;
   j["render"]["irradiance"] = "sh10";
-  expect_one_line_error(run_insitu(fx.dir, "render " + fx.write(j)), "$.render.irradiance: expected \"gaussian\", \"sh9\" or \"exact\"");
+  expect_one_line_error(run_insitu(fx.dir, "render " + fx.write(j)), "$.render.irradiance: expected \"gaussian\", \"sh9\", \"exact\" or \"volume\"");
 }
 
 TEST(Cli, CompareWritesThePictureAndRejectsMismatchedImages) {

@@ -64,7 +64,7 @@ TEST(Registry, ErrorsNameTheKey) {
             std::string::npos);
   EXPECT_EQ(error_of("path", {{"max_depth", 0}}), "scene.json:$.render.max_depth: 0 is out of range [1, 1000]");
   EXPECT_EQ(error_of("path", {{"irradiance", "best"}}),
-            "scene.json:$.render.irradiance: expected \"gaussian\", \"sh9\" or \"exact\"");
+            "scene.json:$.render.irradiance: expected \"gaussian\", \"sh9\", \"exact\" or \"volume\"");
   EXPECT_EQ(error_of("raytrace", json::object()),
             "scene.json:$.render.integrator: unknown integrator 'raytrace' (known: realtime, irradiance, path)");
   // Another integrator's unknown key is refused too: a typo never waits for the day it is used.

@@ -130,6 +130,7 @@ int run_tradeoff(const TradeoffArgs& a) {
     const bool reads_mode = resolve_integrator(name, {json::object(), "", "$.render"}, ignored).params.contains("irradiance");
     for (const auto& [mode, mode_name] : kIrradianceModes) {
       if (!reads_mode && mode != IrradianceMode::kExact) continue;
+      if (mode == IrradianceMode::kVolume && !scene.spec.environment.room_box) continue;  // it needs one
       const std::string label = reads_mode ? name + "/" + mode_name : name;
       if (!e.uses.monte_carlo) {
         measure(label, name, mode, 16, name == "realtime" ? &realtime_result : nullptr);

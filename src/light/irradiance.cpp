@@ -1,5 +1,7 @@
 #include "light/irradiance.h"
 
+#include <stdexcept>
+
 #include <tbb/parallel_for.h>
 
 #include <cmath>
@@ -211,8 +213,10 @@ std::unique_ptr<IrradianceField> make_irradiance(IrradianceMode mode, const Cube
   switch (mode) {
     case IrradianceMode::kGaussian: return std::make_unique<GaussianField>(radiance);
     case IrradianceMode::kSh9: return std::make_unique<Sh9Field>(radiance);
-    default: return std::make_unique<ExactField>(radiance, exact_size);
+    case IrradianceMode::kExact: return std::make_unique<ExactField>(radiance, exact_size);
+    case IrradianceMode::kVolume: break;
   }
+  throw std::logic_error("make_irradiance: the volume mode needs a room box (render/irradiance_volume.h)");
 }
 
 }  // namespace insitu

@@ -24,9 +24,15 @@
 
 namespace insitu {
 
-enum class IrradianceMode { kGaussian, kSh9, kExact };
-inline constexpr Named<IrradianceMode> kIrradianceModes[] = {
-    {IrradianceMode::kGaussian, "gaussian"}, {IrradianceMode::kSh9, "sh9"}, {IrradianceMode::kExact, "exact"}};
+// `volume` is the one mode that depends on position as well: SH9 probes in the room box
+// (render/irradiance_volume.h), which only the irradiance integrator builds; make_irradiance and
+// the cube-based reports take the three directional modes.
+enum class IrradianceMode { kGaussian, kSh9, kExact, kVolume };
+inline constexpr Named<IrradianceMode> kIrradianceModes[] = {{IrradianceMode::kGaussian, "gaussian"},
+                                                            {IrradianceMode::kSh9, "sh9"},
+                                                            {IrradianceMode::kExact, "exact"},
+                                                            {IrradianceMode::kVolume, "volume"}};
+inline bool is_directional(IrradianceMode mode) { return mode != IrradianceMode::kVolume; }
 inline const char* irradiance_mode_name(IrradianceMode mode) { return name_of(kIrradianceModes, mode); }
 inline std::optional<IrradianceMode> parse_irradiance_mode(const std::string& name) {
   return parse_name(kIrradianceModes, name);
@@ -39,6 +45,7 @@ class IrradianceField {
   virtual Rgb irradiance(const Vec3f& normal_unit) const = 0;
 };
 
+// A directional mode's field (kVolume is a logic error here).
 std::unique_ptr<IrradianceField> make_irradiance(IrradianceMode mode, const CubeMap& radiance, int exact_size = 32);
 
 // The slow, obviously correct reference.

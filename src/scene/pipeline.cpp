@@ -21,13 +21,15 @@ std::string effective_tonemap(const SceneSpec& spec) {
   return is_linear_output(spec.output.image) ? "none" : tonemap_name(spec.output.tonemap.op);
 }
 
-void warn_ineffective_settings(const SceneSpec& spec, const IntegratorEntry& e, Warnings& w) {
+void warn_ineffective_settings(const SceneSpec& spec, const ResolvedIntegrator& integrator, Warnings& w) {
+  const IntegratorEntry& e = *integrator.entry;
+  const bool volume = integrator.params.value("irradiance", "") == "volume";
   const std::string by = "the " + spec.render.integrator + " integrator";
   auto given = [&](const char* name) { return spec.given.count(name) > 0; };
   if (!spec.local_scene.empty() && !e.uses.local_scene)
     w.add("local_scene", "has no effect: " + by + " draws no shadows on it (only path does)");
-  if (spec.environment.room_box && !e.uses.room_box)
-    w.add("environment.room_box", "has no effect: " + by + " looks the cube up by direction only (only path uses it)");
+  if (spec.environment.room_box && !e.uses.room_box && !volume)
+    w.add("environment.room_box", "has no effect: " + by + " looks the cube up by direction only (path and irradiance's volume mode use it)");
   const ToneMap op = spec.output.tonemap.op;
   if (is_linear_output(spec.output.image)) {
     for (const char* key : {"output.tonemap", "output.tonemap.key", "output.tonemap.bias"})
@@ -152,7 +154,9 @@ LoadedScene load_scene(const SceneSpec& spec) {
   s.warnings = spec.warnings;
   // The integrator reads its parameters before anything is loaded: a typo costs nothing.
   s.integrator = resolve_integrator(spec.render.integrator, spec.render.block, s.warnings);
-  warn_ineffective_settings(spec, *s.integrator.entry, s.warnings);
+  warn_ineffective_settings(spec, s.integrator, s.warnings);
+  if (s.integrator.params.value("irradiance", "") == "volume" && !spec.environment.room_box)
+    throw InputError(spec.render.block.file + ":" + spec.render.block.path, "the volume irradiance mode needs environment.room_box");
   try {
     s.photo = read_image_file(spec.photo);
   } catch (const InputError& e) {

@@ -69,7 +69,7 @@ bool outside_view(const Camera& camera, const Bounds& box_world);
 // Settings given (SceneSpec::given, the local scene, the room box) that the integrator or the
 // output format does not use, each named in a warning; and what is really done, for the report.
 // (The integrators' parameters are checked by resolve_integrator.)
-void warn_ineffective_settings(const SceneSpec& spec, const IntegratorEntry& integrator, Warnings& warnings);
+void warn_ineffective_settings(const SceneSpec& spec, const ResolvedIntegrator& integrator, Warnings& warnings);
 std::string effective_tonemap(const SceneSpec& spec);  // "none" for EXR/TIFF
 
 }  // namespace insitu

@@ -284,6 +284,7 @@ def more_cases():
             ("tonemap_unknown", ["render", "scene.json", "--tonemap", "filmic"], "tonemap"),
             ("key_negative", ["render", "scene.json", "--key", "-1"], "key"),
             ("irradiance_unknown", ["render", "scene.json", "--irradiance", "sh4"], "irradiance"),
+            ("volume_without_room_box", ["render", "scene.json", "--integrator", "irradiance", "--irradiance", "volume"], "room_box"),
             ("integrator_unknown", ["render", "scene.json", "--integrator", "bdpt"], "unknown integrator 'bdpt'"),
             ("model_unknown", ["calibrate", "--points", "p.json", "--size", "4", "4", "--model", "g"], "model"),
             ("at_two_numbers", ["calibrate", "--points", "p.json", "--size", "4", "4", "--at", "1", "2"], "at"),
