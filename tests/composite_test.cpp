@@ -103,5 +103,22 @@ TEST(Composite, ContactShadowHasNoFireflies) {
   EXPECT_LE(se_guarded, se_ratio);
 }
 
+// changed_mask: the objects, and the pixels whose 3 × 3 mean change exceeds 3 % of the photo; a
+// change of 1 % everywhere (a far wall that the objects barely touch) is not "changed".
+TEST(Composite, ChangedMaskIsWhereTheChangeShows) {
+  const int w = 20, h = 10;
+  Image photo(w, h, 3, 0.5f), comp(w, h, 3, 0.505f);  // 1 % everywhere
+  RenderLayers l;
+  l.alpha = Image(w, h, 1, 0.0f);
+  for (int y = 2; y < 7; ++y)
+    for (int x = 2; x < 7; ++x) comp.set_rgb(x, y, Rgb::Constant(0.4f));  // a shadow, −20 %
+  *l.alpha.at(15, 5) = 0.5f;                                               // an object's edge
+  const Image m = changed_mask(photo, comp, l);
+  EXPECT_EQ(*m.at(4, 4), 1.0f);
+  EXPECT_EQ(*m.at(15, 5), 1.0f);
+  EXPECT_EQ(*m.at(12, 1), 0.0f);
+  EXPECT_EQ(*m.at(0, 9), 0.0f);
+}
+
 }  // namespace
 }  // namespace insitu

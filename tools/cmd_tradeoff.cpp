@@ -3,7 +3,8 @@
 // The speed/accuracy trade of a scene: renders it with `realtime`, with `irradiance` in each mode
 // (16 spp, for anti-aliasing), and with `path` over a ladder of sample counts, and measures each
 // composite against a `path` reference of many samples (a different seed), over the pixels the
-// reference changed — the objects and their shadows. Writes DIR/tradeoff.csv (mode, spp, seconds,
+// reference changed visibly (changed_mask: the objects, and 3 % or more of the photo's luminance)
+// — the objects and their shadows. Writes DIR/tradeoff.csv (mode, spp, seconds,
 // relative RMSE), DIR/tradeoff.png (error against time, log–log), and DIR/ab.png (the `realtime`
 // and `path` composites side by side with their difference). Times are precomputation plus
 // rendering, on this machine's cores.
@@ -110,7 +111,7 @@ int run_tradeoff(const TradeoffArgs& a) {
   std::fprintf(stderr, "tradeoff: reference, path at %d spp...\n", a.reference_spp);
   RenderResult reference;
   run("path", IrradianceMode::kExact, a.reference_spp, std::uint64_t(a.seed) + 1000, &reference);
-  const Image mask = touched_mask(reference.layers);
+  const Image mask = changed_mask(scene.photo_linear, reference.composite_linear, reference.layers);
   std::vector<Row> rows;
   RenderResult realtime_result, best_path;
   auto measure = [&](const std::string& name, const std::string& integrator, IrradianceMode mode, int spp, RenderResult* keep) {

@@ -1,5 +1,7 @@
 #include "output/composite.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "core/colour.h"
@@ -44,6 +46,26 @@ Image touched_mask(const RenderLayers& l) {
       bool touched = *l.alpha.at(x, y) != 0.0f;
       for (int c = 0; c < 3; ++c) touched |= l.with_objects.at(x, y)[c] != l.without_objects.at(x, y)[c];
       *m.at(x, y) = touched ? 1.0f : 0.0f;
+    }
+  return m;
+}
+
+Image changed_mask(const Image& photo, const Image& comp, const RenderLayers& l, double threshold) {
+  const int w = photo.width, h = photo.height;
+  Image m(w, h, 1, 0.0f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      double diff = 0, base = 0;
+      int n = 0;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int xx = x + dx, yy = y + dy;
+          if (xx < 0 || yy < 0 || xx >= w || yy >= h) continue;
+          diff += std::abs(luminance(comp.rgb(xx, yy)) - luminance(photo.rgb(xx, yy)));
+          ++n;
+        }
+      base = std::max(double(luminance(photo.rgb(x, y))), 1e-6);
+      *m.at(x, y) = *l.alpha.at(x, y) > 0.01f || diff / n > threshold * base ? 1.0f : 0.0f;
     }
   return m;
 }

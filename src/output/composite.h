@@ -34,6 +34,11 @@ namespace insitu {
 Image composite(const Image& photo_linear, const RenderLayers& layers, CompositeMode mode);
 // 1 channel: 1 where the render changed the pixel, 0 where it is the photo's.
 Image touched_mask(const RenderLayers& layers);
+// 1 channel: 1 on the objects (α > 0.01) and where the composite's luminance differs from the
+// photo's by more than `threshold` of it (averaged over 3 × 3 pixels: the noise of a converged
+// render stays below it), as tools/validate/metrics.py measures "objects + changed". With walls
+// that catch, nearly every pixel is touched by a little; this is where the change shows.
+Image changed_mask(const Image& photo_linear, const Image& composite_linear, const RenderLayers& layers, double threshold = 0.03);
 // W/N per channel (1 where N = 0): the shadow ratio layer.
 Image shadow_ratio(const RenderLayers& layers);
 // Whether the ratio form is the less noisy estimator at (x, y) (see above).
