@@ -5,7 +5,7 @@ packages=(
   cmake g++ make pkg-config
   libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libopencv-dev libceres-dev
   libtinyobjloader-dev libtbb-dev libeigen3-dev
-  nlohmann-json3-dev libcli11-dev libfmt-dev libgtest-dev libbenchmark-dev
+  nlohmann-json3-dev libcli11-dev libfmt-dev libgtest-dev libbenchmark-dev zlib1g-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fmt/format.h>
 
@@ -24,10 +25,13 @@ namespace {
 
 // Holds what C libraries print to stderr while an image is read (libpng writes "libpng error: ..."
 // itself before OpenImageIO reports the same failure): on failure it is dropped, since the one-line
-// InputError carries the reader's message; otherwise it is written back unchanged.
+// InputError carries the reader's message; otherwise it is written back unchanged. With
+// INSITU_KEEP_STDERR set (scripts/sanitize-and-fuzz.sh) nothing is captured.
 class StderrCapture {
  public:
   StderrCapture() {
+    // The fuzz runs set it: a crash report written while stderr is captured would be lost.
+    if (std::getenv("INSITU_KEEP_STDERR")) return;
     std::fflush(stderr);
     file_ = std::tmpfile();
     saved_ = file_ ? ::dup(STDERR_FILENO) : -1;
@@ -81,12 +85,51 @@ ImageFile read_image_file(const std::string& path) {
 
 namespace {
 
+// Reads the image's first three channels (one channel, repeated, for grey) as float RGB, a band
+// of rows at a time: memory grows only with rows that really decode, so a truncated file whose
+// header declares 100 megapixels fails at its first missing band instead of after allocating and
+// filling gigabytes (what the image fuzzer found).
+Image decode_rgb(ImageInput& in, const std::string& path) {
+  const ImageSpec& spec = in.spec();
+  const int channels_read = spec.nchannels >= 3 ? 3 : 1;
+  const bool tiled = spec.tile_width > 0;
+  const int tile_rows = std::max(1, spec.tile_height);
+  const int band_rows = tiled ? tile_rows * std::max(1, 64 / tile_rows) : 64;
+  const std::size_t row_values = std::size_t(spec.width) * channels_read;
+  std::vector<float> rgb;
+  rgb.reserve(std::size_t(spec.width) * spec.height * 3);
+  std::vector<float> band;
+  for (int y0 = 0; y0 < spec.height; y0 += band_rows) {
+    const int y1 = std::min(spec.height, y0 + band_rows);
+    band.resize(row_values * std::size_t(y1 - y0));
+    const bool ok = tiled ? in.read_tiles(0, 0, spec.x, spec.x + spec.width, spec.y + y0, spec.y + y1, spec.z,
+                                          spec.z + 1, 0, channels_read, TypeDesc::FLOAT,
+                                          band.data())
+                          : in.read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, channels_read,
+                                              TypeDesc::FLOAT, band.data());
+    if (!ok) throw InputError(path, "cannot decode image: " + one_line(in.geterror()));
+    // A truncated file may decode "successfully" with its missing rows grey: the reader's error
+    // says so.
+    if (in.has_error()) throw InputError(path, "truncated or corrupt image: " + one_line(in.geterror()));
+    const std::size_t first = rgb.size();
+    rgb.resize(first + band.size() / channels_read * 3);
+    for (std::size_t i = 0, o = first; i < band.size(); i += channels_read, o += 3)
+      for (int c = 0; c < 3; ++c) rgb[o + c] = band[i + (channels_read == 3 ? c : 0)];
+  }
+  Image img(0, 0, 3);
+  img.width = spec.width;
+  img.height = spec.height;
+  img.data = std::move(rgb);
+  return img;
+}
+
 ImageFile read_image_file_quietly(const std::string& path) {
   auto in = ImageInput::open(path);
   if (!in) throw InputError(path, "cannot read image: " + one_line(geterror()));
   const ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     throw InputError(path, "image has no pixels");
+  if (spec.depth > 1) throw InputError(path, fmt::format("a volume image ({} slices); insitu reads flat images", spec.depth));
   // The header's size is checked before anything is allocated: a 100000² header must not cost
   // memory or minutes.
   if (std::uint64_t(spec.width) * std::uint64_t(spec.height) > kMaxImagePixels)
@@ -105,19 +148,8 @@ ImageFile read_image_file_quietly(const std::string& path) {
   if (iso <= 0) iso = spec.get_int_attribute("Exif:ISOSpeedRatings", 0);
   if (iso > 0) file.exposure.iso = iso;
   if (const int f35 = spec.get_int_attribute("Exif:FocalLengthIn35mmFilm", 0); f35 > 0) file.exposure.focal_35mm_mm = f35;
-  const int nc = spec.nchannels;
-  std::vector<float> raw(std::size_t(spec.width) * spec.height * nc);
-  if (!in->read_image(0, 0, 0, nc, TypeDesc::FLOAT, raw.data()))
-    throw InputError(path, "cannot decode image: " + one_line(in->geterror()));
-  // A truncated file may decode "successfully" with its missing rows grey: the reader's error
-  // says so.
-  if (in->has_error()) throw InputError(path, "truncated or corrupt image: " + one_line(in->geterror()));
+  file.stored = decode_rgb(*in, path);
   in->close();
-  Image& img = file.stored;
-  img = Image(spec.width, spec.height, 3);
-  const std::size_t n = std::size_t(spec.width) * spec.height;
-  for (std::size_t i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c) img.data[i * 3 + c] = raw[i * nc + std::min(c, nc < 3 ? 0 : c)];
   return file;
 }
 
