@@ -99,6 +99,28 @@ TEST(SceneFile, OutOfRangeValues) {
   expect_error(fx, j, ":$.render.integrator", "unknown integrator 'raytrace' (known: realtime, irradiance, path)");
 }
 
+// Inverse lighting's keys (issue 13): a plane's reference mean albedo, and the switch.
+TEST(SceneFile, MeanAlbedoAndInverseLighting) {
+  SceneFixture fx;
+  auto j = fx.scene;
+  j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}, {"mean_albedo", 0.4}}};
+  j["environment"] = {{"image", "env.exr"}, {"inverse_lighting", false}};
+  const SceneSpec spec = parse_scene_file(fx.write(j));
+  ASSERT_EQ(spec.local_scene.size(), 1u);
+  EXPECT_EQ(spec.local_scene[0].mean_albedo, 0.4);
+  EXPECT_TRUE(spec.local_scene[0].albedo_from_photo);  // still rendered with the photo's texture
+  EXPECT_FALSE(spec.environment.inverse_lighting);
+  EXPECT_TRUE(parse_scene_file(fx.write()).environment.inverse_lighting);  // on by default
+  j["local_scene"][0]["mean_albedo"] = 1.5;
+  expect_error(fx, j, ":$.local_scene[0].mean_albedo", "out of range");
+  j["local_scene"][0]["mean_albedo"] = 0.4;
+  j["local_scene"][0]["albedo"] = {0.5, 0.5, 0.5};
+  expect_error(fx, j, ":$.local_scene[0].mean_albedo", "not both");
+  j = fx.scene;
+  j["environment"] = {{"image", "env.exr"}, {"inverse_lighting", "yes"}};
+  expect_error(fx, j, ":$.environment.inverse_lighting", "expected true or false");
+}
+
 TEST(SceneFile, MissingFilesAndKeys) {
   SceneFixture fx;
   auto j = fx.scene;

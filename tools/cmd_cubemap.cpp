@@ -1,7 +1,9 @@
 // insitu cubemap ENV -o DIR [--irradiance-size N]
 //
 // ENV is a scene file (its environment: six shots or an HDR image) or an HDR image. Writes
-//   DIR/cube.exr               the radiance cube, a vertical strip of the faces +X…−Z (linear)
+//   DIR/cube.exr               the radiance cube, a vertical strip of the faces +X…−Z (linear);
+//                              from a scene with clipped shots, with the clipped light recovered
+//                              against the photo (scene/light_recovery.h), and a line per source
 //   DIR/cube.png               the cube unfolded as a cross, seen from inside (preview.h)
 //   DIR/equirect.exr           the radiance as an equirectangular image (4n × 2n, linear)
 //   DIR/irradiance_MODE.exr    each mode's irradiance E (not E/π), sampled at the texel centres of
@@ -9,6 +11,7 @@
 //   DIR/irradiance_MODE.png    its cross, E/π at the radiance preview's exposure, so that all
 //                              previews compare directly
 #include <cstdio>
+#include <fmt/format.h>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -20,6 +23,8 @@
 #include "light/irradiance.h"
 #include "core/output_paths.h"
 #include "light/preview.h"
+#include "scene/light_recovery.h"
+#include "scene/pipeline.h"
 
 namespace insitu {
 namespace {
@@ -28,6 +33,20 @@ struct CubemapArgs {
   std::string env, out;
   int irradiance_size = 32;
 };
+
+// Clipped shots and a scene: the cube with the clipped light recovered against the photo, as the
+// render will use it (scene/light_recovery.h), and what to print of it.
+std::string recover_light(const std::string& scene_path, CubeMap& cube) {
+  const LoadedScene scene = load_scene(parse_scene_file(scene_path));
+  cube = scene.environment;
+  const auto& il = *scene.inverse_lighting;
+  std::string out = "light: " + light_determined_by(scene) + " (" + il.status + "): " + il.message + "\n";
+  for (const SourceFit& f : il.sources)
+    out += fmt::format("  source toward ({:.2f}, {:.2f}, {:.2f}), {:.3g} sr: scale {:.4g} ± {:.2g}{}\n",
+                       f.source.dir_world.x(), f.source.dir_world.y(), f.source.dir_world.z(), f.source.solid_angle_sr,
+                       f.scale, f.sigma, f.determined ? "" : " (not determined: lower bound)");
+  return out;
+}
 
 int run_cubemap(const CubemapArgs& a) {
   Warnings warnings;
@@ -50,8 +69,10 @@ int run_cubemap(const CubemapArgs& a) {
   }
   std::optional<ImageFile> photo;
   if (!photo_path.empty()) photo = read_image_file(photo_path);
-  const CubeMap cube = load_environment(spec, warnings, &info, photo ? &*photo : nullptr);
+  CubeMap cube = load_environment(spec, warnings, &info, photo ? &*photo : nullptr);
   print_warnings(warnings);
+  const std::string light_line = (!photo_path.empty() && info.clipped_cube && spec.inverse_lighting)
+                                     ? recover_light(a.env, cube) : std::string();
   namespace fs = std::filesystem;
   const fs::path dir(a.out);
   const double exposure = preview_exposure(cube);
@@ -82,6 +103,7 @@ int run_cubemap(const CubemapArgs& a) {
     for (int f = 0; f < 6; ++f)
       std::printf("  %-3s %-40s coverage %5.1f%%, clipped %5.2f%%\n", face_name(f), spec.shots[std::size_t(f)].files.front().c_str(),
                   100 * info.coverage[std::size_t(f)], 100 * info.clipped[std::size_t(f)]);
+  std::printf("%s", light_line.c_str());
   std::printf("wrote cube.exr, cube.png, equirect.exr and irradiance_{gaussian,sh9,exact}.{exr,png} to %s\n", a.out.c_str());
   return 0;
 }

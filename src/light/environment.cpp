@@ -120,6 +120,7 @@ void recover_first_response(const EnvironmentSpec& spec, const ShotFiles& files,
 // single shot carries its k when EXIF or "times" gives it.
 struct LinearShots {
   ShotSet set;
+  ShotSet clipped;  // clipped_mask of each shot (of the shortest bracket)
   std::array<std::optional<double>, 6> k_shot;
   bool all_singles_have_k = true;
 };
@@ -128,17 +129,21 @@ LinearShots linearize_shots(const EnvironmentSpec& spec, const ShotFiles& files,
                             EnvironmentInfo& info, Warnings& warnings) {
   LinearShots out;
   out.set.faced_face = spec.faced_face;
+  out.clipped.faced_face = spec.faced_face;
   for (int f = 0; f < 6; ++f) {
     const auto& fl = files[std::size_t(f)];
     const ShotSpec& s = spec.shots[std::size_t(f)];
     out.set.names[std::size_t(f)] = s.files.front();
     out.set.hfov_deg[std::size_t(f)] = shot_hfov(s, spec, fl.front());
+    out.clipped.hfov_deg[std::size_t(f)] = out.set.hfov_deg[std::size_t(f)];
+    out.clipped.names[std::size_t(f)] = s.files.front();
     try {
       if (fl.size() >= 2) {
         const std::vector<double> k = bracket_exposures(s, fl);
         out.set.shots[std::size_t(f)] = merge_brackets(fl, k, response);
         const std::size_t shortest = std::size_t(std::min_element(k.begin(), k.end()) - k.begin());
         info.clipped[std::size_t(f)] = clipped_fraction(fl[shortest]);
+        out.clipped.shots[std::size_t(f)] = clipped_mask(fl[shortest]);
         out.k_shot[std::size_t(f)] = 1.0;
       } else {
         std::size_t clamped = 0;
@@ -148,6 +153,7 @@ LinearShots linearize_shots(const EnvironmentSpec& spec, const ShotFiles& files,
         info.clamped_values += clamped;
         if (clamped > 0) warnings.add(s.files.front(), fmt::format("{} negative or non-finite values clamped to 0", clamped));
         info.clipped[std::size_t(f)] = clipped_fraction(fl.front());
+        out.clipped.shots[std::size_t(f)] = clipped_mask(fl.front());
         const auto rel = s.times_s.empty() ? fl.front().exposure.relative() : std::optional<double>(s.times_s.front());
         if (rel) out.k_shot[std::size_t(f)] = *rel;
         else out.all_singles_have_k = false;
@@ -231,6 +237,8 @@ CubeMap load_shot_environment(const EnvironmentSpec& spec, Warnings& warnings, E
   LinearShots shots = linearize_shots(spec, files, response, info, warnings);
   const bool per_shot_exif = apply_exif_exposure(spec, photo, shots, info);
   CubeMap cube = assemble(spec, shots.set, info, warnings);
+  if (*std::max_element(info.clipped.begin(), info.clipped.end()) > 0)
+    info.clipped_cube = assemble_cube(shots.clipped, cube.size());
   if (spec.exposure == EnvironmentSpec::Exposure::kFactor) return scaled(cube, float(spec.exposure_factor));
   if (!per_shot_exif && photo) return scale_by_estimate(cube, *photo, spec, info, warnings);
   return cube;

@@ -25,6 +25,9 @@ struct EnvironmentInfo {
   std::optional<ResponseCurve> response;                 // recovered from brackets
   double exposure_factor = 1;                            // applied to shots without EXIF
   std::string exposure_source = "none";                  // "exif", "factor", "estimate", "none"
+  // With clipped shots: per texel of the cube, the fraction of it that was clipped (the shots'
+  // masks assembled like the shots themselves; a merged bracket's clipping is its shortest's).
+  std::optional<CubeMap> clipped_cube;
 };
 
 // `photo` (as stored) gives k_photo and the estimate; without it shots keep their own unit.

@@ -43,6 +43,8 @@ struct EnvironmentSpec {
   // single shot have it, else an estimate that is reported), exif (required), or a factor.
   enum class Exposure { kAuto, kExif, kFactor } exposure = Exposure::kAuto;
   double exposure_factor = 1.0;
+  // Recover the strength of light that clipped in the shots against the photo (inverse_lighting.h).
+  bool inverse_lighting = true;
   bool from_shots() const { return image.empty(); }
 };
 

@@ -134,17 +134,24 @@ Image linearize_with_response(const ImageFile& file, const ResponseCurve& r) {
   return out;
 }
 
-double clipped_fraction(const ImageFile& file) {
-  if (!file.display_referred) return 0.0;
+Image clipped_mask(const ImageFile& file) {
   const Image& img = file.stored;
+  Image mask(img.width, img.height, 3);
+  if (!file.display_referred) return mask;
   const float top = file.bits == 8 ? 254.5f / 255.0f : 65534.5f / 65535.0f;
-  std::size_t clipped = 0;
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
       const float* p = img.at(x, y);
-      clipped += (p[0] >= top || p[1] >= top || p[2] >= top);
+      if (p[0] >= top || p[1] >= top || p[2] >= top) mask.set_rgb(x, y, Rgb(1, 1, 1));
     }
-  return double(clipped) / (double(img.width) * img.height);
+  return mask;
+}
+
+double clipped_fraction(const ImageFile& file) {
+  const Image mask = clipped_mask(file);
+  double clipped = 0;
+  for (std::size_t i = 0; i < mask.data.size(); i += 3) clipped += mask.data[i];
+  return clipped / std::max(1.0, double(mask.width) * mask.height);
 }
 
 }  // namespace insitu

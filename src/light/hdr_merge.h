@@ -33,5 +33,7 @@ Image linearize_with_response(const ImageFile& file, const ResponseCurve& respon
 // The fraction of pixels with a channel at the top of the stored range (>= 254.5/255 for 8-bit):
 // radiance there is only a lower bound.
 double clipped_fraction(const ImageFile& file);
+// 1 (in every channel) where a pixel is clipped so, else 0; all 0 for float files.
+Image clipped_mask(const ImageFile& file);
 
 }  // namespace insitu

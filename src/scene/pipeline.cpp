@@ -1,4 +1,5 @@
 #include "scene/pipeline.h"
+#include "scene/light_recovery.h"
 
 #include <algorithm>
 #include <array>
@@ -168,6 +169,12 @@ LoadedScene load_scene(const SceneSpec& spec) {
   s.photo_linear = linearize_photo(s.photo, s.environment_info, &clamped);
   if (clamped > 0) s.warnings.add(spec.photo, fmt::format("{} negative or non-finite values clamped to 0", clamped));
   load_camera(spec, s.photo.stored.width, s.photo.stored.height, s);
+  if (const auto& box = spec.environment.room_box) {
+    RoomBox room{box->min.cast<float>(), box->max.cast<float>(), box->capture.cast<float>(), {}};
+    for (const auto& o : box->openings) room.openings.push_back({o.axis, o.min.cast<float>(), o.max.cast<float>()});
+    s.room = room;
+  }
+  recover_clipped_light(s);
 
   std::vector<Mesh> meshes;
   for (const ObjectSpec& obj : spec.objects) {
@@ -191,11 +198,7 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress) 
   inputs.objects = scene.objects.get();
   inputs.environment = &scene.environment;
   inputs.photo_linear = &scene.photo_linear;
-  if (const auto& box = scene.spec.environment.room_box) {
-    RoomBox room{box->min.cast<float>(), box->max.cast<float>(), box->capture.cast<float>(), {}};
-    for (const auto& o : box->openings) room.openings.push_back({o.axis, o.min.cast<float>(), o.max.cast<float>()});
-    inputs.room = room;
-  }
+  inputs.room = scene.room;
   inputs.camera = &scene.camera;
   // Everything before the sample loop is preparation: the catcher's irradiance included.
   const auto start = std::chrono::steady_clock::now();
@@ -264,7 +267,8 @@ nlohmann::json render_report(const LoadedScene& s, const RenderResult& r) {
         {"exposure_factor", info.exposure_factor},
         {"response_from_brackets", info.response.has_value()},
         {"clamped_values", info.clamped_values},
-        {"shots", shots}}},
+        {"shots", shots},
+        {"light", light_report(s)}}},
       {"render",
        {{"integrator", s.spec.render.integrator},
         {"parameters", s.integrator.params},

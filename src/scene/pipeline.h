@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/image.h"
 #include "core/output_paths.h"
+#include "render/inverse_lighting.h"
 #include "render/render.h"
 #include "integrators/registry.h"
 #include "scene/scene_file.h"
@@ -26,6 +27,8 @@ struct LoadedScene {
   std::optional<CalibrationResult> calibration;  // when the camera came from control points
   CubeMap environment;
   EnvironmentInfo environment_info;
+  std::optional<RoomBox> room;                              // environment.room_box, for the renderer
+  std::optional<InverseLightingResult> inverse_lighting;    // when shots clipped (light_recovery.h)
   std::unique_ptr<EmbreeScene> objects;
   std::unique_ptr<EmbreeScene> catcher_meshes;  // meshes of the local scene
   ResolvedIntegrator integrator;  // the entry and its parameters, read from the render object

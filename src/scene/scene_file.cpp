@@ -230,6 +230,7 @@ EnvironmentSpec parse_environment(const JsonValue& v, const fs::path& dir) {
     }
   }
   if (auto n = o.find("face_size")) e.face_size = int(n->integer(1, 4096));
+  if (auto il = o.find("inverse_lighting")) e.inverse_lighting = il->boolean();
   if (auto rb = o.find("room_box")) e.room_box = parse_room_box(*rb);
   if (auto img = o.find("image")) {
     if (o.has("shots")) o.fail("give 'image' or 'shots', not both");
@@ -336,7 +337,7 @@ EnvironmentSpec parse_environment_file(const std::string& path) {
 namespace {
 
 // local_scene[i]: {"plane": {point, normal}} or a mesh placed like an object, with an albedo
-// ("from_photo", the default, or [r, g, b] in [0, 1]).
+// ("from_photo", the default, or [r, g, b] in [0, 1]) and optionally a reference mean_albedo.
 PlaneSpec parse_local_scene_item(JsonObject item, const fs::path& dir) {
   PlaneSpec plane;
   if (auto a = item.find("albedo")) {
@@ -348,6 +349,11 @@ PlaneSpec parse_local_scene_item(JsonObject item, const fs::path& dir) {
       plane.albedo_from_photo = false;
       plane.albedo = rgb.cast<float>().array();
     }
+  }
+  // A reference for inverse lighting (issue 13): the surface's mean albedo, its texture kept.
+  if (auto m = item.find("mean_albedo")) {
+    if (!plane.albedo_from_photo) m->fail("give 'albedo' (uniform, rendered) or 'mean_albedo' (a reference), not both");
+    plane.mean_albedo = m->number(0.001, 1.0);
   }
   if (item.has("mesh")) {
     if (item.has("plane")) item.fail("give 'plane' or 'mesh', not both");

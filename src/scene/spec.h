@@ -45,6 +45,9 @@ struct PlaneSpec {
   std::optional<ObjectSpec> mesh;  // set: a mesh catcher (point and normal unused)
   bool albedo_from_photo = true;
   Rgb albedo = Rgb::Zero();
+  // Inverse lighting's reference: the surface's albedo on average over the photo's pixels of it
+  // (its luminance), while it is still rendered with the photo's own texture.
+  std::optional<double> mean_albedo;
 };
 
 struct OutputSpec {

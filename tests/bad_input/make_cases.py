@@ -221,7 +221,8 @@ def systematic_cases():
              (("render", "max_depth"), 0, "range"), (("composite",), "multiply", "ratio"),
              (("output", "image"), "out/c.bmp", "extension"), (("output", "layers"), "out/l.png", "extension"),
              (("output", "tonemap", "op"), "filmic", "photo"), (("output", "tonemap", "bias"), 2, "range"),
-             (("output", "tonemap", "key"), 0, "range")]
+             (("output", "tonemap", "key"), 0, "range"), (("local_scene", 0, "mean_albedo"), "half", "number"),
+             (("environment", "inverse_lighting"), "yes", "boolean")]
     for i, (path, value, word) in enumerate(typed):
         variant("wrong_type_%02d_%s" % (i, "_".join(str(k) for k in path).replace("+", "p")), path, value, r"WHERE: .*")
     # Numbers that are not finite or not sensible.

@@ -1,0 +1,120 @@
+#include "light/clipped_sources.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "core/colour.h"
+#include "light/texel_geometry.h"
+
+namespace insitu {
+
+namespace {
+
+// The texel one step (di, dj) from (f, i, j), across a face edge through the direction there.
+std::array<int, 3> neighbour(int f, int i, int j, int di, int dj, int n) {
+  const int ni = i + di, nj = j + dj;
+  if (ni >= 0 && ni < n && nj >= 0 && nj < n) return {f, ni, nj};
+  const FaceCoord c = direction_to_face(face_to_direction(f, (float(ni) + 0.5f) / float(n), (float(nj) + 0.5f) / float(n)));
+  return {c.face, std::clamp(int(c.s * float(n)), 0, n - 1), std::clamp(int(c.t * float(n)), 0, n - 1)};
+}
+
+ClippedSource summarize(std::vector<std::array<int, 3>> texels, const CubeMap& radiance) {
+  const int n = radiance.size();
+  ClippedSource s;
+  Vec3d dir = Vec3d::Zero();
+  for (const auto& t : texels) {
+    const double dw = texel_solid_angle(t[1], t[2], n);
+    const double y = luminance(radiance.texel(t[0], t[1], t[2])) * dw;
+    s.solid_angle_sr += dw;
+    s.power += y;
+    dir += (y + 1e-30) * texel_direction(t[0], t[1], t[2], n).cast<double>();
+  }
+  s.dir_world = dir.normalized().cast<float>();
+  s.texels = std::move(texels);
+  return s;
+}
+
+// Flood fill of one region from a seed; `label` marks visited texels.
+ClippedSource grow(const CubeMap& clipped, const CubeMap& radiance, std::vector<int>& label, int id,
+                   std::array<int, 3> seed) {
+  const int n = clipped.size();
+  auto index = [n](const std::array<int, 3>& t) { return (std::size_t(t[0]) * n + t[2]) * n + t[1]; };
+  std::vector<std::array<int, 3>> texels, stack{seed};
+  label[index(seed)] = id;
+  while (!stack.empty()) {
+    const auto t = stack.back();
+    stack.pop_back();
+    texels.push_back(t);
+    for (const auto& [di, dj] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+      const auto u = neighbour(t[0], t[1], t[2], di, dj, n);
+      if (label[index(u)] >= 0 || clipped.texel(u[0], u[1], u[2]).maxCoeff() < 0.5f) continue;
+      label[index(u)] = id;
+      stack.push_back(u);
+    }
+  }
+  return summarize(std::move(texels), radiance);
+}
+
+}  // namespace
+
+std::vector<ClippedSource> find_clipped_sources(const CubeMap& clipped, const CubeMap& radiance, int max_sources) {
+  const int n = clipped.size();
+  std::vector<int> label(std::size_t(6) * n * n, -1);
+  std::vector<ClippedSource> all;
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        if (label[(std::size_t(f) * n + j) * n + i] < 0 && clipped.texel(f, i, j).maxCoeff() >= 0.5f)
+          all.push_back(grow(clipped, radiance, label, int(all.size()), {f, i, j}));
+  std::sort(all.begin(), all.end(), [](const ClippedSource& a, const ClippedSource& b) { return a.power > b.power; });
+  // The remainder joins the last source kept.
+  while (int(all.size()) > std::max(1, max_sources)) {
+    ClippedSource& last = all[all.size() - 2];
+    const ClippedSource& extra = all.back();
+    last.texels.insert(last.texels.end(), extra.texels.begin(), extra.texels.end());
+    const Vec3f d = float(last.power) * last.dir_world + float(extra.power) * extra.dir_world;
+    if (d.norm() > 0) last.dir_world = d.normalized();
+    last.solid_angle_sr += extra.solid_angle_sr;
+    last.power += extra.power;
+    all.pop_back();
+  }
+  return all;
+}
+
+std::vector<ClippedSource> split_into_parts(const ClippedSource& source, const CubeMap& radiance, int block) {
+  std::map<std::array<int, 3>, std::vector<std::array<int, 3>>> groups;
+  block = std::max(1, block);
+  for (const auto& t : source.texels) groups[{t[0], t[1] / block, t[2] / block}].push_back(t);
+  std::vector<ClippedSource> parts;
+  for (auto& [key, texels] : groups) parts.push_back(summarize(std::move(texels), radiance));
+  return parts;
+}
+
+CubeMap source_only(const CubeMap& radiance, const ClippedSource& source) {
+  CubeMap out(radiance.size());
+  for (const auto& t : source.texels) out.set_texel(t[0], t[1], t[2], radiance.texel(t[0], t[1], t[2]));
+  out.update_borders();
+  return out;
+}
+
+CubeMap with_scaled_sources(const CubeMap& radiance, const std::vector<ClippedSource>& sources,
+                            const std::vector<double>& scales) {
+  CubeMap out = radiance;
+  for (std::size_t k = 0; k < sources.size() && k < scales.size(); ++k)
+    for (const auto& t : sources[k].texels)
+      out.set_texel(t[0], t[1], t[2], float(scales[k]) * radiance.texel(t[0], t[1], t[2]));
+  out.update_borders();
+  return out;
+}
+
+double cube_power(const CubeMap& radiance) {
+  const int n = radiance.size();
+  double sum = 0;
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) sum += luminance(radiance.texel(f, i, j)) * texel_solid_angle(i, j, n);
+  return sum;
+}
+
+}  // namespace insitu

@@ -1,0 +1,38 @@
+// The light sources that clipped in the shots (issue 13): the texels of the cube whose clipped
+// fraction (EnvironmentInfo::clipped_cube) is at least ½, grouped into regions connected across
+// face edges (4-neighbourhood). Each region is one source whose radiance is known only from below:
+// the clipped value L0 is a lower bound, and the true radiance is L0 · s with s ≥ 1 unknown.
+#pragma once
+#include <array>
+#include <vector>
+
+#include "light/cubemap.h"
+
+namespace insitu {
+
+struct ClippedSource {
+  std::vector<std::array<int, 3>> texels;  // (face, i, j)
+  Vec3f dir_world = Vec3f::Zero();         // the luminance-weighted mean direction, unit
+  double solid_angle_sr = 0;
+  double power = 0;                        // Σ Y(L0) ΔΩ: its share of c's irradiance-like power
+};
+
+// Largest power first. Regions beyond `max_sources` are merged into the last one kept (one scale for
+// the small remainder: a fit determines only what its data supports).
+std::vector<ClippedSource> find_clipped_sources(const CubeMap& clipped, const CubeMap& radiance, int max_sources = 4);
+
+// A source cut into parts of at most block × block texels of a face: a clipped window holds the
+// sky and the sun, whose true radiances differ by orders of magnitude, so one scale cannot
+// describe it; the parts' scales are fitted each, and judged together (inverse_lighting.h).
+std::vector<ClippedSource> split_into_parts(const ClippedSource& source, const CubeMap& radiance, int block);
+
+// The cube with only the given source's texels (all else black), and the cube with every source's
+// texels multiplied by its scale.
+CubeMap source_only(const CubeMap& radiance, const ClippedSource& source);
+CubeMap with_scaled_sources(const CubeMap& radiance, const std::vector<ClippedSource>& sources,
+                            const std::vector<double>& scales);
+
+// Σ Y(L) ΔΩ over the whole cube (the denominator of ClippedSource::power's share).
+double cube_power(const CubeMap& radiance);
+
+}  // namespace insitu

@@ -1,0 +1,495 @@
+#include "render/inverse_lighting.h"
+
+#include <ceres/ceres.h>
+#include <Eigen/Eigenvalues>
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <map>
+#include <memory>
+
+#include "core/colour.h"
+#include "render/plane_irradiance.h"
+
+namespace insitu {
+
+namespace {
+
+// A photo pixel that sees a real surface, with the irradiance there of the cube (E0) and of each
+// source alone (Ek).
+struct FitPixel {
+  Vec3f x = Vec3f::Zero(), n = Vec3f::Zero();
+  int surface = 0;
+  double log_p = 0;
+  double e0 = 0;
+  std::vector<double> ek;
+};
+
+constexpr float kNoHit = INFINITY;
+
+// The nearest real surface along the ray: a local-scene plane (inside the box, when there is
+// one), or the box's face it leaves through (surface planes.size() + 2·axis + side). False for
+// nothing, or an opening.
+bool hit_surface(const Ray& ray, const InverseLightingInput& in, const RoomLight& room, FitPixel& px) {
+  float best = kNoHit;
+  for (std::size_t p = 0; p < in.planes.size(); ++p) {
+    const FitPlane& pl = in.planes[p];
+    const float dn = ray.dir.dot(pl.normal);
+    if (std::abs(dn) < 1e-6f) continue;
+    const float t = (pl.point - ray.origin).dot(pl.normal) / dn;
+    const Vec3f x = ray.origin + t * ray.dir;
+    if (t <= 0 || t >= best) continue;
+    if (in.room && ((x - in.room->min).minCoeff() < -1e-4f * t || (in.room->max - x).minCoeff() < -1e-4f * t)) continue;
+    best = t;
+    px.surface = int(p);
+    px.n = dn < 0 ? pl.normal : Vec3f(-pl.normal);
+  }
+  float t_box = 0;
+  int axis = 0;
+  if (in.room && room.inside(ray.origin) && room.exit(ray.origin, ray.dir, &t_box, &axis) && t_box < best * (1 - 1e-4f)) {
+    const Vec3f q = ray.origin + t_box * ray.dir;
+    if (room.openings_at(q, axis) > 0) return false;
+    best = t_box;
+    px.surface = int(in.planes.size()) + 2 * axis + (ray.dir[axis] > 0 ? 1 : 0);
+    px.n = Vec3f::Zero();
+    px.n[axis] = ray.dir[axis] > 0 ? -1.0f : 1.0f;
+  }
+  if (best == kNoHit) return false;
+  px.x = ray.origin + best * ray.dir;
+  return true;
+}
+
+// Photo pixels on a regular grid that see a real surface and are neither clipped nor dark.
+std::vector<FitPixel> gather_pixels(const InverseLightingInput& in, const RoomLight& room) {
+  const Image& photo = *in.photo_linear;
+  const int step = std::max(1, int(std::sqrt(double(photo.width) * photo.height / std::max(1, in.max_pixels))));
+  std::vector<FitPixel> out;
+  std::vector<double> lum;
+  for (int y = step / 2; y < photo.height; y += step)
+    for (int x = step / 2; x < photo.width; x += step) {
+      if (in.photo_clipped && in.photo_clipped->rgb(x, y).maxCoeff() > 0) continue;
+      const double p = luminance(photo.rgb(x, y));
+      FitPixel px;
+      if (!(p > 0) || !hit_surface(in.camera->ray(Vec2d(x + 0.5, y + 0.5)), in, room, px)) continue;
+      px.log_p = std::log(p);
+      out.push_back(px);
+      lum.push_back(p);
+    }
+  if (lum.empty()) return out;
+  std::nth_element(lum.begin(), lum.begin() + std::ptrdiff_t(lum.size() / 2), lum.end());
+  const double dark = std::log(0.01 * lum[lum.size() / 2]);
+  out.erase(std::remove_if(out.begin(), out.end(), [&](const FitPixel& p) { return p.log_p < dark; }), out.end());
+  return out;
+}
+
+// E0 and every Ek at a point, by the renderer's estimator; `scale` multiplies the sample counts.
+// E0 = E_rest + Σ_k Ek with E_rest that of the cube without the clipped texels (room0): the parts'
+// own estimates in both, so that where the clipped light is all there is (everything clipped)
+// E = E_rest + Σ (1 + a_k) Ek trades against ρ exactly, as it does in truth, instead of through
+// two independent noises that the fit would take for information.
+void estimate_at(FitPixel& p, const Vec3f& x, const RoomLight& room0, const std::vector<std::unique_ptr<RoomLight>>& parts,
+                 const InverseLightingInput& in, int scale, std::uint64_t key) {
+  p.e0 = luminance(PlaneIrradiance::estimate(room0, x, p.n, scale * in.samples, 2 * key));
+  p.ek.clear();
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    p.ek.push_back(luminance(PlaneIrradiance::estimate(*parts[k], x, p.n, scale * in.part_samples, 2 * key + 1 + (k << 40))));
+    p.e0 += p.ek.back();
+  }
+}
+
+// E0 and every Ek at each pixel. Without a room box the light is distant and E depends on the
+// normal alone: one estimate per surface, with 16× the samples, shared by its pixels — the same
+// estimate everywhere, so no noise poses as a difference between pixels that the fit would
+// take for information (over an open plane there is none).
+void estimate_irradiance(std::vector<FitPixel>& pixels, const RoomLight& room0,
+                         const std::vector<std::unique_ptr<RoomLight>>& parts, const InverseLightingInput& in) {
+  if (!in.room) {
+    std::map<int, FitPixel> by_surface;
+    for (const FitPixel& p : pixels) by_surface.emplace(p.surface, p);
+    std::vector<FitPixel*> todo;
+    for (auto& [surface, p] : by_surface) todo.push_back(&p);
+    tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {
+      estimate_at(*todo[i], todo[i]->x, room0, parts, in, 16, std::uint64_t(todo[i]->surface));
+    });
+    for (FitPixel& p : pixels) {
+      const FitPixel& e = by_surface.at(p.surface);
+      p.e0 = e.e0, p.ek = e.ek;
+    }
+  } else {
+    const float lift = 1e-4f * Vec3f(in.room->max - in.room->min).maxCoeff();
+    tbb::parallel_for(std::size_t(0), pixels.size(), [&](std::size_t i) {
+      estimate_at(pixels[i], pixels[i].x + lift * pixels[i].n, room0, parts, in, 1, i);
+    });
+  }
+  pixels.erase(std::remove_if(pixels.begin(), pixels.end(), [](const FitPixel& p) { return !(p.e0 > 0); }), pixels.end());
+}
+
+// The unknowns' columns: each a set of parts that share one a (a free source's part alone, or
+// every tied source's parts together). coef(p, c) = Σ_{j ∈ c} E_j(p).
+using Columns = std::vector<std::vector<int>>;
+
+std::vector<double> column_coefficients(const FitPixel& p, const Columns& columns) {
+  std::vector<double> coef;
+  for (const auto& c : columns) {
+    double sum = 0;
+    for (int j : c) sum += p.ek[std::size_t(j)];
+    coef.push_back(sum);
+  }
+  return coef;
+}
+
+// r = log P − log ρ + log π − log(E0 + Σ_c a_c coef_c).
+struct LogResidual {
+  double log_p, e0;
+  std::vector<double> coef;
+  template <typename T>
+  bool operator()(T const* const* params, T* r) const {
+    T e = T(e0);
+    for (std::size_t c = 0; c < coef.size(); ++c) e += params[1][c] * coef[c];
+    r[0] = T(log_p) - params[0][0] + T(std::log(kPi)) - log(e);
+    return true;
+  }
+};
+
+// A surface of known mean albedo ρ̄ (a reference): log(mean_i π P_i / E_i) = log ρ̄, within 1 %.
+struct MeanAlbedoResidual {
+  std::vector<LogResidual> pixels;
+  double log_ref;
+  template <typename T>
+  bool operator()(T const* const* params, T* r) const {
+    T sum = T(0);
+    for (const LogResidual& p : pixels) {
+      T e = T(p.e0);
+      for (std::size_t c = 0; c < p.coef.size(); ++c) e += params[0][c] * p.coef[c];
+      sum += exp(T(p.log_p) + T(std::log(kPi)) - log(e));
+    }
+    r[0] = (log(sum / T(double(pixels.size()))) - T(log_ref)) / T(0.01);
+    return true;
+  }
+};
+
+// What the fit knows of each surface's albedo.
+struct Albedos {
+  std::vector<double> log_rho;          // start values; fixed where known
+  std::vector<bool> known;              // uniform and given (a plane's albedo)
+  std::vector<std::optional<double>> mean;  // a reference mean albedo
+  int surfaces = 0, references = 0;
+};
+
+struct Fit {
+  std::vector<double> a;  // per column
+  Eigen::MatrixXd jtj;    // JᵀJ (robust weights) over the columns' a, then the free ρ
+  double sigma_r = 0;     // robust scale of the log residuals
+};
+
+// Robust scale of the residuals: 1.4826 · median |r|.
+double robust_sigma(std::vector<double> r) {
+  if (r.empty()) return 0;
+  for (double& v : r) v = std::abs(v);
+  std::nth_element(r.begin(), r.begin() + std::ptrdiff_t(r.size() / 2), r.end());
+  return 1.4826 * r[r.size() / 2];
+}
+
+// σ² · gᵀ (JᵀJ)⁺ g = σ² Σ_i (v_iᵀ g)² / λ_i over the eigenpairs of JᵀJ: the variance of the linear
+// combination g of the parameters. Infinite when g has a part in the null space (the data say
+// nothing about it); a nearly null direction gives a huge value by itself.
+double variance_along(const Eigen::MatrixXd& jtj, const Eigen::VectorXd& g, double sigma_r) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(jtj);
+  const double lambda_max = std::max(1e-300, eig.eigenvalues().maxCoeff());
+  double var = 0;
+  for (int i = 0; i < int(g.size()); ++i) {
+    const double c = eig.eigenvectors().col(i).dot(g), lambda = eig.eigenvalues()[i];
+    if (lambda <= 1e-14 * lambda_max) {
+      if (c * c > 1e-12 * g.squaredNorm()) return INFINITY;
+      continue;
+    }
+    var += c * c / lambda;
+  }
+  return sigma_r * sigma_r * var;
+}
+
+// JᵀJ of the robustified residuals over `blocks` (their columns in order).
+Eigen::MatrixXd normal_matrix(ceres::Problem& problem, const std::vector<double*>& blocks) {
+  ceres::Problem::EvaluateOptions eval;
+  eval.parameter_blocks = blocks;
+  eval.apply_loss_function = true;
+  ceres::CRSMatrix crs;
+  problem.Evaluate(eval, nullptr, nullptr, nullptr, &crs);
+  Eigen::MatrixXd j = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  for (int r = 0; r < crs.num_rows; ++r)
+    for (int k = crs.rows[std::size_t(r)]; k < crs.rows[std::size_t(r) + 1]; ++k)
+      j(r, crs.cols[std::size_t(k)]) = crs.values[std::size_t(k)];
+  return j.transpose() * j;
+}
+
+// The pixels' residuals and the references' constraints.
+void add_residuals(ceres::Problem& problem, const std::vector<FitPixel>& pixels, const Columns& columns,
+                   std::vector<double>& log_rho, const Albedos& albedos, double* a) {
+  std::vector<MeanAlbedoResidual> refs(log_rho.size());
+  for (const FitPixel& p : pixels) {
+    LogResidual res{p.log_p, p.e0, column_coefficients(p, columns)};
+    if (albedos.mean[std::size_t(p.surface)]) refs[std::size_t(p.surface)].pixels.push_back(res);
+    auto* cost = new ceres::DynamicAutoDiffCostFunction<LogResidual>(new LogResidual(std::move(res)));
+    cost->AddParameterBlock(1);
+    cost->AddParameterBlock(int(columns.size()));
+    cost->SetNumResiduals(1);
+    problem.AddResidualBlock(cost, new ceres::CauchyLoss(0.1), &log_rho[std::size_t(p.surface)], a);
+  }
+  for (std::size_t s = 0; s < refs.size(); ++s) {
+    if (refs[s].pixels.empty()) continue;
+    refs[s].log_ref = std::log(*albedos.mean[s]);
+    auto* cost = new ceres::DynamicAutoDiffCostFunction<MeanAlbedoResidual>(new MeanAlbedoResidual(std::move(refs[s])));
+    cost->AddParameterBlock(int(columns.size()));
+    cost->SetNumResiduals(1);
+    problem.AddResidualBlock(cost, nullptr, a);
+  }
+}
+
+Fit solve(const std::vector<FitPixel>& pixels, const Columns& columns, const Albedos& albedos) {
+  Fit fit;
+  fit.a.assign(columns.size(), 0.0);
+  std::vector<double> log_rho = albedos.log_rho;
+  ceres::Problem problem;
+  add_residuals(problem, pixels, columns, log_rho, albedos, fit.a.data());
+  std::vector<double*> free_blocks{fit.a.data()};
+  for (std::size_t s = 0; s < log_rho.size(); ++s) {
+    if (!problem.HasParameterBlock(&log_rho[s])) continue;
+    if (albedos.known[s]) problem.SetParameterBlockConstant(&log_rho[s]);
+    else free_blocks.push_back(&log_rho[s]);
+  }
+  for (std::size_t c = 0; c < columns.size(); ++c) problem.SetParameterLowerBound(fit.a.data(), int(c), 0.0);
+  ceres::Solver::Options options;
+  options.max_num_iterations = 200;
+  options.linear_solver_type = ceres::DENSE_QR;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  std::vector<double> residuals;
+  ceres::Problem::EvaluateOptions eval;
+  eval.apply_loss_function = false;
+  problem.Evaluate(eval, nullptr, &residuals, nullptr, nullptr);
+  fit.sigma_r = robust_sigma(residuals);
+  fit.jtj = normal_matrix(problem, free_blocks);
+  return fit;
+}
+
+// The unknown ρ start at π · median(P/E0) of their surface; known ones at their value.
+Albedos initial_albedos(const std::vector<FitPixel>& pixels, const InverseLightingInput& in) {
+  Albedos a;
+  const std::size_t n = in.planes.size() + 6;
+  a.log_rho.assign(n, 0.0);
+  a.known.assign(n, false);
+  a.mean.assign(n, std::nullopt);
+  std::vector<std::vector<double>> ratio(n);
+  for (const FitPixel& p : pixels) ratio[std::size_t(p.surface)].push_back(p.log_p - std::log(p.e0) + std::log(kPi));
+  for (std::size_t s = 0; s < n; ++s) {
+    if (ratio[s].empty()) continue;
+    std::nth_element(ratio[s].begin(), ratio[s].begin() + std::ptrdiff_t(ratio[s].size() / 2), ratio[s].end());
+    a.log_rho[s] = ratio[s][ratio[s].size() / 2];
+    if (s < in.planes.size() && in.planes[s].albedo) {
+      a.known[s] = true;
+      a.log_rho[s] = std::log(std::max(1e-6f, *in.planes[s].albedo));
+    }
+    if (s < in.planes.size() && in.planes[s].mean_albedo) a.mean[s] = std::max(1e-6f, *in.planes[s].mean_albedo);
+    ++a.surfaces;
+    a.references += (a.known[s] || a.mean[s]) ? 1 : 0;
+  }
+  return a;
+}
+
+// How each source is fitted: its parts free, tied with the other undetermined ones to one common
+// scale, or left at the lower bound.
+enum class Mode { kFree, kWhole, kTied, kDropped };
+
+// The tied sources' column holds the parts of the one among them that delivers the most
+// irradiance to the photo's pixels per unit of power (`efficiency`): the least added light that
+// explains what the photo shows (a minimum-power solution; the others stay at the lower bound).
+Columns make_columns(const InverseLightingResult& res, const std::vector<Mode>& mode, const std::vector<double>& efficiency) {
+  Columns columns;
+  int best = -1;
+  for (std::size_t k = 0; k < mode.size(); ++k)
+    if (mode[k] == Mode::kTied && (best < 0 || efficiency[k] > efficiency[std::size_t(best)])) best = int(k);
+  std::vector<std::vector<int>> whole(mode.size());
+  std::vector<int> tied;
+  for (std::size_t j = 0; j < res.parts.size(); ++j) {
+    const int k = res.parts[j].source;
+    if (mode[std::size_t(k)] == Mode::kFree) columns.push_back({int(j)});
+    if (mode[std::size_t(k)] == Mode::kWhole) whole[std::size_t(k)].push_back(int(j));
+    if (k == best) tied.push_back(int(j));
+  }
+  for (auto& w : whole)
+    if (!w.empty()) columns.push_back(std::move(w));
+  if (!tied.empty()) columns.push_back(tied);
+  return columns;
+}
+
+// Σ_i E_k(x_i) / power_k: how much of a source's light reaches the photo's surfaces.
+std::vector<double> efficiencies(const std::vector<FitPixel>& pixels, const InverseLightingResult& res) {
+  std::vector<double> e(res.sources.size(), 0.0);
+  for (const FitPixel& p : pixels)
+    for (std::size_t j = 0; j < res.parts.size(); ++j) e[std::size_t(res.parts[j].source)] += p.ek[j];
+  for (std::size_t k = 0; k < e.size(); ++k) e[k] /= std::max(1e-300, res.sources[k].source.power);
+  return e;
+}
+
+// The scale and σ of the sources whose parts are in `which` columns (their added power over
+// their power at the lower bound); sets the parts' scales.
+std::pair<double, double> judge(const Fit& fit, const Columns& columns, const std::vector<bool>& which,
+                                InverseLightingResult& res) {
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(fit.jtj.rows());
+  double added = 0, power = 0;
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    for (int j : columns[c]) {
+      PartFit& part = res.parts[std::size_t(j)];
+      if (!which[std::size_t(part.source)]) continue;
+      g[Eigen::Index(c)] += part.texels.power;
+      added += fit.a[c] * part.texels.power;
+      part.scale = 1 + fit.a[c];
+    }
+  for (std::size_t k = 0; k < res.sources.size(); ++k) power += which[k] ? res.sources[k].source.power : 0;
+  power = std::max(1e-300, power);
+  return {1 + added / power, std::sqrt(variance_along(fit.jtj, g, fit.sigma_r)) / power};
+}
+
+// Σ_i a E_c(x_i) / Σ_i E0(x_i): the light a column adds to the photo's surfaces.
+double missing_share(const std::vector<FitPixel>& pixels, const std::vector<int>& column, double a) {
+  double added = 0, base = 0;
+  for (const FitPixel& p : pixels) {
+    for (int j : column) added += a * p.ek[std::size_t(j)];
+    base += p.e0;
+  }
+  return added / std::max(1e-300, base);
+}
+
+// Fits the free sources' parts, each source judged by the σ of its added power (the sum over its
+// parts: determined even where its parts are not told apart). A source so undetermined is fitted
+// again whole, one scale for all its parts (where the photo gives only the irradiance its parts
+// add together, not their power). The still undetermined ones are fitted
+// again as one (the most efficient of them): if the photo determines that, it says how much light
+// is missing (InverseLightingResult::missing_irradiance), not from where; they stay at the lower
+// bound.
+void fit_sources(const std::vector<FitPixel>& pixels, const Albedos& albedos, InverseLightingResult& res) {
+  std::vector<Mode> mode(res.sources.size(), Mode::kFree);
+  const std::vector<double> efficiency = efficiencies(pixels, res);
+  for (bool changed = true; changed;) {
+    changed = false;
+    const Columns columns = make_columns(res, mode, efficiency);
+    if (columns.empty()) break;
+    const Fit fit = solve(pixels, columns, albedos);
+    res.residual_rms = fit.sigma_r;
+    std::vector<bool> tied(res.sources.size(), false);
+    for (std::size_t k = 0; k < res.sources.size(); ++k) {
+      tied[k] = mode[k] == Mode::kTied;
+      if (mode[k] != Mode::kFree && mode[k] != Mode::kWhole) continue;
+      std::vector<bool> one(res.sources.size(), false);
+      one[k] = true;
+      SourceFit& s = res.sources[k];
+      std::tie(s.scale, s.sigma) = judge(fit, columns, one, res);
+      s.determined = s.sigma <= 0.5 * s.scale;
+      if (!s.determined) mode[k] = mode[k] == Mode::kFree ? Mode::kWhole : Mode::kTied, changed = true;
+    }
+    if (changed || std::none_of(tied.begin(), tied.end(), [](bool t) { return t; })) continue;
+    // The tied sources' column is the most efficient one's (make_columns): the least light that
+    // explains the photo. Where it comes from is not determined, so it is only reported.
+    std::vector<bool> chosen(res.sources.size(), false);
+    chosen[std::size_t(res.parts[std::size_t(columns.back().front())].source)] = true;
+    const auto [scale, sigma] = judge(fit, columns, chosen, res);
+    if (sigma <= 0.5 * scale) res.missing_irradiance = missing_share(pixels, columns.back(), fit.a.back());
+    for (std::size_t k = 0; k < res.sources.size(); ++k)
+      if (tied[k]) mode[k] = Mode::kDropped, changed = true;
+  }
+  for (std::size_t k = 0; k < res.sources.size(); ++k) {
+    SourceFit& s = res.sources[k];
+    if (mode[k] == Mode::kDropped) s.scale = 1, s.determined = false;
+    for (PartFit& part : res.parts) part.scale = (part.source == int(k) && !s.determined) ? 1.0 : part.scale;
+    s.added_power = (s.scale - 1) * s.source.power;
+  }
+}
+
+void describe(InverseLightingResult& res) {
+  int determined = 0;
+  for (const SourceFit& s : res.sources) determined += s.determined ? 1 : 0;
+  const int n = int(res.sources.size());
+  res.status = determined == n ? "fitted" : determined > 0 ? "partly" : "undetermined";
+  double solid_angle = 0;
+  for (const SourceFit& s : res.sources) solid_angle += s.determined ? 0 : s.source.solid_angle_sr;
+  if (determined == n) {
+    res.message = fmt::format("{} clipped source(s) recovered against {} photo pixels on {} surface(s){}", n, res.pixels,
+                              res.surfaces, res.reference_surfaces > 0 ? " with a reference albedo" : "");
+    return;
+  }
+  double share = 0;
+  for (const SourceFit& s : res.sources) share += s.determined ? 0 : s.source.power;
+  share /= std::max(1e-300, res.cube_power);
+  const std::string what = fmt::format(
+      "{} of {} clipped source(s) ({:.3g} sr, {:.2g}% of the shots' light at their lower bound) not determined by the photo "
+      "({} pixels on {} surface(s)) stay at the lower bound",
+      n - determined, n, solid_angle, 100 * share, res.pixels, res.surfaces);
+  const std::string advice =
+      "give a local-scene plane's mean_albedo (a white sheet about 0.8, the floor's mean), or brackets short enough that "
+      "nothing clips";
+  if (res.missing_irradiance)
+    res.message = fmt::format("{}; the photo shows its surfaces get {:.0f}% more light than that, but not from which "
+                              "direction, so the objects may be too dark (by up to about that much); {}",
+                              what, 100 * *res.missing_irradiance,
+                              res.reference_surfaces > 0 ? "brackets short enough that nothing clips" : advice);
+  else
+    res.message = fmt::format("{}; if one is a key light (the sun, a lamp) the objects and their shadows are too dark; {}", what, advice);
+}
+
+}  // namespace
+
+InverseLightingResult recover_clipped_sources(const InverseLightingInput& in) {
+  InverseLightingResult res;
+  std::vector<ClippedSource> sources;
+  if (in.clipped) sources = find_clipped_sources(*in.clipped, *in.radiance);
+  const double total = cube_power(*in.radiance);
+  for (const ClippedSource& s : sources) {
+    res.sources.push_back({s});
+    res.clipped_power_share += total > 0 ? s.power / total : 0;
+    res.cube_power = total;
+  }
+  if (sources.empty()) {
+    res.status = "none";
+    res.message = "no light clipped in the shots";
+    return res;
+  }
+  // Parts of about (n/16)² texels, coarser when the clipped area is large: at most ~48 unknowns.
+  std::size_t clipped_texels = 0;
+  for (const ClippedSource& s : sources) clipped_texels += s.texels.size();
+  const int block = std::max({2, in.radiance->size() / 16, int(std::ceil(std::sqrt(double(clipped_texels) / 48.0)))});
+  for (std::size_t k = 0; k < sources.size(); ++k)
+    for (ClippedSource& part : split_into_parts(sources[k], *in.radiance, block)) res.parts.push_back({std::move(part), int(k)});
+  const CubeMap rest = with_scaled_sources(*in.radiance, sources, std::vector<double>(sources.size(), 0.0));
+  RoomLight room0(rest, in.room);
+  std::deque<CubeMap> cubes;  // each part's RoomLight refers to its cube
+  std::vector<std::unique_ptr<RoomLight>> lights;
+  for (const PartFit& part : res.parts) {
+    cubes.push_back(source_only(*in.radiance, part.texels));
+    lights.push_back(std::make_unique<RoomLight>(cubes.back(), in.room));
+  }
+  std::vector<FitPixel> pixels = gather_pixels(in, room0);
+  estimate_irradiance(pixels, room0, lights, in);
+  res.pixels = int(pixels.size());
+  const Albedos albedos = initial_albedos(pixels, in);
+  res.surfaces = albedos.surfaces;
+  res.reference_surfaces = albedos.references;
+  if (pixels.size() >= 16) fit_sources(pixels, albedos, res);
+  describe(res);
+  return res;
+}
+
+bool InverseLightingResult::any_determined() const {
+  return std::any_of(sources.begin(), sources.end(), [](const SourceFit& s) { return s.determined; });
+}
+
+CubeMap InverseLightingResult::apply(const CubeMap& radiance) const {
+  std::vector<ClippedSource> src;
+  std::vector<double> scale;
+  for (const PartFit& p : parts) src.push_back(p.texels), scale.push_back(p.scale);
+  return with_scaled_sources(radiance, src, scale);
+}
+
+}  // namespace insitu

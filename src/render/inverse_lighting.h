@@ -1,0 +1,104 @@
+// Inverse lighting against the photo (issue 13; Marschner & Greenberg 1997, Karsch et al. 2011):
+// the strength of the sources that clipped in the shots (clipped_sources.h), from what the photo
+// shows they do to the room's real surfaces.
+//
+// Model. A photo pixel i that sees a real surface — a plane of the local scene, or a wall, the
+// floor or the ceiling of the room box — at x_i with normal n_i (toward the camera) shows
+//   P_i = ρ_s(i)/π · E(x_i),   E(x_i) = E_0(x_i) + Σ_k a_k E_k(x_i),   a_k = s_k − 1 ≥ 0,
+// since E is linear in the cube: E_0 is the irradiance of the cube as assembled (every source at
+// its lower bound), E_k that of source k's texels alone. Both are the renderer's own estimate
+// (PlaneIrradiance::estimate through the room light: the box's parallax and its openings), so
+// the fitted cube is what the render then uses. ρ_s is one albedo per surface, a nuisance unknown,
+// or known: a plane of the local scene with a given albedo is a reference (white paper ≈ 0.8, a
+// grey card 0.18, "the floor's mean albedo is 0.5") that fixes its surface's ρ.
+//
+// Fit. On luminance, with log residuals r_i = log P_i − log(ρ_s(i)/π · E_i) (the error that
+// matters is relative), a Cauchy loss of scale 0.1 (texture, furniture left in the room, a
+// window frame), Ceres, a_k ≥ 0. Left out: pixels clipped in the photo, pixels darker than 1 % of
+// the median (noise), pixels through an opening (outside), and pixels whose E_0 is 0.
+//
+// Identifiability. s_k is determined only where source k's share of E varies across the pixels
+// of a surface whose ρ is unknown, or where a surface's ρ is known. Under distant light over an
+// open plane E_k/E_0 is the same at every pixel and a_k trades exactly against ρ. The fit's
+// covariance (ceres::Covariance: (JᵀJ)⁻¹ scaled by the residuals' variance) says which: a source
+// whose σ(s_k) exceeds s_k / 2 (infinite where the data say nothing) is not determined and stays
+// at its lower bound. The undetermined ones are then fitted once more as one unknown (all added
+// light given to the one that reaches the photo's surfaces best: the least light that explains
+// the photo). Over an open plane with a reference that is all the photo gives — the floor's
+// irradiance, one number — and it says how much light is missing, not from where: that is
+// reported (missing_irradiance), not applied. (On the open-ground validation scene, giving the
+// missing light to the most efficient source made the objects 1.7× too bright, and one scale for
+// every clipped texel 2.5×, against 0.67× at the lower bound: the direction matters more than the
+// amount.)
+//
+// Parts. A clipped window holds the sky and the sun, whose true radiances differ by orders of
+// magnitude: each source is cut into parts of about (n/16)² texels, each with its own a ≥ 0, and
+// judged by the σ of its total added power (its parts need not be told apart).
+//
+// A reference of known mean albedo ρ̄ adds one residual, log(mean_i π P_i / E_i) − log ρ̄ over its
+// pixels, weighted as known to 1 %.
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/camera.h"
+#include "light/clipped_sources.h"
+#include "render/room_light.h"
+
+namespace insitu {
+
+// A plane of the local scene, as the fit sees it.
+struct FitPlane {
+  Vec3f point = Vec3f::Zero(), normal = Vec3f(0, 1, 0);
+  std::optional<float> albedo;       // known and uniform (a white sheet): fixes ρ of this surface
+  std::optional<float> mean_albedo;  // known on average over its pixels ("the floor's mean is 0.5")
+};
+
+struct InverseLightingInput {
+  const CubeMap* radiance = nullptr;          // as assembled
+  const CubeMap* clipped = nullptr;           // EnvironmentInfo::clipped_cube
+  std::optional<RoomBox> room;
+  const Camera* camera = nullptr;
+  const Image* photo_linear = nullptr;
+  const Image* photo_clipped = nullptr;       // clipped_mask of the photo (may be null)
+  std::vector<FitPlane> planes;
+  int max_pixels = 2000;                      // photo pixels used, on a regular grid
+  int samples = 128;                          // per estimate of E0
+  int part_samples = 64;                      // per estimate of a part's E (drawn on its few texels)
+};
+
+struct SourceFit {
+  ClippedSource source;
+  double scale = 1, sigma = 0;  // s_k and its standard deviation; 1 and 0 when undetermined
+  bool determined = false;
+  double added_power = 0;       // (s_k − 1) · power
+};
+
+// A part of a source (split_into_parts): the unit that gets its own scale.
+struct PartFit {
+  ClippedSource texels;
+  int source = 0;
+  double scale = 1;
+};
+
+struct InverseLightingResult {
+  std::vector<SourceFit> sources;
+  std::vector<PartFit> parts;
+  int pixels = 0;               // photo pixels in the fit
+  int surfaces = 0, reference_surfaces = 0;
+  double clipped_power_share = 0;  // of the cube's power, at the lower bound
+  double cube_power = 0;           // Σ Y ΔΩ of the cube as assembled
+  // The light the undetermined sources add to the photo's surfaces, as a share of what they get
+  // at the lower bound, when the photo determines that much (empty otherwise).
+  std::optional<double> missing_irradiance;
+  double residual_rms = 0;         // of the log residuals (robust fit's final)
+  std::string status;           // "none" (nothing clipped), "fitted", "partly", "undetermined"
+  std::string message;          // one sentence for the user
+  bool any_determined() const;
+  CubeMap apply(const CubeMap& radiance) const;  // parts multiplied by their scales
+};
+
+InverseLightingResult recover_clipped_sources(const InverseLightingInput& in);
+
+}  // namespace insitu

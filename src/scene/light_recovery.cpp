@@ -1,0 +1,86 @@
+#include "scene/light_recovery.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "core/colour.h"
+#include "light/hdr_merge.h"
+
+namespace insitu {
+
+namespace {
+
+InverseLightingInput fit_input(const LoadedScene& s, const Image& photo_clipped) {
+  InverseLightingInput in;
+  in.radiance = &s.environment;
+  in.clipped = &*s.environment_info.clipped_cube;
+  in.room = s.room;
+  in.camera = &s.camera;
+  in.photo_linear = &s.photo_linear;
+  in.photo_clipped = &photo_clipped;
+  for (const PlaneSpec& p : s.spec.local_scene) {
+    if (p.mesh) continue;
+    FitPlane f{p.point.cast<float>(), p.normal.normalized().cast<float>(), std::nullopt};
+    if (!p.albedo_from_photo) f.albedo = luminance(p.albedo);
+    if (p.mean_albedo) f.mean_albedo = float(*p.mean_albedo);
+    in.planes.push_back(f);
+  }
+  return in;
+}
+
+}  // namespace
+
+void recover_clipped_light(LoadedScene& s) {
+  if (!s.environment_info.clipped_cube || !s.spec.environment.inverse_lighting) return;
+  const Image photo_clipped = clipped_mask(s.photo);
+  s.inverse_lighting = recover_clipped_sources(fit_input(s, photo_clipped));
+  if (s.inverse_lighting->any_determined()) s.environment = s.inverse_lighting->apply(s.environment);
+  if (s.inverse_lighting->status != "fitted" && s.inverse_lighting->status != "none")
+    s.warnings.add(s.spec.environment.where, s.inverse_lighting->message);
+}
+
+std::string light_determined_by(const LoadedScene& s) {
+  const EnvironmentSpec& e = s.spec.environment;
+  if (!e.from_shots()) return "hdr image";
+  bool brackets = false;
+  for (const ShotSpec& shot : e.shots) brackets = brackets || shot.files.size() >= 2;
+  if (!s.environment_info.clipped_cube) return brackets ? "brackets" : "shots";
+  const auto& il = s.inverse_lighting;
+  if (!il || !il->any_determined()) return "lower bound";
+  return il->reference_surfaces > 0 ? "inverse lighting with a reference" : "inverse lighting";
+}
+
+nlohmann::json light_report(const LoadedScene& s) {
+  using nlohmann::json;
+  json out{{"determined_by", light_determined_by(s)}};
+  const auto& il = s.inverse_lighting;
+  if (!il) return out;
+  json sources = json::array();
+  for (const SourceFit& f : il->sources) {
+    const Vec3f& d = f.source.dir_world;
+    sources.push_back({{"direction_world", {d.x(), d.y(), d.z()}},
+                       {"solid_angle_sr", f.source.solid_angle_sr},
+                       {"texels", f.source.texels.size()},
+                       {"determined", f.determined},
+                       {"scale", f.scale},
+                       {"scale_sigma", std::isfinite(f.sigma) ? json(f.sigma) : json(nullptr)},
+                       {"power_lower_bound", f.source.power},
+                       {"power_added", f.added_power}});
+  }
+  json parts = json::array();
+  for (const PartFit& p : il->parts) {
+    const Vec3f& d = p.texels.dir_world;
+    parts.push_back({{"source", p.source}, {"direction_world", {d.x(), d.y(), d.z()}}, {"texels", p.texels.texels.size()},
+                     {"scale", p.scale}});
+  }
+  out["inverse_lighting"] = {{"status", il->status},       {"message", il->message}, {"parts", parts},
+                             {"missing_irradiance", il->missing_irradiance ? json(*il->missing_irradiance) : json(nullptr)},
+                             {"pixels", il->pixels},       {"surfaces", il->surfaces},
+                             {"reference_surfaces", il->reference_surfaces},
+                             {"clipped_power_share", il->clipped_power_share},
+                             {"residual_sigma_log", il->residual_rms}, {"sources", sources}};
+  return out;
+}
+
+}  // namespace insitu

@@ -1,0 +1,22 @@
+// The light that clipped in the shots, recovered for a loaded scene (issue 13): inverse lighting
+// (render/inverse_lighting.h) against the photo, on the local scene's planes and the room box,
+// by default whenever a shot clipped; and what determined the light, for the report.
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include "scene/pipeline.h"
+
+namespace insitu {
+
+// Fits the clipped sources (when a shot clipped and environment.inverse_lighting is on), scales
+// them in s.environment, and warns when the photo does not determine them.
+void recover_clipped_light(LoadedScene& s);
+
+// What determined the light: "hdr image", "shots" (nothing clipped), "brackets", "inverse
+// lighting", "inverse lighting with a reference", or "lower bound" (clipped, not recovered).
+std::string light_determined_by(const LoadedScene& s);
+
+// The report's "light" object: the above, and each source's scale, σ and energy added.
+nlohmann::json light_report(const LoadedScene& s);
+
+}  // namespace insitu

@@ -1,0 +1,209 @@
+// Inverse lighting (render/inverse_lighting.h) and the clipped sources it fits
+// (light/clipped_sources.h). Each scene is synthetic with a known true source: its photo is made
+// from the true cube by the slower, independent route (many samples of the room light per pixel),
+// the shots' cube is the true one clipped at a level, and the fit must find the true scale.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cube_fixture.h"
+#include "light/clipped_sources.h"
+#include "render/inverse_lighting.h"
+#include "render/plane_irradiance.h"
+
+namespace insitu {
+namespace {
+
+constexpr int kFace = 24;
+
+// The cube clipped at `level` (per channel, as an 8-bit shot clips), and the clipped mask.
+std::pair<CubeMap, CubeMap> clip(const CubeMap& truth, float level) {
+  CubeMap clipped(truth.size()), mask(truth.size());
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < truth.size(); ++j)
+      for (int i = 0; i < truth.size(); ++i) {
+        const Rgb t = truth.texel(f, i, j);
+        clipped.set_texel(f, i, j, t.cwiseMin(level));
+        if (t.maxCoeff() >= level) mask.set_texel(f, i, j, Rgb(1, 1, 1));
+      }
+  clipped.update_borders();
+  mask.update_borders();
+  return {clipped, mask};
+}
+
+// Every texel whose direction is within `radius` of `dir` set to `value`.
+void paint_disc(CubeMap& cube, const Vec3f& dir, float cos_radius, const Rgb& value) {
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < cube.size(); ++j)
+      for (int i = 0; i < cube.size(); ++i)
+        if (texel_direction(f, i, j, cube.size()).dot(dir.normalized()) >= cos_radius) cube.set_texel(f, i, j, value);
+  cube.update_borders();
+}
+
+// The photo of the empty scene: P = ρ/π · E_true at the surface each pixel sees (the fit's own
+// hit test, so only the irradiance is checked), E_true by 2048 samples of the true room light.
+Image photo_of(const InverseLightingInput& in, const CubeMap& truth, float albedo) {
+  RoomLight room(truth, in.room);
+  Image img(in.camera->width, in.camera->height, 3);
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const Ray r = in.camera->ray(Vec2d(x + 0.5, y + 0.5));
+      // The nearest surface: the floor plane or the box.
+      float t = INFINITY;
+      Vec3f n = Vec3f::Zero();
+      if (r.dir.y() < 0) t = -r.origin.y() / r.dir.y(), n = Vec3f(0, 1, 0);
+      float t_box = 0;
+      int axis = 0;
+      if (in.room && room.exit(r.origin, r.dir, &t_box, &axis) && t_box < t) {
+        t = t_box;
+        n = Vec3f::Zero();
+        n[axis] = r.dir[axis] > 0 ? -1.0f : 1.0f;
+      }
+      if (!std::isfinite(t)) continue;
+      const Vec3f p = r.origin + t * r.dir + 1e-4f * n;
+      img.set_rgb(x, y, albedo / kPiF * PlaneIrradiance::estimate(room, p, n, 2048, std::uint64_t(y) * img.width + x));
+    }
+  return img;
+}
+
+struct Fixture {
+  CubeMap truth, clipped, mask;
+  Camera camera;
+  Image photo;
+  InverseLightingInput in;
+};
+
+// A 4 × 2.5 × 4 m room, grey walls (radiance 0.2), a ceiling lamp 50× the clip level 0.5.
+void make_room(Fixture& fx, float lamp = 25.0f) {
+  fx.truth = test::constant_cube(kFace, Rgb(0.2f, 0.2f, 0.2f));
+  paint_disc(fx.truth, Vec3f(0.2f, 1, 0.1f), std::cos(0.25f), Rgb(lamp, lamp, lamp));
+  std::tie(fx.clipped, fx.mask) = clip(fx.truth, 0.5f);
+  fx.camera = Camera::look_at(Vec3d(1.5, 1.6, 1.5), Vec3d(-1, 0.3, -1), Vec3d(0, 1, 0), 80, 64, 48);
+  fx.in.room = RoomBox{Vec3f(-2, 0, -2), Vec3f(2, 2.5f, 2), Vec3f(0, 1, 0), {}};
+  fx.in.radiance = &fx.clipped;
+  fx.in.clipped = &fx.mask;
+  fx.in.camera = &fx.camera;
+  fx.in.planes.push_back({Vec3f::Zero(), Vec3f(0, 1, 0), std::nullopt, std::nullopt});
+  fx.in.max_pixels = 800;
+  fx.photo = photo_of(fx.in, fx.truth, 0.5f);
+  fx.in.photo_linear = &fx.photo;
+}
+
+TEST(ClippedSources, RegionsJoinAcrossFaceEdgesAndSortByPower) {
+  CubeMap radiance = test::constant_cube(16, Rgb(0.1f, 0.1f, 0.1f));
+  CubeMap mask(16);
+  // A blob on the +X/+Y edge, and a smaller one on −Z.
+  paint_disc(mask, Vec3f(1, 1, 0), std::cos(0.3f), Rgb(1, 1, 1));
+  paint_disc(mask, Vec3f(0, 0, -1), std::cos(0.15f), Rgb(1, 1, 1));
+  const auto sources = find_clipped_sources(mask, radiance);
+  ASSERT_EQ(sources.size(), 2u);
+  EXPECT_GT(sources[0].power, sources[1].power);
+  EXPECT_GT(sources[0].dir_world.dot(Vec3f(1, 1, 0).normalized()), 0.99f);
+  // Solid angles: the discs' 2π(1 − cos r), to a texel's edge.
+  EXPECT_NEAR(sources[0].solid_angle_sr, 2 * kPi * (1 - std::cos(0.3)), 0.05);
+  EXPECT_NEAR(sources[1].solid_angle_sr, 2 * kPi * (1 - std::cos(0.15)), 0.03);
+  EXPECT_NEAR(sources[0].power, 0.1 * sources[0].solid_angle_sr, 1e-6);
+  // Parts cover the source exactly once.
+  std::size_t texels = 0;
+  for (const auto& p : split_into_parts(sources[0], radiance, 4)) texels += p.texels.size();
+  EXPECT_EQ(texels, sources[0].texels.size());
+}
+
+TEST(InverseLighting, NothingClippedLeavesTheCube) {
+  Fixture fx;
+  make_room(fx, 0.4f);  // the lamp below the clip level
+  const InverseLightingResult r = recover_clipped_sources(fx.in);
+  EXPECT_EQ(r.status, "none");
+  EXPECT_TRUE(r.sources.empty());
+  const CubeMap out = r.apply(fx.clipped);
+  EXPECT_TRUE((out.texel(kPosY, 3, 3) == fx.clipped.texel(kPosY, 3, 3)).all());
+}
+
+TEST(InverseLighting, RecoversAClippedLampInABoxRoom) {
+  Fixture fx;
+  make_room(fx);
+  const InverseLightingResult r = recover_clipped_sources(fx.in);
+  ASSERT_EQ(r.sources.size(), 1u);
+  const SourceFit& lamp = r.sources[0];
+  ASSERT_TRUE(lamp.determined) << r.message;
+  // True scale 25 / 0.5 = 50. σ covers the photo's noise, not the fit's own estimates of E
+  // (64 samples per part): within 3σ or 10 %.
+  EXPECT_NEAR(lamp.scale, 50.0, std::max(3 * lamp.sigma, 5.0)) << "σ " << lamp.sigma;
+  EXPECT_LT(lamp.sigma, 5.0);
+  EXPECT_EQ(r.status, "fitted");
+  // Applied: the lamp's texels carry about the true radiance again.
+  const CubeMap fitted = r.apply(fx.clipped);
+  EXPECT_NEAR(cube_power(fitted), cube_power(fx.truth), 0.1 * cube_power(fx.truth));
+}
+
+// Distant light over an open plane: E_k / E_0 is the same at every pixel, so the source's scale
+// trades against the floor's albedo and must be reported as such.
+TEST(InverseLighting, OpenPlaneWithoutReferenceIsUndetermined) {
+  Fixture fx;
+  make_room(fx);
+  fx.in.room.reset();
+  fx.photo = photo_of(fx.in, fx.truth, 0.5f);
+  const InverseLightingResult r = recover_clipped_sources(fx.in);
+  ASSERT_EQ(r.sources.size(), 1u);
+  EXPECT_FALSE(r.sources[0].determined);
+  EXPECT_EQ(r.sources[0].scale, 1.0);
+  EXPECT_EQ(r.status, "undetermined");
+  EXPECT_NE(r.message.find("not determined"), std::string::npos) << r.message;
+  EXPECT_FALSE(r.any_determined());
+}
+
+// The same with the floor's mean albedo given: the scale follows from P = ρ̄ E / π.
+TEST(InverseLighting, OpenPlaneWithAReferenceAlbedoIsDetermined) {
+  Fixture fx;
+  make_room(fx);
+  fx.in.room.reset();
+  fx.photo = photo_of(fx.in, fx.truth, 0.5f);
+  fx.in.planes[0].mean_albedo = 0.5f;
+  const InverseLightingResult r = recover_clipped_sources(fx.in);
+  ASSERT_EQ(r.sources.size(), 1u);
+  ASSERT_TRUE(r.sources[0].determined) << r.message;
+  EXPECT_NEAR(r.sources[0].scale, 50.0, 5.0);
+  EXPECT_EQ(r.reference_surfaces, 1);
+}
+
+// A source that lights nothing the photo shows (below the floor's horizon) is not determined,
+// and the one that does is still fitted.
+TEST(InverseLighting, ASourceThePhotoDoesNotSeeStaysAtItsLowerBound) {
+  Fixture fx;
+  make_room(fx);
+  paint_disc(fx.truth, Vec3f(0, -1, 0), std::cos(0.2f), Rgb(30, 30, 30));
+  std::tie(fx.clipped, fx.mask) = clip(fx.truth, 0.5f);
+  fx.in.room.reset();
+  fx.in.planes[0].mean_albedo = 0.5f;
+  fx.photo = photo_of(fx.in, fx.truth, 0.5f);
+  const InverseLightingResult r = recover_clipped_sources(fx.in);
+  ASSERT_EQ(r.sources.size(), 2u);
+  for (const SourceFit& s : r.sources) {
+    if (s.source.dir_world.y() < 0) {
+      EXPECT_FALSE(s.determined);
+      EXPECT_EQ(s.scale, 1.0);
+    } else {
+      EXPECT_TRUE(s.determined) << r.message;
+      EXPECT_NEAR(s.scale, 50.0, 5.0);
+    }
+  }
+  EXPECT_EQ(r.status, "partly");
+}
+
+TEST(InverseLighting, EverythingClippedStaysFinite) {
+  Fixture fx;
+  make_room(fx);
+  fx.truth = test::constant_cube(kFace, Rgb(2, 2, 2));
+  std::tie(fx.clipped, fx.mask) = clip(fx.truth, 0.5f);
+  fx.photo = photo_of(fx.in, fx.truth, 0.5f);
+  const InverseLightingResult r = recover_clipped_sources(fx.in);
+  ASSERT_EQ(r.sources.size(), 1u);
+  EXPECT_TRUE(std::isfinite(r.sources[0].scale));
+  // One source everywhere trades exactly against the albedos: nothing to tell them apart.
+  EXPECT_FALSE(r.sources[0].determined);
+  const CubeMap out = r.apply(fx.clipped);
+  EXPECT_TRUE(std::isfinite(cube_power(out)));
+}
+
+}  // namespace
+}  // namespace insitu
