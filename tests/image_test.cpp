@@ -137,5 +137,18 @@ TEST(Image, TruncatedHugePngFailsWithoutAllocatingItsHeaderSize) {
   EXPECT_LT(usage.ru_maxrss / 1024, 1024) << "peak resident MB";  // the header implies 3.7 GB
 }
 
+// A name the system refuses (longer than NAME_MAX) is a one-line InputError naming it, not a
+// filesystem_error (the OBJ fuzzer found it through a texture name).
+TEST(Image, ANameTooLongIsAnInputError) {
+  const std::string name = "/tmp/" + std::string(300, 'a') + ".png";
+  try {
+    read_image_file(name);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), name);
+    EXPECT_NE(e.message().find("cannot access"), std::string::npos) << e.message();
+  }
+}
+
 }  // namespace
 }  // namespace insitu

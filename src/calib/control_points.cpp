@@ -1,4 +1,5 @@
 #include "core/output_paths.h"
+#include "core/file_check.h"
 #include "calib/control_points.h"
 
 #include <cstdlib>
@@ -90,7 +91,7 @@ std::optional<bool> parse_bottom_left_origin(const std::string& name) {
 }
 
 std::vector<ControlPoint> read_control_points(const std::string& path, bool bottom_left_origin, int image_height) {
-  if (!fs::exists(path)) throw InputError(path, "file not found");
+  require_existing(path);
   const std::string ext = lower_extension(path);
   std::vector<ControlPoint> points;
   if (ext == ".json") points = read_json_points(path);

@@ -1,4 +1,5 @@
 #include "calib/view_correlation.h"
+#include "core/file_check.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -18,7 +19,7 @@ class NumberReader {
  public:
   explicit NumberReader(const std::string& path) : path_(path) {
     std::ifstream in(path);
-    if (!in) throw InputError(path, std::filesystem::exists(path) ? "cannot read file" : "file not found");
+    if (!in) throw InputError(path, exists_quietly(path) ? "cannot read file" : "file not found");
     std::string line;
     for (int lineno = 1; std::getline(in, line); ++lineno) {
       std::istringstream ls(line);

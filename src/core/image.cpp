@@ -1,4 +1,5 @@
 #include "core/output_paths.h"
+#include "core/file_check.h"
 #include "core/image.h"
 
 #include <OpenImageIO/imagebuf.h>
@@ -73,7 +74,7 @@ ImageFile read_image_file_quietly(const std::string& path);
 }  // namespace
 
 ImageFile read_image_file(const std::string& path) {
-  if (!fs::exists(path)) throw InputError(path, "file not found");
+  require_existing(path);
   StderrCapture capture;
   try {
     return read_image_file_quietly(path);
@@ -162,7 +163,7 @@ std::optional<double> Exposure::relative() const {
 }
 
 std::pair<int, int> read_image_size(const std::string& path) {
-  if (!fs::exists(path)) throw InputError(path, "file not found");
+  require_existing(path);
   auto in = ImageInput::open(path);
   if (!in) throw InputError(path, "cannot read image: " + geterror());
   return {in->spec().width, in->spec().height};
@@ -200,7 +201,7 @@ void commit(const std::string& tmp, const std::string& path) {
   std::error_code ec;
   fs::rename(tmp, path, ec);
   if (ec) {
-    const std::string why = fs::is_directory(path) ? "is a directory" : "cannot write: " + ec.message();
+    const std::string why = is_directory_quietly(path) ? "is a directory" : "cannot write: " + ec.message();
     std::error_code ignored;  // the removal's own outcome must not replace the reason
     fs::remove(tmp, ignored);
     throw InputError(path, why);

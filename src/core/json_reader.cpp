@@ -1,4 +1,5 @@
 #include "core/json_reader.h"
+#include "core/file_check.h"
 
 #include <filesystem>
 #include <fmt/format.h>
@@ -71,7 +72,7 @@ json read_json_file(const std::string& path) {
   if (!ec && size > kMaxJsonBytes)
     throw InputError(path, fmt::format("{} bytes: too large for a scene or points file (at most {} MiB)", size, kMaxJsonBytes >> 20));
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, std::filesystem::exists(path) ? "cannot read file" : "file not found");
+  if (!in) throw InputError(path, exists_quietly(path) ? "cannot read file" : "file not found");
   std::stringstream ss;
   ss << in.rdbuf();
   const std::string text = ss.str();

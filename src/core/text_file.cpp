@@ -1,4 +1,5 @@
 #include "core/text_file.h"
+#include "core/file_check.h"
 
 #include <unistd.h>
 
@@ -29,7 +30,7 @@ void write_text_file(const std::string& path, const std::string& text) {
   }
   fs::rename(tmp, p, ec);
   if (ec) {
-    const std::string why = fs::is_directory(p) ? "is a directory" : "cannot write: " + ec.message();
+    const std::string why = is_directory_quietly(p.string()) ? "is a directory" : "cannot write: " + ec.message();
     std::error_code ignored;  // the removal's own outcome must not replace the reason
     fs::remove(tmp, ignored);
     throw InputError(path, why);

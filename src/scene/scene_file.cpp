@@ -1,4 +1,5 @@
 #include "core/output_paths.h"
+#include "core/file_check.h"
 #include "scene/scene_file.h"
 
 #include <cmath>
@@ -23,7 +24,8 @@ std::string existing_file(const JsonValue& v, const fs::path& dir) {
   const std::string rel = v.string();
   if (rel.empty()) v.fail("empty path");
   const std::string p = resolve(dir, rel);
-  if (!fs::is_regular_file(p)) v.fail(fmt::format("file not found: {}", p));
+  std::error_code ec;
+  if (!fs::is_regular_file(p, ec) || ec) v.fail(fmt::format("file not found: {}", p));
   return p;
 }
 
@@ -502,7 +504,7 @@ EnvironmentSpec environment_from_argument(const std::string& path, std::string* 
     if (photo) *photo = scene.photo;
     return scene.environment;
   }
-  if (!std::filesystem::exists(path)) throw InputError(path, "file not found");
+  require_existing(path);
   EnvironmentSpec spec;
   spec.image = path;
   return spec;
