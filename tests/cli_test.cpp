@@ -129,6 +129,25 @@ TEST(Cli, OriginSpellingsAgreeBetweenCliAndScene) {
   }
 }
 
+// --box: the uncertainty at an object's corners in the report and in camera.json, with the hint;
+// a malformed box is a one-line error.
+TEST(Cli, CalibrateReportsTheUncertaintyAtEachBox) {
+  test::TempDir dir;
+  const std::string demo = test::source_dir() + "/scenes/demo/";
+  const std::string base = "calibrate --points " + demo + "points.json --image " + demo + "photo.jpg ";
+  const CliRun r = run_insitu(dir, base + "--box sofa -0.15 0 -2.93 1.95 0.85 -1.77 -o " + dir.file("camera.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("object       sofa: up to "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("hint         click next a floor point"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(test::slurp(dir.file("camera.json")));
+  const auto& sofa = j.at("calibration").at("at_objects").at("objects").at(0);
+  EXPECT_EQ(sofa.at("points").size(), 8u);
+  EXPECT_GT(sofa.at("radius95_px").get<double>(), 0.0);
+  expect_one_line_error(run_insitu(dir, base + "--box sofa 0 0 0 1 x 1"), "--box sofa: expected six finite numbers");
+  expect_one_line_error(run_insitu(dir, base + "--box sofa 0 0 0 1 nan 1"), "--box sofa: expected six finite numbers");
+  expect_one_line_error(run_insitu(dir, base + "--box sofa 2 0 0 1 1 1"), "--box sofa: each minimum");
+}
+
 TEST(Cli, CalibrateBadInputIsOneLine) {
   test::TempDir dir;
   dir.write("few.json", R"([{"uv": [1, 2], "xyz": [0, 0, 0]}])");

@@ -1,10 +1,11 @@
 // insitu calibrate --points P (--image PHOTO | --size W H) [--model M] [--origin O] [--at X Y Z]
-//                  [-o camera.json] [--vc OUT.vc]
+//                  [--box NAME XMIN YMIN ZMIN XMAX YMAX ZMAX]... [-o camera.json] [--vc OUT.vc]
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "calib/calibration.h"
+#include "calib/object_uncertainty.h"
 #include "commands.h"
 #include "core/image.h"
 #include "core/output_paths.h"
@@ -18,7 +19,26 @@ struct CalibrateArgs {
   std::string points, image, model = "auto", origin = "top_left", output, vc;
   std::vector<int> size;
   std::vector<double> at;
+  std::vector<std::vector<std::string>> boxes;  // NAME and six numbers each
 };
+
+// --box NAME XMIN YMIN ZMIN XMAX YMAX ZMAX: an object's bounding box in world metres.
+std::vector<NamedPoint> parse_box(const std::vector<std::string>& b) {
+  const std::string where = "--box " + b.at(0);
+  double v[6];
+  for (int i = 0; i < 6; ++i) {
+    std::size_t used = 0;
+    try {
+      v[i] = std::stod(b.at(std::size_t(i) + 1), &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != b[std::size_t(i) + 1].size() || !std::isfinite(v[i]))
+      throw InputError(where, "expected six finite numbers XMIN YMIN ZMIN XMAX YMAX ZMAX, got '" + b[std::size_t(i) + 1] + "'");
+  }
+  if (v[0] > v[3] || v[1] > v[4] || v[2] > v[5]) throw InputError(where, "each minimum must not exceed its maximum");
+  return box_corners(Vec3d(v[0], v[1], v[2]), Vec3d(v[3], v[4], v[5]));
+}
 
 int run_calibrate(const CalibrateArgs& a) {
   if (a.image.empty() && a.size.empty()) throw InputError("calibrate", "give --image PHOTO or --size W H");
@@ -29,6 +49,8 @@ int run_calibrate(const CalibrateArgs& a) {
   CalibrationOptions options;
   if (a.model != "auto") options.model = parse_model(a.model);
   if (!a.at.empty()) options.insertion_world = Vec3d(a.at[0], a.at[1], a.at[2]);
+  std::vector<std::pair<std::string, std::vector<NamedPoint>>> boxes;
+  for (const auto& b : a.boxes) boxes.emplace_back(b.at(0), parse_box(b));
   const auto points = read_control_points(a.points, *parse_bottom_left_origin(a.origin), height);
   CalibrationResult r;
   try {
@@ -37,8 +59,18 @@ int run_calibrate(const CalibrateArgs& a) {
     throw e.with_context(a.points);
   }
   std::printf("%s", calibration_report(r).c_str());
+  nlohmann::json camera_json = calibration_to_json(r);
+  if (!boxes.empty()) {
+    std::vector<ObjectUncertainty> objects;
+    for (const auto& [name, corners] : boxes) objects.push_back(object_uncertainty(r, name, corners));
+    const std::optional<ClickHint> hint = suggest_next_click(r, objects);
+    std::printf("%s", object_uncertainty_report(objects, hint).c_str());
+    const std::string warning = outside_clicks_warning(objects, hint);
+    if (!warning.empty()) std::printf("warning: %s\n", warning.c_str());
+    camera_json["calibration"]["at_objects"] = object_uncertainty_json(objects, hint);
+  }
   if (!a.output.empty()) {
-    write_text_file(a.output, calibration_to_json(r).dump(2) + "\n");
+    write_text_file(a.output, camera_json.dump(2) + "\n");
     std::printf("wrote %s\n", a.output.c_str());
   }
   if (!a.vc.empty()) {
@@ -65,6 +97,8 @@ Command add_calibrate_command(CLI::App& app) {
       ->check([](const std::string& s) { return parse_bottom_left_origin(s) ? "" : std::string("expected ") + kOriginNames; })
       ->capture_default_str();
   cmd->add_option("--at", a->at, "world point (m) where the uncertainty in pixels is reported")->expected(3);
+  cmd->add_option("--box", a->boxes, "an object's bounding box: NAME XMIN YMIN ZMIN XMAX YMAX ZMAX (m); the uncertainty at its corners is reported")
+      ->expected(7);
   cmd->add_option("-o,--output", a->output, "write camera.json");
   cmd->add_option("--vc", a->vc, "also write the View Correlation parameter set");
   return [cmd, a] { return cmd->parsed() ? run_calibrate(*a) : -1; };

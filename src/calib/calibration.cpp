@@ -14,6 +14,8 @@
 
 #include "core/error.h"
 #include "calib/f_test.h"
+#include "calib/camera_params.h"
+#include "calib/fit_state.h"
 #include "calib/reprojection_cost.h"
 
 namespace insitu {
@@ -37,75 +39,11 @@ int model_parameter_count(CameraModel m) { return m == CameraModel::kF ? 7 : m =
 
 namespace {
 
+using namespace calib_detail;
+
 constexpr double kExactFitPx = 1e-6;     // an RMS below this is a numerically exact fit
 constexpr double kCauchyScalePx = 2.0;   // robust loss scale for the outlier search
 constexpr double kOutlierMinPx = 3.0;    // never call a residual below this an outlier
-
-// ---- Normalized frames ------------------------------------------------------------------------
-
-struct Frames {
-  Vec2d image_centre;  // (W/2, H/2)
-  double image_scale;  // max(W, H)/2 pixels per normalized unit
-  Vec3d world_centre;  // centroid of the points
-  double world_scale;  // RMS distance of the points from it
-  Vec2d to_norm(const Vec2d& uv) const { return (uv - image_centre) / image_scale; }
-  Vec3d to_norm(const Vec3d& p) const { return (p - world_centre) / world_scale; }
-};
-
-// The parameters in normalized frames: p_cam = R(aa)·p_norm + t; intrinsics [f, cx, cy, a].
-struct Params {
-  double aa[3] = {0, 0, 0};
-  double t[3] = {0, 0, 1};
-  double intr[4] = {1, 0, 0, 1};
-};
-
-void constrain(Params& p, CameraModel model) {
-  if (model == CameraModel::kF) { p.intr[1] = p.intr[2] = 0; }
-  if (model != CameraModel::kFCA) p.intr[3] = 1;
-}
-
-Mat3d rotation_of(const Params& p) {
-  const Vec3d aa(p.aa[0], p.aa[1], p.aa[2]);
-  const double angle = aa.norm();
-  return angle > 0 ? Eigen::AngleAxisd(angle, aa / angle).toRotationMatrix() : Mat3d::Identity();
-}
-
-void set_rotation(Params& p, const Mat3d& R) {
-  const Eigen::AngleAxisd a(R);
-  const Vec3d v = a.axis() * a.angle();
-  for (int k = 0; k < 3; ++k) p.aa[k] = v[k];
-}
-
-// Back to pixels and world units: p_cam(world units) = s_w (R (p − c)/s_w + t) = R p + (s_w t − R c).
-Camera to_camera(const Params& p, const Frames& fr, int width, int height) {
-  Camera cam;
-  cam.width = width;
-  cam.height = height;
-  cam.fx = p.intr[0] * fr.image_scale;
-  cam.fy = p.intr[3] * p.intr[0] * fr.image_scale;
-  cam.cx = fr.image_centre.x() + p.intr[1] * fr.image_scale;
-  cam.cy = fr.image_centre.y() + p.intr[2] * fr.image_scale;
-  cam.R_cam_from_world = rotation_of(p);
-  cam.t_cam_from_world = fr.world_scale * Vec3d(p.t[0], p.t[1], p.t[2]) - cam.R_cam_from_world * fr.world_centre;
-  return cam;
-}
-
-struct NormPoint {
-  Vec2d uv;
-  Vec3d p;
-};
-
-Vec2d project_norm(const Params& p, const Vec3d& x, double* depth = nullptr) {
-  const Vec3d c = rotation_of(p) * x + Vec3d(p.t[0], p.t[1], p.t[2]);
-  if (depth) *depth = c.z();
-  return {p.intr[0] * c.x() / c.z() + p.intr[1], p.intr[3] * p.intr[0] * c.y() / c.z() + p.intr[2]};
-}
-
-double rss_norm(const Params& p, const std::vector<NormPoint>& pts) {
-  double s = 0;
-  for (const auto& q : pts) s += (project_norm(p, q.p) - q.uv).squaredNorm();
-  return s;
-}
 
 // ---- Least squares (Ceres) -------------------------------------------------------------------
 
@@ -405,10 +343,14 @@ std::vector<Params> fit_models(const std::vector<NormPoint>& inl, const Params& 
     mf.model = model;
     mf.residuals = m;
     const int k = model_parameter_count(model);
-    const bool wanted = options.model ? *options.model == model : true;
-    if (!wanted && options.model) { mf.note = "not requested"; result.fits.push_back(mf); continue; }
-    if (m - k < (options.model ? 0 : 1)) { mf.note = fmt::format("needs more than {} points", (k + 1) / 2); result.fits.push_back(mf); continue; }
-    if (!options.model && model != CameraModel::kF && result.coplanar) { mf.note = "coplanar points"; result.fits.push_back(mf); continue; }
+    // A requested model is fitted, and the next richer one too, for the model's own error at the
+    // objects (object_uncertainty.h); auto fits all three.
+    const bool requested = options.model && *options.model == model;
+    const bool next_richer = options.model && int(model) == int(*options.model) + 1;
+    if (options.model && !requested && !next_richer) { mf.note = "not requested"; result.fits.push_back(mf); continue; }
+    if (m - k < (requested ? 0 : 1)) { mf.note = fmt::format("needs more than {} points", (k + 1) / 2); result.fits.push_back(mf); continue; }
+    if (!requested && model != CameraModel::kF && result.coplanar) { mf.note = "coplanar points"; result.fits.push_back(mf); continue; }
+    if (next_richer) mf.note = "fitted for the model's own error at the objects";
     const int idx = int(model);
     if (model != CameraModel::kF) {
       FitOutcome a = refine(f_fit.params, model, inl, 0);
@@ -488,18 +430,7 @@ Derived derived_quantities(const Params& q, const Frames& fr, int width, int hei
 }
 
 Eigen::Matrix<double, 18, 10> derived_jacobian(const Params& P, const Frames& fr, int width, int height, const Vec3d& insertion_world) {
-  Eigen::Matrix<double, 18, 10> Jg;
-  for (int j = 0; j < 10; ++j) {
-    Params plus = P, minus = P;
-    double* vp = j < 3 ? &plus.aa[j] : j < 6 ? &plus.t[j - 3] : &plus.intr[j - 6];
-    double* vm = j < 3 ? &minus.aa[j] : j < 6 ? &minus.t[j - 3] : &minus.intr[j - 6];
-    const double h = 1e-6 * std::max(1.0, std::abs(*vp));
-    *vp += h;
-    *vm -= h;
-    Jg.col(j) = (derived_quantities(plus, fr, width, height, insertion_world) -
-                 derived_quantities(minus, fr, width, height, insertion_world)) / (2 * h);
-  }
-  return Jg;
+  return numeric_jacobian<18>(P, [&](const Params& q) { return derived_quantities(q, fr, width, height, insertion_world); });
 }
 
 // The standard deviations of the derived quantities from their covariance G = J C Jᵀ.
@@ -519,20 +450,45 @@ void set_sigmas(const Eigen::Matrix<double, 18, 18>& G, CalibrationResult& resul
   result.insertion_radius95_px = std::sqrt(std::max(0.0, 5.991 * lmax));  // χ²₂(0.95) = 5.991
 }
 
-// Step 5. Uncertainty: Ceres's covariance (JᵀJ)⁻¹ in the tangent space, scaled by
-// σ̂² = RSS/(m − k), propagated to the derived quantities by their Jacobian.
-void estimate_uncertainty(const Params& P, CameraModel chosen, const std::vector<NormPoint>& inl, double rss_px2,
-                          const Frames& fr, int width, int height, CalibrationResult& result) {
-  const int m = 2 * int(inl.size()), k = model_parameter_count(chosen);
+// Step 5. Uncertainty: the chosen model's covariance (model_covariance), propagated to the derived
+// quantities by their Jacobian; kept in `state` with the next richer model's for object_uncertainty.h.
+void estimate_uncertainty(const std::vector<Params>& fitted, CameraModel chosen, const std::vector<NormPoint>& inl,
+                          const Frames& fr, int width, int height, CalibrationResult& result, CalibrationFitState& state) {
+  const int m = 2 * int(inl.size()), k = model_parameter_count(chosen), idx = int(chosen);
+  if (idx + 1 < 3) {
+    const ModelFit& next = result.fits[std::size_t(idx + 1)];
+    if (next.fitted) state.richer = model_covariance(fitted[std::size_t(idx + 1)], next.model, inl, next.rss_px2, fr);
+    state.richer_note = state.richer ? "" : next.fitted ? std::string(model_name(next.model)) + "'s covariance is singular"
+                                                        : std::string(model_name(next.model)) + " not fitted: " + next.note;
+  } else {
+    state.richer_note = "f+c+a is the richest model";
+  }
   if (m <= k) {
     result.warnings.add("", fmt::format("{} points exactly determine model {}: no redundancy, so no uncertainty estimate",
                                         inl.size(), model_name(chosen)));
     return;
   }
+  const double rss_px2 = result.fits[std::size_t(idx)].rss_px2;
   if (!(rss_px2 > 0)) return;
-  Params Pc = P;
+  state.chosen = model_covariance(fitted[std::size_t(idx)], chosen, inl, rss_px2, fr);
+  if (!state.chosen) {
+    result.warnings.add("", "the covariance is singular: the points do not determine every parameter of model " +
+                                std::string(model_name(chosen)));
+    return;
+  }
+  const Eigen::Matrix<double, 18, 10> Jg = derived_jacobian(fitted[std::size_t(idx)], fr, width, height, result.insertion_world);
+  set_sigmas(Jg * state.chosen->C * Jg.transpose(), result);
+}
+
+}  // namespace
+
+std::optional<ModelCovariance> model_covariance(const Params& params, CameraModel model, const std::vector<NormPoint>& inliers,
+                                                double rss_px2, const Frames& fr) {
+  const int m = 2 * int(inliers.size()), k = model_parameter_count(model);
+  if (m <= k || !(rss_px2 > 0)) return std::nullopt;
+  Params Pc = params;
   ceres::Problem problem;
-  add_residuals(problem, Pc, chosen, inl, 0);
+  add_residuals(problem, Pc, model, inliers, 0);
   ceres::Covariance::Options co;
   co.algorithm_type = ceres::DENSE_SVD;
   ceres::Covariance covariance(co);
@@ -541,17 +497,15 @@ void estimate_uncertainty(const Params& P, CameraModel chosen, const std::vector
   for (std::size_t a = 0; a < 3; ++a)
     for (std::size_t b = a; b < 3; ++b) pairs.push_back({blocks[a], blocks[b]});
   Eigen::Matrix<double, 10, 10, Eigen::RowMajor> C;
-  if (!covariance.Compute(pairs, &problem) || !covariance.GetCovarianceMatrix(blocks, C.data())) {
-    result.warnings.add("", "the covariance is singular: the points do not determine every parameter of model " +
-                                std::string(model_name(chosen)));
-    return;
-  }
-  C *= rss_px2 / (fr.image_scale * fr.image_scale) / (m - k);
-  const Eigen::Matrix<double, 18, 10> Jg = derived_jacobian(P, fr, width, height, result.insertion_world);
-  set_sigmas(Jg * C * Jg.transpose(), result);
+  if (!covariance.Compute(pairs, &problem) || !covariance.GetCovarianceMatrix(blocks, C.data())) return std::nullopt;
+  ModelCovariance out;
+  out.model = model;
+  out.params = params;
+  const double var_norm = rss_px2 / (fr.image_scale * fr.image_scale) / (m - k);
+  out.C = C * var_norm;
+  out.sigma_norm = std::sqrt(var_norm);
+  return out;
 }
-
-}  // namespace
 
 CalibrationResult calibrate(const std::vector<ControlPoint>& points, int width, int height,
                             const CalibrationOptions& options) {
@@ -598,7 +552,19 @@ CalibrationResult calibrate(const std::vector<ControlPoint>& points, int width, 
 
   result.insertion_world = options.insertion_world.value_or(Vec3d(fr.world_centre.x(), 0.0, fr.world_centre.z()));
   result.insertion_px = result.camera.project(result.insertion_world);
-  estimate_uncertainty(P, chosen, inl, fit.rss_px2, fr, width, height, result);
+  auto state = std::make_shared<CalibrationFitState>();
+  state->frames = fr;
+  state->width = width;
+  state->height = height;
+  for (int i = 0; i < n; ++i)
+    if (!outliers.outlier[std::size_t(i)]) {
+      double depth = 0;
+      result.camera.project(points[std::size_t(i)].p_world, &depth);
+      state->clicks_px.push_back(points[std::size_t(i)].uv_px);
+      state->click_depths.push_back(depth);
+    }
+  estimate_uncertainty(fitted, chosen, inl, fr, width, height, result, *state);
+  result.state = std::move(state);
   return result;
 }
 

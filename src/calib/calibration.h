@@ -14,6 +14,7 @@
 // All fitting happens in normalized frames, so millimetres, kilometres, 64-pixel and 12000-pixel
 // images are conditioned alike.
 #pragma once
+#include <memory>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
@@ -61,6 +62,8 @@ struct CalibrationUncertainty {
   double hfov_deg = 0, view_direction_deg = 0, roll_deg = 0;
 };
 
+struct CalibrationFitState;  // fit_state.h: what object_uncertainty.h asks questions of
+
 struct CalibrationResult {
   Camera camera;
   CameraModel model = CameraModel::kF;
@@ -77,6 +80,7 @@ struct CalibrationResult {
   double insertion_sigma_px = 0;     // 1σ along the major axis of the projected uncertainty
   double insertion_radius95_px = 0;  // radius of the 95% ellipse along its major axis
   Warnings warnings;  // each without a location: the caller adds the points file's
+  std::shared_ptr<const CalibrationFitState> state;
 };
 
 // Throws InputError for fewer than five points, non-finite values, points that cannot determine

@@ -21,7 +21,7 @@ InverseLightingInput fit_input(const LoadedScene& s, const Image& photo_clipped)
   in.photo_clipped = &photo_clipped;
   for (const PlaneSpec& p : s.spec.local_scene) {
     if (p.mesh) continue;
-    FitPlane f{p.point.cast<float>(), p.normal.normalized().cast<float>(), std::nullopt};
+    FitPlane f{p.point.cast<float>(), p.normal.normalized().cast<float>(), std::nullopt, std::nullopt};
     if (!p.albedo_from_photo) f.albedo = luminance(p.albedo);
     if (p.mean_albedo) f.mean_albedo = float(*p.mean_albedo);
     in.planes.push_back(f);

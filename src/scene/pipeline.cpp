@@ -119,6 +119,21 @@ void load_camera(const SceneSpec& spec, int width, int height, LoadedScene& s) {
   for (const auto& w : s.calibration->warnings.items) s.warnings.add(spec.camera.where, w);
 }
 
+// The calibration's uncertainty at each object's bounding-box corners (object_uncertainty.h),
+// a warning for objects outside the clicks' span, with where to click next.
+void objects_uncertainty(const SceneSpec& spec, const std::vector<Mesh>& meshes, LoadedScene& s) {
+  if (!s.calibration || meshes.empty()) return;
+  for (std::size_t i = 0; i < meshes.size(); ++i) {
+    const Bounds b = mesh_bounds(meshes[i]);
+    if (!b.lo.allFinite() || !b.hi.allFinite()) continue;
+    const std::string name = fmt::format("objects[{}] ({})", i, std::filesystem::path(spec.objects[i].mesh).filename().string());
+    s.object_uncertainty.push_back(object_uncertainty(*s.calibration, name, box_corners(b.lo.cast<double>(), b.hi.cast<double>())));
+  }
+  s.click_hint = suggest_next_click(*s.calibration, s.object_uncertainty);
+  const std::string warning = outside_clicks_warning(s.object_uncertainty, s.click_hint);
+  if (!warning.empty()) s.warnings.add(spec.camera.where, warning);
+}
+
 // A mesh read and placed by its transform; errors carry the spec's JSON location.
 Mesh load_placed_mesh(const ObjectSpec& obj, Warnings& warnings) {
   Mesh mesh;
@@ -183,6 +198,7 @@ LoadedScene load_scene(const SceneSpec& spec) {
       s.warnings.add(obj.where, "the object lies entirely outside the camera's view (it covers no pixel): check translate and the camera");
   }
   check_mesh_files(meshes, spec);
+  objects_uncertainty(spec, meshes, s);
   s.objects = std::make_unique<EmbreeScene>(std::move(meshes));
   std::vector<Mesh> catcher_meshes;
   for (const PlaneSpec& p : spec.local_scene)
@@ -255,7 +271,8 @@ nlohmann::json render_report(const LoadedScene& s, const RenderResult& r) {
     calibration = {{"model", model_name(s.calibration->model)},
                    {"rms_px", s.calibration->rms_px},
                    {"inliers", s.calibration->inliers},
-                   {"insertion_sigma_px", s.calibration->insertion_sigma_px}};
+                   {"insertion_sigma_px", s.calibration->insertion_sigma_px},
+                   {"at_objects", object_uncertainty_json(s.object_uncertainty, s.click_hint)}};
   return json{
       {"scene", s.spec.path},
       {"image", {{"width", s.camera.width}, {"height", s.camera.height}}},

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "calib/calibration.h"
+#include "calib/object_uncertainty.h"
 #include "core/camera.h"
 #include "light/cubemap.h"
 #include "render/embree_scene.h"
@@ -25,6 +26,8 @@ struct LoadedScene {
   Image photo_linear;
   Camera camera;
   std::optional<CalibrationResult> calibration;  // when the camera came from control points
+  std::vector<ObjectUncertainty> object_uncertainty;  // the calibration's, at each object's corners
+  std::optional<ClickHint> click_hint;                // where one more click would help them most
   CubeMap environment;
   EnvironmentInfo environment_info;
   std::optional<RoomBox> room;                              // environment.room_box, for the renderer
