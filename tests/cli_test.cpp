@@ -130,13 +130,15 @@ TEST(Cli, OriginSpellingsAgreeBetweenCliAndScene) {
 }
 
 // --box: the uncertainty at an object's corners in the report and in camera.json, with the hint;
-// a malformed box is a one-line error.
+// a malformed box is a one-line error. --blender writes the camera's Blender script.
 TEST(Cli, CalibrateReportsTheUncertaintyAtEachBox) {
   test::TempDir dir;
   const std::string demo = test::source_dir() + "/scenes/demo/";
   const std::string base = "calibrate --points " + demo + "points.json --image " + demo + "photo.jpg ";
-  const CliRun r = run_insitu(dir, base + "--box sofa -0.15 0 -2.93 1.95 0.85 -1.77 -o " + dir.file("camera.json"));
+  const CliRun r = run_insitu(dir, base + "--box sofa -0.15 0 -2.93 1.95 0.85 -1.77 -o " + dir.file("camera.json") +
+                                        " --blender " + dir.file("cam.py"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(test::slurp(dir.file("cam.py")).find("data.lens = "), std::string::npos);  // blender_camera_test renders it
   EXPECT_NE(r.out.find("object       sofa: up to "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("hint         click next a floor point"), std::string::npos) << r.out;
   const auto j = nlohmann::json::parse(test::slurp(dir.file("camera.json")));

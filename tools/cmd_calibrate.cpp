@@ -1,9 +1,11 @@
 // insitu calibrate --points P (--image PHOTO | --size W H) [--model M] [--origin O] [--at X Y Z]
 //                  [--box NAME XMIN YMIN ZMIN XMAX YMAX ZMAX]... [-o camera.json] [--vc OUT.vc]
+//                  [--blender cam.py]
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "calib/blender_camera.h"
 #include "calib/calibration.h"
 #include "calib/object_uncertainty.h"
 #include "commands.h"
@@ -16,7 +18,7 @@ namespace insitu {
 namespace {
 
 struct CalibrateArgs {
-  std::string points, image, model = "auto", origin = "top_left", output, vc;
+  std::string points, image, model = "auto", origin = "top_left", output, vc, blender;
   std::vector<int> size;
   std::vector<double> at;
   std::vector<std::vector<std::string>> boxes;  // NAME and six numbers each
@@ -42,7 +44,7 @@ std::vector<NamedPoint> parse_box(const std::vector<std::string>& b) {
 
 int run_calibrate(const CalibrateArgs& a) {
   if (a.image.empty() && a.size.empty()) throw InputError("calibrate", "give --image PHOTO or --size W H");
-  check_outputs({{a.points, "the control points"}, {a.image, "the photo"}}, {{a.output, "-o"}, {a.vc, "--vc"}});
+  check_outputs({{a.points, "the control points"}, {a.image, "the photo"}}, {{a.output, "-o"}, {a.vc, "--vc"}, {a.blender, "--blender"}});
   int width = 0, height = 0;
   if (!a.image.empty()) std::tie(width, height) = read_image_size(a.image);
   else { width = a.size[0]; height = a.size[1]; }
@@ -73,6 +75,10 @@ int run_calibrate(const CalibrateArgs& a) {
     write_text_file(a.output, camera_json.dump(2) + "\n");
     std::printf("wrote %s\n", a.output.c_str());
   }
+  if (!a.blender.empty()) {
+    write_text_file(a.blender, blender_camera_script(r.camera, a.image));
+    std::printf("wrote %s\n", a.blender.c_str());
+  }
   if (!a.vc.empty()) {
     std::vector<ControlPoint> inliers;
     for (std::size_t i = 0; i < points.size(); ++i)
@@ -101,6 +107,7 @@ Command add_calibrate_command(CLI::App& app) {
       ->expected(7);
   cmd->add_option("-o,--output", a->output, "write camera.json");
   cmd->add_option("--vc", a->vc, "also write the View Correlation parameter set");
+  cmd->add_option("--blender", a->blender, "also write a Blender Python script that creates the camera (and sets the photo as its background)");
   return [cmd, a] { return cmd->parsed() ? run_calibrate(*a) : -1; };
 }
 

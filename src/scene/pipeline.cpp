@@ -79,7 +79,8 @@ std::vector<NamedPath> scene_input_files(const SceneSpec& spec) {
   for (int f = 0; f < 6; ++f)
     for (const auto& file : e.shots[std::size_t(f)].files) in.push_back({file, std::string("shot ") + face_name(f)});
   if (!spec.camera.points.empty()) in.push_back({spec.camera.points, "the control points"});
-  if (!spec.camera.file.empty()) in.push_back({spec.camera.file, "the camera file"});
+  if (!spec.camera.file.empty())
+    in.push_back({spec.camera.file, spec.camera.kind == CameraSpec::Kind::Fspy ? "the fSpy camera" : "the camera file"});
   for (const auto& o : spec.objects) in.push_back({o.mesh, "a mesh (" + o.where + ")"});
   for (const auto& p : spec.local_scene)
     if (p.mesh) in.push_back({p.mesh->mesh, "a local-scene mesh (" + p.mesh->where + ")"});

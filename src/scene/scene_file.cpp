@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "calib/calibration.h"
+#include "calib/fspy.h"
 #include "core/json_reader.h"
 
 namespace insitu {
@@ -64,33 +65,40 @@ Mat3d read_rotation(const JsonValue& v, Warnings* warnings) {
   return nearest_rotation(R);
 }
 
+// "camera": {"points": …, "model": …, "origin": …}.
+void read_points_camera(const JsonValue& pts, JsonObject& o, const fs::path& dir, CameraSpec& c) {
+  c.kind = CameraSpec::Kind::Points;
+  c.points = existing_file(pts, dir);
+  if (auto m = o.find("model")) {
+    const std::string name = m->string();
+    if (name != "auto") {
+      if (!parse_model(name)) m->fail("expected \"auto\", \"f\", \"f+c\" or \"f+c+a\"");
+      c.model = name;
+    }
+  }
+  if (auto origin = o.find("origin")) {
+    const auto bottom_left = parse_bottom_left_origin(origin->string());
+    if (!bottom_left) origin->fail(std::string("expected ") + kOriginNames);
+    c.bottom_left_origin = *bottom_left;
+  }
+  o.finish();
+}
+
 CameraSpec parse_camera(JsonObject o, const fs::path& dir, Warnings& warnings) {
   CameraSpec c;
   c.where = o.where();
   if (auto pts = o.find("points")) {
-    c.kind = CameraSpec::Kind::Points;
-    c.points = existing_file(*pts, dir);
-    if (auto m = o.find("model")) {
-      const std::string name = m->string();
-      if (name != "auto") {
-        if (!parse_model(name)) m->fail("expected \"auto\", \"f\", \"f+c\" or \"f+c+a\"");
-        c.model = name;
-      }
-    }
-    if (auto origin = o.find("origin")) {
-      const auto bottom_left = parse_bottom_left_origin(origin->string());
-      if (!bottom_left) origin->fail(std::string("expected ") + kOriginNames);
-      c.bottom_left_origin = *bottom_left;
-    }
-    o.finish();
+    read_points_camera(*pts, o, dir, c);
     return c;
   }
-  if (auto f = o.find("file")) {
-    c.kind = CameraSpec::Kind::File;
-    c.file = existing_file(*f, dir);
-    o.finish();
-    return c;
-  }
+  // A camera file of insitu's, or fSpy's export.
+  for (const auto& [key, kind] : {std::pair{"file", CameraSpec::Kind::File}, std::pair{"fspy", CameraSpec::Kind::Fspy}})
+    if (auto f = o.find(key)) {
+      c.kind = kind;
+      c.file = existing_file(*f, dir);
+      o.finish();
+      return c;
+    }
   auto read_fov = [&](JsonObject& obj) {
     if (auto h = obj.find("hfov_deg")) c.hfov_deg = h->number(1e-3, 179.0);
     if (auto v = obj.find("vfov_deg")) c.vfov_deg = v->number(1e-3, 179.0);
@@ -452,6 +460,7 @@ Camera build_camera(const CameraSpec& c, int width, int height, Warnings* warnin
                                    : rad_to_deg(2 * std::atan(std::tan(0.5 * deg_to_rad(*c.vfov_deg)) * width / height));
     return Camera::look_at(c.eye, c.look, c.up, hfov, width, height);
   }
+  if (c.kind == CameraSpec::Kind::Fspy) return camera_from_fspy(c.file, width, height, warnings);
   Camera cam;
   cam.width = width;
   cam.height = height;

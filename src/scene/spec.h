@@ -17,7 +17,7 @@
 namespace insitu {
 
 struct CameraSpec {
-  enum class Kind { LookAt, Explicit, File, Points } kind = Kind::LookAt;
+  enum class Kind { LookAt, Explicit, File, Fspy, Points } kind = Kind::LookAt;
   std::string where;  // JSON location, for messages
   // LookAt: eye, look, up and one field of view. Explicit: intrinsics (or a field of view) and R, t.
   Vec3d eye = Vec3d::Zero(), look = Vec3d::Zero(), up = Vec3d(0, 1, 0);
@@ -25,7 +25,7 @@ struct CameraSpec {
   std::optional<double> fx, fy, cx, cy;
   Mat3d R_cam_from_world = Mat3d::Identity();
   Vec3d t_cam_from_world = Vec3d::Zero();
-  std::string file;  // File: a camera.json
+  std::string file;  // File: a camera.json; Fspy: the JSON fSpy exports (calib/fspy.h)
   // Points: calibrate from control points (calibration.h).
   std::string points;
   std::optional<std::string> model;  // "f", "f+c", "f+c+a"; nullopt: auto
