@@ -65,6 +65,8 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCase{"bad_vertex_text.obj", ":2", "'zero' is not a number"},
                       BadCase{"bad_short_vertex.obj", ":2", "vertex needs 3 numbers, has 2"},
                       BadCase{"bad_normal_index.obj", ":5", "face normal index 2 out of range"},
+                      // Found by the OBJ fuzzer: "v\r0 …" is a vertex to the scan, not to tinyobjloader.
+                      BadCase{"bad_cr_after_keyword.obj", ":4", "face index out of range"},
                       BadCase{"no_faces.obj", "", "no triangles"},
                       BadCase{"no_such_file.obj", "", "not found"}),
     [](const auto& p) {

@@ -164,6 +164,11 @@ Material convert_material(const tinyobj::material_t& m, const fs::path& base_dir
   return out;
 }
 
+// An index tinyobjloader gives: 0-based, −1 for "none" where that is allowed.
+bool index_in_range(int index, std::size_t count, bool may_be_absent) {
+  return (may_be_absent && index == -1) || (index >= 0 && std::size_t(index) < count);
+}
+
 // Polygons fanned into triangles, each keeping its OBJ line; degenerate ones, |e1 × e2| ≤
 // 1e-12 (|e1|² + |e2|²) in double (scale-free), are dropped and counted in one warning.
 void add_triangles(const std::vector<tinyobj::shape_t>& shapes, const ObjScan& scan, int default_material,
@@ -182,6 +187,12 @@ void add_triangles(const std::vector<tinyobj::shape_t>& shapes, const ObjScan& s
                                             shape.mesh.indices[offset + k + 1]};
         Triangle tri;
         for (int c = 0; c < 3; ++c) {
+          // The scan checked every index as the OBJ reads; tinyobjloader may still read a line
+          // differently (a keyword followed by '\r' is a vertex to one and not to the other).
+          if (!index_in_range(corner[c].vertex_index, mesh.positions.size(), false) ||
+              !index_in_range(corner[c].normal_index, mesh.normals.size(), true) ||
+              !index_in_range(corner[c].texcoord_index, mesh.uvs.size(), true))
+            throw InputError(fmt::format("{}:{}", path, line), "face index out of range of the vertices tinyobjloader read");
           tri.v[c] = std::uint32_t(corner[c].vertex_index);
           tri.n[c] = corner[c].normal_index;
           tri.t[c] = corner[c].texcoord_index;
