@@ -80,7 +80,7 @@ TEST(Fspy, BadExportsAreOneLineErrorsWithTheirPlace) {
   expect_fspy_error(j, 1200, 1200, "$.imageWidth", "not the same aspect ratio");
   j = wide_export();
   j["cameraTransform"]["rows"][0][0] = 2;
-  expect_fspy_error(j, 1600, 1200, "$.cameraTransform.rows", "not a camera transform");
+  expect_fspy_error(j, 1600, 1200, "$.cameraTransform.rows", "not a rotation");
   j = wide_export();
   j["cameraTransform"]["rows"][3][2] = 1;
   expect_fspy_error(j, 1600, 1200, "$.cameraTransform.rows", "not a camera transform");

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <numeric>
 #include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
 #include "calib/f_test.h"
@@ -480,6 +481,25 @@ void estimate_uncertainty(const std::vector<Params>& fitted, CameraModel chosen,
   set_sigmas(Jg * state.chosen->C * Jg.transpose(), result);
 }
 
+// Where the inliers lie: the convex hull of their pixels and their range of depths.
+void set_click_span(const std::vector<ControlPoint>& points, const std::vector<bool>& outlier, const Camera& camera,
+                    CalibrationFitState& state) {
+  std::vector<cv::Point2f> clicks, hull;
+  state.click_depth_min = std::numeric_limits<double>::infinity();
+  state.click_depth_max = -state.click_depth_min;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (outlier[i]) continue;
+    double depth = 0;
+    camera.project(points[i].p_world, &depth);
+    state.click_depth_min = std::min(state.click_depth_min, depth);
+    state.click_depth_max = std::max(state.click_depth_max, depth);
+    clicks.emplace_back(float(points[i].uv_px.x()), float(points[i].uv_px.y()));
+  }
+  cv::convexHull(clicks, hull);
+  if (hull.size() >= 3)
+    for (const auto& p : hull) state.clicks_hull_px.emplace_back(p.x, p.y);
+}
+
 }  // namespace
 
 std::optional<ModelCovariance> model_covariance(const Params& params, CameraModel model, const std::vector<NormPoint>& inliers,
@@ -554,15 +574,7 @@ CalibrationResult calibrate(const std::vector<ControlPoint>& points, int width, 
   result.insertion_px = result.camera.project(result.insertion_world);
   auto state = std::make_shared<CalibrationFitState>();
   state->frames = fr;
-  state->width = width;
-  state->height = height;
-  for (int i = 0; i < n; ++i)
-    if (!outliers.outlier[std::size_t(i)]) {
-      double depth = 0;
-      result.camera.project(points[std::size_t(i)].p_world, &depth);
-      state->clicks_px.push_back(points[std::size_t(i)].uv_px);
-      state->click_depths.push_back(depth);
-    }
+  set_click_span(points, outliers.outlier, result.camera, *state);
   estimate_uncertainty(fitted, chosen, inl, fr, width, height, result, *state);
   result.state = std::move(state);
   return result;

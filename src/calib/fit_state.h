@@ -23,12 +23,11 @@ struct ModelCovariance {
 
 struct CalibrationFitState {
   calib_detail::Frames frames;
-  int width = 0, height = 0;
   std::optional<ModelCovariance> chosen;  // nullopt: no redundancy or a singular covariance
   std::optional<ModelCovariance> richer;  // the next richer model, when the points fit it
   std::string richer_note;                // why there is none (empty when there is)
-  std::vector<Vec2d> clicks_px;           // the inliers, as clicked
-  std::vector<double> click_depths;       // their depth along the optical axis (world units)
+  std::vector<Vec2d> clicks_hull_px;      // the convex hull of the inliers' pixels (fewer than 3: none)
+  double click_depth_min = 0, click_depth_max = 0;  // their depths along the optical axis
 };
 
 // The covariance of a model fitted to `inliers` (Ceres's (JᵀJ)⁻¹ in the tangent space, dense SVD)

@@ -10,8 +10,6 @@ namespace insitu {
 
 namespace {
 
-constexpr double kRotationTolerance = 1e-4;  // as camera.json's R (Blender rounds to ~6 decimals)
-
 // Blender's Z-up world to insitu's Y-up world: (x, y, z) -> (x, z, −y).
 Mat3d insitu_from_blender() {
   Mat3d A;
@@ -22,16 +20,11 @@ Mat3d insitu_from_blender() {
 // The camera's pose from fSpy's camera-to-world matrix.
 void set_pose(const JsonValue& rows, Camera& cam, Warnings* warnings) {
   const Mat4d M = rows.mat4();
-  const Mat3d R_world_from_gl = M.topLeftCorner<3, 3>();
-  const double orth = (R_world_from_gl * R_world_from_gl.transpose() - Mat3d::Identity()).norm();
-  if (!(orth <= kRotationTolerance) || !(R_world_from_gl.determinant() > 0) ||
-      (M.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).norm() > 1e-9)
-    rows.fail(fmt::format("not a camera transform: a rotation and a translation (|R Rᵀ − I| = {:.2g}, det = {:.6g})", orth,
-                          R_world_from_gl.determinant()));
-  if (orth > 1e-6 && warnings)
-    warnings->add(rows.where(), fmt::format("a rotation only to |R Rᵀ − I| = {:.2g}: the nearest rotation is used", orth));
+  if ((M.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).norm() > 1e-9)
+    rows.fail("not a camera transform: its last row must be (0, 0, 0, 1)");
+  const Mat3d R_world_from_gl = checked_rotation(M.topLeftCorner<3, 3>(), rows, warnings);
   const Mat3d gl_from_cv = Vec3d(1, -1, -1).asDiagonal();
-  const Mat3d R_world_from_cv = insitu_from_blender() * nearest_rotation(R_world_from_gl) * gl_from_cv;
+  const Mat3d R_world_from_cv = insitu_from_blender() * R_world_from_gl * gl_from_cv;
   const Vec3d eye_world = insitu_from_blender() * M.topRightCorner<3, 1>();
   cam.R_cam_from_world = R_world_from_cv.transpose();
   cam.t_cam_from_world = -cam.R_cam_from_world * eye_world;

@@ -38,13 +38,9 @@ double radius95(const ModelCovariance& m, const Frames& fr, const Vec3d& p_world
 
 // Whether the clicks' convex hull in the image and their depth range contain the point.
 bool outside_clicks(const CalibrationFitState& st, const Vec2d& uv_px, double depth) {
-  if (st.click_depths.empty()) return true;
-  const auto [lo, hi] = std::minmax_element(st.click_depths.begin(), st.click_depths.end());
-  if (depth < *lo || depth > *hi) return true;
-  std::vector<cv::Point2f> clicks, hull;
-  for (const Vec2d& c : st.clicks_px) clicks.emplace_back(float(c.x()), float(c.y()));
-  cv::convexHull(clicks, hull);
-  if (hull.size() < 3) return true;
+  if (!(depth >= st.click_depth_min && depth <= st.click_depth_max) || st.clicks_hull_px.empty()) return true;
+  std::vector<cv::Point2f> hull;
+  for (const Vec2d& p : st.clicks_hull_px) hull.emplace_back(float(p.x()), float(p.y()));
   return cv::pointPolygonTest(hull, cv::Point2f(float(uv_px.x()), float(uv_px.y())), false) < 0;
 }
 

@@ -174,4 +174,14 @@ void JsonObject::finish() const {
     }
 }
 
+Mat3d checked_rotation(const Mat3d& R, const JsonValue& where, Warnings* warnings) {
+  const double orth = (R * R.transpose() - Mat3d::Identity()).norm(), det = R.determinant();
+  if (!(orth <= kRotationTolerance) || !(det > 0))
+    where.fail(fmt::format("not a rotation (|R Rᵀ − I| = {:.2g}, det = {:.6g}; at most {:g} is accepted, and det > 0)", orth,
+                           det, kRotationTolerance));
+  if (orth > 1e-6 && warnings)
+    warnings->add(where.where(), fmt::format("a rotation only to |R Rᵀ − I| = {:.2g}: the nearest rotation is used", orth));
+  return nearest_rotation(R);
+}
+
 }  // namespace insitu

@@ -50,6 +50,16 @@ class JsonValue {
   std::string file_, path_;
 };
 
+// How far a given rotation matrix may be from orthonormal, ‖R Rᵀ − I‖_F, before it is refused;
+// within it the nearest rotation is used (exporters round R to about 6 decimals).
+constexpr double kRotationTolerance = 1e-3;
+
+// A rotation as exporters write it (camera.json's R, fSpy's camera transform): Blender and most
+// JSON writers round to about 6 decimals, so R Rᵀ is the identity only to ~1e-6. Accepted up to
+// ‖R Rᵀ − I‖_F ≤ kRotationTolerance with det R > 0 and replaced by the nearest rotation (SVD); a
+// warning at `where` above 1e-6 says so. Beyond the tolerance, or mirrored, `where` fails.
+Mat3d checked_rotation(const Mat3d& R, const JsonValue& where, Warnings* warnings);
+
 // A JSON value kept with its file and path, read later by the code that owns its keys (an
 // integrator's parameters: integrators/registry.h).
 struct JsonBlock {

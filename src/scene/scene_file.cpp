@@ -48,21 +48,12 @@ int parse_axis(const JsonValue& v) {
   v.fail(fmt::format("'{}' is not an axis (+x, -x, +z, -z, up or +y, down or -y)", s));
 }
 
-// A camera rotation R (3 rows of 3) as exporters write it: Blender and most JSON writers round to
-// about 6 decimals, so R Rᵀ is the identity only to ~1e-6. Accepted up to
-// ‖R Rᵀ − I‖_F ≤ kRotationTolerance with det R > 0, and replaced by the nearest rotation (SVD);
-// a warning above 1e-6 says so. Beyond the tolerance, or mirrored, it is an error.
+// A camera rotation R (3 rows of 3), checked by checked_rotation (json_reader.h).
 Mat3d read_rotation(const JsonValue& v, Warnings* warnings) {
   if (v.size() != 3) v.fail("expected 3 rows of 3 numbers");
   Mat3d R;
   for (std::size_t r = 0; r < 3; ++r) R.row(long(r)) = v.element(r).vec3().transpose();
-  const double orth = (R * R.transpose() - Mat3d::Identity()).norm(), det = R.determinant();
-  if (!(orth <= kRotationTolerance) || !(det > 0))
-    v.fail(fmt::format("not a rotation (|R Rᵀ − I| = {:.2g}, det = {:.6g}; at most {:g} is accepted, and det > 0)", orth,
-                       det, kRotationTolerance));
-  if (orth > 1e-6 && warnings)
-    warnings->add(v.where(), fmt::format("R is a rotation only to |R Rᵀ − I| = {:.2g}: the nearest rotation is used", orth));
-  return nearest_rotation(R);
+  return checked_rotation(R, v, warnings);
 }
 
 // "camera": {"points": …, "model": …, "origin": …}.

@@ -25,10 +25,6 @@ EnvironmentSpec environment_from_argument(const std::string& path, std::string* 
 // Builds the camera for a photo of width x height (not for Kind::Points: see pipeline.cpp).
 Camera build_camera(const CameraSpec& spec, int width, int height, Warnings* warnings = nullptr);
 
-// How far a given rotation matrix may be from orthonormal, ‖R Rᵀ − I‖_F, before it is refused;
-// within it the nearest rotation is used (exporters round R to about 6 decimals).
-constexpr double kRotationTolerance = 1e-3;
-
 // The object transform: translate · rotate · scale (scale first), or a 4x4 matrix.
 Mat4d object_transform(const Vec3d& translate, double rotate_deg, const Vec3d& axis, const Vec3d& scale);
 
