@@ -8,7 +8,21 @@
 #include <string>
 #include <unistd.h>
 
+// Under AddressSanitizer (the sanitizer leg of CI) a few heavy tests shrink their inputs: the
+// memory checks need the code paths, not the sizes whose physics the release build checks.
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define INSITU_UNDER_ASAN 1
+#endif
+#endif
+
 namespace insitu::test {
+
+#ifdef INSITU_UNDER_ASAN
+constexpr bool kUnderAsan = true;
+#else
+constexpr bool kUnderAsan = false;
+#endif
 
 namespace fs = std::filesystem;
 

@@ -104,12 +104,6 @@ double objects_brightness(const Image& a, const Image& truth, const Image& cover
   return sa / std::max(1e-30, st);
 }
 
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define INSITU_UNDER_ASAN 1
-#endif
-#endif
-
 // Under AddressSanitizer the scene is loaded and rendered at 4 spp for its memory checks only:
 // the physics is the release build's to check, and 256 spp sanitized would add ten minutes to CI.
 void check_against_cycles(const std::string& name, double goal, bool jpeg = false) {
