@@ -18,6 +18,7 @@ Command add_cubemap_command(CLI::App& app);
 Command add_irradiance_report_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
 Command add_tradeoff_command(CLI::App& app);
+Command add_export_blender_command(CLI::App& app);
 
 void print_warnings(const Warnings& warnings);
 

@@ -24,7 +24,7 @@ std::string matrix_rows(const Mat3d& R, const Vec3d& t) {
 
 }  // namespace
 
-std::string blender_camera_script(const Camera& c, const std::string& photo_path) {
+std::string blender_camera_lines(const Camera& c, const std::string& photo_path) {
   // Pixel aspect ax/ay = fy/fx, one of them 1; Blender measures lens and shift in aspect-corrected
   // units, W·ax by H·ay, along the longer of the two.
   const double ax = std::max(1.0, c.fy / c.fx), ay = std::max(1.0, c.fx / c.fy);
@@ -33,10 +33,8 @@ std::string blender_camera_script(const Camera& c, const std::string& photo_path
   const double shift_x = (0.5 * c.width - c.cx) * ax / Lc, shift_y = (c.cy - 0.5 * c.height) * ay / Lc;
   const Mat3d R_world_from_gl = blender_from_insitu() * c.R_cam_from_world.transpose() * Vec3d(1, -1, -1).asDiagonal();
   const Vec3d eye_blender = blender_from_insitu() * c.eye_world();
-  std::string s = "# Written by insitu (src/calib/blender_camera.h): the calibrated camera in Blender.\n";
-  s += "import bpy\nfrom mathutils import Matrix\n\nscene = bpy.context.scene\n";
-  s += fmt::format("scene.render.resolution_x = {}\nscene.render.resolution_y = {}\nscene.render.resolution_percentage = 100\n",
-                   c.width, c.height);
+  std::string s = fmt::format("scene.render.resolution_x = {}\nscene.render.resolution_y = {}\nscene.render.resolution_percentage = 100\n",
+                              c.width, c.height);
   s += fmt::format("scene.render.pixel_aspect_x = {:.17g}\nscene.render.pixel_aspect_y = {:.17g}\n", ax, ay);
   s += "data = bpy.data.cameras.new('insitu camera')\n";
   s += "data.type = 'PERSP'\ndata.sensor_fit = 'AUTO'\ndata.sensor_width = 36.0\n";
@@ -50,6 +48,12 @@ std::string blender_camera_script(const Camera& c, const std::string& photo_path
     s += "data.show_background_images = True\n";
   }
   return s;
+}
+
+std::string blender_camera_script(const Camera& c, const std::string& photo_path) {
+  std::string s = "# Written by insitu (src/calib/blender_camera.h): the calibrated camera in Blender.\n";
+  s += "import bpy\nfrom mathutils import Matrix\n\nscene = bpy.context.scene\n";
+  return s + blender_camera_lines(c, photo_path);
 }
 
 }  // namespace insitu

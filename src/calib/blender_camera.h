@@ -18,5 +18,8 @@
 namespace insitu {
 
 std::string blender_camera_script(const Camera& camera, const std::string& photo_path = "");
+// The script's body alone, for a larger script (scene/blender_export.h) that has imported bpy and
+// mathutils.Matrix and bound `scene`: sets the render size and creates the camera as scene.camera.
+std::string blender_camera_lines(const Camera& camera, const std::string& photo_path = "");
 
 }  // namespace insitu

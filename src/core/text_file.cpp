@@ -13,14 +13,16 @@
 namespace insitu {
 namespace fs = std::filesystem;
 
-void write_text_file(const std::string& path, const std::string& text) {
+void write_text_file(const std::string& path, const std::string& text) { write_binary_file(path, text); }
+
+void write_binary_file(const std::string& path, const std::string& text) {
   const fs::path p(path);
   std::error_code ec;
   if (!p.parent_path().empty()) fs::create_directories(p.parent_path(), ec);
   const fs::path tmp = p.parent_path() / fmt::format(".{}.tmp-{}", p.filename().string(), ::getpid());
   const TempFileGuard guard(tmp.string());  // removed if the process is interrupted meanwhile
   {
-    std::ofstream out(tmp);
+    std::ofstream out(tmp, std::ios::binary);
     out << text;
     out.close();
     if (!out) {

@@ -25,6 +25,7 @@ struct Material {
   float ns = 0.0f;                 // Phong exponent
   float d = 1.0f;                  // dissolve (opacity)
   std::shared_ptr<const Image> map_kd;  // linear RGB, multiplies kd; sampled by the UVs
+  std::string map_kd_path;              // the file it was read from (for exporters), or ""
   Rgb base_colour(const Vec2f& uv) const;  // kd × texture(uv), texture repeating
 };
 

@@ -1,0 +1,269 @@
+// The Python half of `insitu export-blender` (scene/blender_export.h): the helper functions every
+// exported script starts with. Blender 3.4's API (Debian 12); the script's own lines call them.
+#include "scene/blender_export.h"
+
+namespace insitu {
+
+const char* const kBlenderExportPrelude = R"PY(import array
+import os
+import sys
+
+import bpy
+from mathutils import Matrix
+
+HERE = os.path.dirname(os.path.abspath(__file__)) if "__file__" in globals() else ""
+
+
+def data_file(name, written):
+    """A file written beside the script: found beside it (the pair moved together), else where it was written."""
+    p = os.path.join(HERE, name)
+    return p if HERE and os.path.exists(p) else written
+
+
+def new_scene(name):
+    scene = bpy.data.scenes.new(name)
+    if bpy.context.window is not None:
+        bpy.context.window.scene = scene
+    return scene
+
+
+def render_settings(scene, samples, max_bounces, seed):
+    """Cycles as insitu renders: a 1-pixel box filter, no denoising, no clamping, linear output
+    shown through the plain sRGB curve, a transparent film for the shadow catchers."""
+    scene.render.engine = "CYCLES"
+    scene.cycles.device = "CPU"
+    scene.cycles.samples = samples
+    scene.cycles.use_adaptive_sampling = False
+    scene.cycles.use_denoising = False
+    scene.cycles.pixel_filter_type = "BOX"
+    scene.cycles.filter_width = 1.0
+    scene.cycles.seed = seed
+    scene.cycles.sample_clamp_direct = 0.0
+    scene.cycles.sample_clamp_indirect = 0.0
+    scene.cycles.max_bounces = max_bounces
+    for kind in ("diffuse", "glossy", "transmission", "transparent"):
+        setattr(scene.cycles, kind + "_bounces", max_bounces)
+    scene.cycles.caustics_reflective = True
+    scene.cycles.caustics_refractive = True
+    scene.render.film_transparent = True
+    scene.view_settings.view_transform = "Standard"
+    scene.view_settings.look = "None"
+    scene.view_settings.exposure = 0.0
+    scene.view_settings.gamma = 1.0
+
+
+def load_image(path, linear):
+    img = bpy.data.images.load(path, check_existing=True)
+    if linear:
+        img.colorspace_settings.is_data = False
+    return img
+
+
+def set_world(scene, world_path):
+    """The environment, looked up by direction: the layout of insitu's equirect.h is Blender's."""
+    world = bpy.data.worlds.new("insitu environment")
+    scene.world = world
+    world.use_nodes = True
+    nt = world.node_tree
+    env = nt.nodes.new("ShaderNodeTexEnvironment")
+    env.image = load_image(world_path, True)
+    bg = nt.nodes["Background"]
+    bg.inputs["Strength"].default_value = 1.0
+    nt.links.new(env.outputs["Color"], bg.inputs["Color"])
+
+
+def new_material(name):
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    nt = mat.node_tree
+    for n in list(nt.nodes):
+        nt.nodes.remove(n)
+    return mat, nt, nt.nodes.new("ShaderNodeOutputMaterial")
+
+
+def rgb_node(nt, blend, a, b):
+    """A MixRGB node at factor 1: a (blend) b. a and b are sockets or RGB tuples."""
+    n = nt.nodes.new("ShaderNodeMixRGB")
+    n.blend_type = blend
+    n.inputs["Fac"].default_value = 1.0
+    for socket, value in ((n.inputs["Color1"], a), (n.inputs["Color2"], b)):
+        if isinstance(value, tuple):
+            socket.default_value = (*value, 1.0)
+        else:
+            nt.links.new(value, socket)
+    return n.outputs["Color"]
+
+
+def surface_material(name, kd, texture="", ks=(0.0, 0.0, 0.0), roughness=1.0):
+    """insitu's BSDF (src/render/bsdf.h): Lambertian rho_d = Kd x map_Kd; with Ks > 0 a GGX lobe
+    of alpha = sqrt(2 / (Ns + 2)) (Blender's roughness is sqrt(alpha)) and Schlick's Fresnel
+    F = Ks + (1 - Ks)(1 - cos)^5, the diffuse lobe weighted by 1 - F. Blender's nodes see the
+    normal's cosine, not the half-vector's: the glossy weighting is an approximation."""
+    mat, nt, out = new_material(name)
+    diff = nt.nodes.new("ShaderNodeBsdfDiffuse")
+    diff.inputs["Roughness"].default_value = 0.0
+    base = tuple(kd)
+    if texture:
+        tex = nt.nodes.new("ShaderNodeTexImage")
+        tex.image = load_image(texture, False)
+        base = rgb_node(nt, "MULTIPLY", tuple(kd), tex.outputs["Color"])
+    if max(ks) <= 0.0:
+        if isinstance(base, tuple):
+            diff.inputs["Color"].default_value = (*base, 1.0)
+        else:
+            nt.links.new(base, diff.inputs["Color"])
+        nt.links.new(diff.outputs["BSDF"], out.inputs["Surface"])
+        return mat
+    facing = nt.nodes.new("ShaderNodeLayerWeight")  # Facing = 1 - |n.v| at blend 0.5
+    facing.inputs["Blend"].default_value = 0.5
+    power = nt.nodes.new("ShaderNodeMath")
+    power.operation = "POWER"
+    nt.links.new(facing.outputs["Facing"], power.inputs[0])
+    power.inputs[1].default_value = 5.0
+    fresnel = nt.nodes.new("ShaderNodeMixRGB")  # Ks + (1 - Ks) t
+    nt.links.new(power.outputs["Value"], fresnel.inputs["Fac"])
+    fresnel.inputs["Color1"].default_value = (*ks, 1.0)
+    fresnel.inputs["Color2"].default_value = (1.0, 1.0, 1.0, 1.0)
+    left = rgb_node(nt, "SUBTRACT", (1.0, 1.0, 1.0), fresnel.outputs["Color"])
+    nt.links.new(rgb_node(nt, "MULTIPLY", base, left), diff.inputs["Color"])
+    glossy = nt.nodes.new("ShaderNodeBsdfGlossy")
+    glossy.distribution = "GGX"
+    glossy.inputs["Roughness"].default_value = roughness
+    nt.links.new(fresnel.outputs["Color"], glossy.inputs["Color"])
+    add = nt.nodes.new("ShaderNodeAddShader")
+    nt.links.new(diff.outputs["BSDF"], add.inputs[0])
+    nt.links.new(glossy.outputs["BSDF"], add.inputs[1])
+    nt.links.new(add.outputs["Shader"], out.inputs["Surface"])
+    return mat
+
+
+def box_emission_material(world_path, capture):
+    """The room box of insitu's room light (src/render/room_light.h): a point q of a wall emits
+    what the capture point c saw in its direction, L(q) = env((q - c) / |q - c|)."""
+    mat, nt, out = new_material("insitu room box")
+    geometry = nt.nodes.new("ShaderNodeNewGeometry")
+    sub = nt.nodes.new("ShaderNodeVectorMath")
+    sub.operation = "SUBTRACT"
+    nt.links.new(geometry.outputs["Position"], sub.inputs[0])
+    sub.inputs[1].default_value = capture
+    norm = nt.nodes.new("ShaderNodeVectorMath")
+    norm.operation = "NORMALIZE"
+    nt.links.new(sub.outputs["Vector"], norm.inputs[0])
+    env = nt.nodes.new("ShaderNodeTexEnvironment")
+    env.image = load_image(world_path, True)
+    nt.links.new(norm.outputs["Vector"], env.inputs["Vector"])
+    emit = nt.nodes.new("ShaderNodeEmission")
+    emit.inputs["Strength"].default_value = 1.0
+    nt.links.new(env.outputs["Color"], emit.inputs["Color"])
+    nt.links.new(emit.outputs["Emission"], out.inputs["Surface"])
+    return mat
+
+
+def quads_object(scene, name, quads, mat):
+    """Rectangles given by four corners (Blender's frame), one object."""
+    verts = [v for q in quads for v in q]
+    faces = [tuple(range(4 * i, 4 * i + 4)) for i in range(len(quads))]
+    mesh = bpy.data.meshes.new(name)
+    mesh.from_pydata(verts, [], faces)
+    mesh.materials.append(mat)
+    obj = bpy.data.objects.new(name, mesh)
+    scene.collection.objects.link(obj)
+    return obj
+
+
+def room_box(scene, quads, world_path, capture):
+    """The walls emit, and the openings are holes through which the world's distant light comes.
+    The walls are shadow catchers too, as in insitu (integrators/path.cpp): they catch the objects'
+    shadows, and Cycles counts their light as the room's, not as an occluder of the world (an
+    ordinary object there would darken the whole floor)."""
+    return catcher(quads_object(scene, "insitu room box", quads, box_emission_material(world_path, capture)))
+
+
+def catcher(obj):
+    """A local-scene surface: Cycles' shadow catcher (it receives the objects' shadows and light,
+    and lights them back with its albedo), as insitu's differential rendering."""
+    obj.is_shadow_catcher = True
+    return obj
+
+
+def load_mesh(scene, name, path, offset, nv, nt_, has_normals, has_uvs, materials):
+    """A triangle mesh from the binary file: positions (float32 x 3 per vertex, Blender's frame),
+    triangles (uint32 x 3), material index (int32 per triangle), then, when present, a normal
+    (float32 x 3) and a UV (float32 x 2) per corner; all little-endian."""
+    def read(f, code, n):
+        a = array.array(code)
+        a.frombytes(f.read(a.itemsize * n))
+        if sys.byteorder == "big":
+            a.byteswap()
+        return a
+
+    with open(path, "rb") as f:
+        f.seek(offset)
+        pos = read(f, "f", 3 * nv)
+        tri = read(f, "i", 3 * nt_)  # uint32 in the file, below 2^31 in any mesh Blender holds
+        mat = read(f, "i", nt_)
+        nor = read(f, "f", 9 * nt_) if has_normals else None
+        uv = read(f, "f", 6 * nt_) if has_uvs else None
+    me = bpy.data.meshes.new(name)
+    me.vertices.add(nv)
+    me.vertices.foreach_set("co", pos)
+    me.loops.add(3 * nt_)
+    me.loops.foreach_set("vertex_index", tri)
+    me.polygons.add(nt_)
+    me.polygons.foreach_set("loop_start", array.array("i", range(0, 3 * nt_, 3)))
+    me.polygons.foreach_set("loop_total", array.array("i", [3]) * nt_)
+    me.polygons.foreach_set("material_index", mat)
+    me.update(calc_edges=True)
+    if uv is not None:
+        me.uv_layers.new(name="UVMap").data.foreach_set("uv", uv)
+    if nor is not None:
+        me.polygons.foreach_set("use_smooth", [True] * nt_)
+        me.use_auto_smooth = True
+        me.normals_split_custom_set([nor[i:i + 3] for i in range(0, len(nor), 3)])
+    for m in materials:
+        me.materials.append(m)
+    obj = bpy.data.objects.new(name, me)
+    scene.collection.objects.link(obj)
+    return obj
+
+
+def composite_over_photo(scene, photo_path, linear):
+    """The render over the photo (Alpha Over of the premultiplied render): the objects, and the
+    shadow catchers' darkening and light, on the user's photo."""
+    scene.use_nodes = True
+    nt = scene.node_tree
+    for n in list(nt.nodes):
+        nt.nodes.remove(n)
+    layers = nt.nodes.new("CompositorNodeRLayers")
+    layers.scene = scene
+    photo = nt.nodes.new("CompositorNodeImage")
+    photo.image = load_image(photo_path, linear)
+    over = nt.nodes.new("CompositorNodeAlphaOver")
+    nt.links.new(photo.outputs["Image"], over.inputs[1])
+    nt.links.new(layers.outputs["Image"], over.inputs[2])
+    out = nt.nodes.new("CompositorNodeComposite")
+    nt.links.new(over.outputs["Image"], out.inputs["Image"])
+
+
+def run_from_command_line(scene):
+    """blender -b --python scene.py -- --render out.png [--samples N]: renders the composite."""
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    args = dict(zip(argv[0::2], argv[1::2]))
+    if "--samples" in args:
+        scene.cycles.samples = int(args["--samples"])
+    if "--render" not in args:
+        return
+    path = os.path.abspath(args["--render"])
+    ext = os.path.splitext(path)[1].lower()
+    fmt = {".png": "PNG", ".jpg": "JPEG", ".jpeg": "JPEG", ".exr": "OPEN_EXR", ".tif": "TIFF", ".tiff": "TIFF"}
+    if ext not in fmt:
+        raise SystemExit("insitu scene: --render needs .png, .jpg, .exr or .tif: " + path)
+    scene.render.image_settings.file_format = fmt[ext]
+    if ext == ".exr":
+        scene.render.image_settings.color_depth = "32"
+    scene.render.filepath = path
+    bpy.ops.render.render(write_still=True, scene=scene.name)
+    print("insitu scene: wrote", path, flush=True)
+)PY";
+
+}  // namespace insitu

@@ -1,0 +1,83 @@
+#include "scene/blender_meshes.h"
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace insitu {
+namespace {
+
+// Raw little-endian values (the file's layout; every platform insitu builds on is little-endian).
+template <class T>
+void append(std::string& bytes, T value) {
+  char raw[sizeof(T)];
+  std::memcpy(raw, &value, sizeof(T));
+  bytes.append(raw, sizeof(T));
+}
+
+void append_vec(std::string& bytes, const Vec3d& v) {
+  for (int k = 0; k < 3; ++k) append(bytes, float(v[k]));
+}
+
+Vec3d geometric_normal(const Mesh& m, const Triangle& t) {
+  const Vec3f& a = m.positions[t.v[0]];
+  const Vec3d n = (m.positions[t.v[1]] - a).cross(m.positions[t.v[2]] - a).cast<double>();
+  return n.norm() > 0 ? n.normalized() : Vec3d(0, 1, 0);
+}
+
+bool any_normals(const Mesh& m) {
+  for (const Triangle& t : m.triangles)
+    if (t.n[0] >= 0 || t.n[1] >= 0 || t.n[2] >= 0) return true;
+  return false;
+}
+
+// Blender's roughness r for insitu's GGX α = √(2/(Ns + 2)) (render/bsdf.h): Blender squares it,
+// α = r², so r = α^½.
+double blender_roughness(float ns) { return std::sqrt(std::sqrt(2.0 / (std::max(0.0f, ns) + 2.0))); }
+
+std::string material_line(const Material& m, const std::string& object_name) {
+  return fmt::format("surface_material({}, {}, {}, {}, {:.9g})", py_string(object_name + ": " + m.name), py_rgb(m.kd),
+                     py_string(m.map_kd_path.empty() ? "" : std::filesystem::absolute(m.map_kd_path).lexically_normal().string()),
+                     py_rgb(m.ks), blender_roughness(m.ns));
+}
+
+}  // namespace
+
+std::string py_string(const std::string& s) { return nlohmann::json(s).dump(); }
+
+std::string py_rgb(const Rgb& c) { return fmt::format("({:.9g}, {:.9g}, {:.9g})", c[0], c[1], c[2]); }
+
+std::string blender_mesh(const Mesh& m, const std::string& name, const std::optional<Rgb>& catcher_albedo,
+                         std::string& bytes) {
+  const std::size_t offset = bytes.size();
+  const bool normals = any_normals(m), uvs = !m.uvs.empty();
+  for (const Vec3f& p : m.positions) append_vec(bytes, to_blender(p.cast<double>()));
+  for (const Triangle& t : m.triangles)
+    for (auto v : t.v) append(bytes, std::uint32_t(v));
+  for (const Triangle& t : m.triangles) append(bytes, std::int32_t(catcher_albedo ? 0 : t.material));
+  if (normals)
+    for (const Triangle& t : m.triangles)
+      for (int k = 0; k < 3; ++k)
+        append_vec(bytes, to_blender(t.n[k] >= 0 ? m.normals[std::size_t(t.n[k])].cast<double>().normalized() : geometric_normal(m, t)));
+  if (uvs)
+    for (const Triangle& t : m.triangles)
+      for (int k = 0; k < 3; ++k) {
+        const Vec2f uv = t.t[k] >= 0 ? m.uvs[std::size_t(t.t[k])] : Vec2f::Zero();
+        append(bytes, uv.x()), append(bytes, uv.y());
+      }
+  std::string materials;
+  if (catcher_albedo) {
+    materials = fmt::format("surface_material({}, {})", py_string(name + ": albedo"), py_rgb(*catcher_albedo));
+  } else {
+    for (const Material& mat : m.materials) materials += (materials.empty() ? "" : ", ") + material_line(mat, name);
+  }
+  std::string s = fmt::format("obj = load_mesh(scene, {}, MESHES, {}, {}, {}, {}, {}, [{}])\n", py_string(name), offset,
+                              m.positions.size(), m.triangles.size(), normals ? "True" : "False", uvs ? "True" : "False",
+                              materials);
+  if (catcher_albedo) s += "catcher(obj)\n";
+  return s;
+}
+
+}  // namespace insitu

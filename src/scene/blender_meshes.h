@@ -1,0 +1,25 @@
+// The meshes of the Blender export (scene/blender_export.h): their triangles appended to the
+// binary file in the layout the script's load_mesh reads, and the Python lines that create their
+// materials and objects.
+#pragma once
+#include <optional>
+#include <string>
+
+#include "render/mesh.h"
+
+namespace insitu {
+
+// insitu's Y-up world to Blender's Z-up world: (x, y, z) -> (x, −z, y), a proper rotation.
+inline Vec3d to_blender(const Vec3d& p) { return Vec3d(p.x(), -p.z(), p.y()); }
+
+// A Python literal: a string (JSON's escapes are Python's) or an RGB tuple.
+std::string py_string(const std::string& s);
+std::string py_rgb(const Rgb& c);
+
+// Appends the mesh to `bytes` and returns the lines that load it as object `name` from the file
+// in the Python variable MESHES. An object gets a material per MTL material; a catcher
+// (`catcher_albedo` set) one Lambertian material of that albedo and Cycles' shadow catcher flag.
+std::string blender_mesh(const Mesh& mesh, const std::string& name, const std::optional<Rgb>& catcher_albedo,
+                         std::string& bytes);
+
+}  // namespace insitu
