@@ -112,5 +112,14 @@ TEST(Fspy, SceneReadsAnFspyCamera) {
   EXPECT_NEAR(s.camera.fx, 1.5 * 0.5 * std::max(fx.width, fx.height), 1e-9);
 }
 
+// The demo's fspy.json (tools/make_demo.cpp, the inverse of camera_from_fspy) is the generator's
+// camera: eye (1.7, 1.45, 2.5), look (−0.2, 0.45, −1.2), 62° across 640 px (scenes/demo/README.md).
+TEST(Fspy, TheDemosExportIsTheGeneratorsCamera) {
+  const Camera truth = Camera::look_at(Vec3d(1.7, 1.45, 2.5), Vec3d(-0.2, 0.45, -1.2), Vec3d(0, 1, 0), 62.0, 640, 480);
+  const Camera cam = camera_from_fspy(test::source_dir() + "/scenes/demo/fspy.json", 640, 480);
+  for (const Vec3d& p : {Vec3d(0.95, 0.2, -0.2), Vec3d(-2.5, 2.6, -3.0), Vec3d(2.5, 0.0, -3.0), Vec3d(-1.0, 0.0, 1.0)})
+    EXPECT_LT((cam.project(p) - truth.project(p)).norm(), 1e-6) << p.transpose();
+}
+
 }  // namespace
 }  // namespace insitu

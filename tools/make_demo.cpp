@@ -316,6 +316,38 @@ void write_scene(const fs::path& out, const Vec3f& shot_origin) {
       {"render", {{"integrator", "path"}, {"spp", 144}}},
   };
   write_text(out / "scene.json", scene.dump(2) + "\n");
+  // The same scene with the camera from fspy.json instead of the clicked points.
+  scene["camera"] = {{"fspy", "fspy.json"}};
+  scene["output"] = {{"image", "out/fspy.png"}, {"layers", "out/fspy.layers.exr"}};
+  write_text(out / "scene_fspy.json", scene.dump(2) + "\n");
+}
+
+// The demo camera as fSpy exports it (calib/fspy.h, read there; this is its inverse): the longer
+// side spans [−1, 1], f_rel = fx / (L/2), the camera-to-world matrix in fSpy's Z-up world,
+// p_fspy = (x, −z, y) of insitu's (x, y, z), the camera looking down −z with +y up.
+void write_fspy(const fs::path& out, const Camera& cam) {
+  const double half_long = 0.5 * std::max(cam.width, cam.height), f_rel = cam.fx / half_long;
+  Mat3d B;
+  B << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+  Mat4d M = Mat4d::Identity();
+  M.topLeftCorner<3, 3>() = B * cam.R_cam_from_world.transpose() * Vec3d(1, -1, -1).asDiagonal();
+  M.topRightCorner<3, 1>() = B * cam.eye_world();
+  auto rows = [](const Mat4d& m) {
+    nlohmann::ordered_json r = nlohmann::ordered_json::array();
+    auto v = [](double x) { return x == 0 ? 0.0 : x; };  // no "-0.0" in the file
+    for (int i = 0; i < 4; ++i) r.push_back({v(m(i, 0)), v(m(i, 1)), v(m(i, 2)), v(m(i, 3))});
+    return r;
+  };
+  const nlohmann::ordered_json fspy = {
+      {"principalPoint", {{"x", (cam.cx - 0.5 * cam.width) / half_long + 0.0}, {"y", (0.5 * cam.height - cam.cy) / half_long + 0.0}}},
+      {"viewTransform", {{"rows", rows(M.inverse())}}},
+      {"cameraTransform", {{"rows", rows(M)}}},
+      {"horizontalFieldOfView", 2 * std::atan(1 / f_rel)},
+      {"verticalFieldOfView", 2 * std::atan(0.5 * cam.height / cam.fy)},
+      {"relativeFocalLength", f_rel},
+      {"imageWidth", cam.width},
+      {"imageHeight", cam.height}};
+  write_text(out / "fspy.json", fspy.dump(2) + "\n");
 }
 
 }  // namespace
@@ -341,6 +373,7 @@ int main(int argc, char** argv) {
   write_furniture(out);
   write_points(out, cam);
   write_scene(out, shot_origin);
+  write_fspy(out, cam);
   std::printf("demo scene written to %s\n", out.string().c_str());
   return 0;
 }

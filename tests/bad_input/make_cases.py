@@ -315,6 +315,21 @@ def more_cases():
                                ("mirrored", dict(cam_ok, pose={"R": [[1, 0, 0], [0, 1, 0], [0, 0, -1]], "t": [0, 0, 3]}), "not a rotation")]:
         case("camera_file_" + name, ["render", "scene.json"], message, files={"cam.json": json.dumps(cam)},
              scene=scene_with(camera={"file": "cam.json"}))
+    fspy_ok = {"principalPoint": {"x": 0.0, "y": 0.0}, "horizontalFieldOfView": 1.0, "imageWidth": 48, "imageHeight": 32,
+               "cameraTransform": {"rows": [[1, 0, 0, 0.5], [0, 0, -1, -2.5], [0, 1, 0, 1.0], [0, 0, 0, 1]]}}
+    for name, export, message in [
+            ("other_aspect", dict(fspy_ok, imageWidth=640, imageHeight=640), r"room.json:\$\.imageWidth: .*not the same aspect ratio"),
+            ("not_a_rotation", dict(fspy_ok, cameraTransform={"rows": [[2, 0, 0, 0], [0, 0, -1, 0], [0, 1, 0, 0], [0, 0, 0, 1]]}),
+             r"room.json:\$\.cameraTransform\.rows: not a rotation"),
+            ("no_transform", {k: v for k, v in fspy_ok.items() if k != "cameraTransform"}, r"room.json:\$: .*cameraTransform"),
+            ("fov_zero", dict(fspy_ok, horizontalFieldOfView=0), r"room.json:\$\.horizontalFieldOfView"),
+            ("not_json", "fSpy project", r"room.json")]:
+        case("fspy_" + name, ["render", "scene.json"], message, files={"room.json": export if isinstance(export, str) else json.dumps(export)},
+             scene=scene_with(camera={"fspy": "room.json"}))
+    case("export_blender_not_py", ["export-blender", "scene.json", "-o", "scene.txt"], r"-o scene.txt: .*\.py")
+    env = open(os.path.join(HERE, "_base", "env.exr"), "rb").read()
+    case("export_blender_world_is_the_environment", ["export-blender", "scene.json", "-o", "s.py"], r"s.world.exr.*is the environment",
+         ["s.world.exr"], files={"s.world.exr": env}, scene=scene_with(environment="s.world.exr"))
 
 
 if __name__ == "__main__":
