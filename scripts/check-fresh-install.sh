@@ -2,7 +2,8 @@
 # The fresh-machine check (issue 9): builds a minimal Debian 12 root with mmdebstrap, copies this
 # work tree into it, and runs there, as root, the README's two commands exactly as written (the
 # first two ```sh blocks of README.md "Two commands"): install, build and render the demo; then
-# the test suite. A package that install-deps.sh forgets fails here instead of on a user's machine.
+# the test suite, with a copy of ../shared beside the tree. A package that install-deps.sh forgets
+# fails here instead of on a user's machine.
 #
 #   bash scripts/check-fresh-install.sh [--keep]
 #
@@ -53,6 +54,9 @@ mount -t proc proc "$root/proc"
 mkdir -p "$root/root/insitu"
 git -C "$repo" ls-files -z --cached --others --exclude-standard |
   (cd "$repo" && tar --null -T - -cf -) | tar -xf - -C "$root/root/insitu"
+# ../shared beside it, as on the machine (a copy: a few MB), so that the tests that need the shared
+# HDRIs and meshes run here too instead of skipping.
+if [ -d "$repo/../shared" ]; then cp -a "$repo/../shared" "$root/root/shared"; fi
 
 in_root() {
   chroot "$root" /usr/bin/env -i HOME=/root PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
