@@ -1,11 +1,19 @@
 // insitu render SCENE [-o OUT] [--layers PATH|none] [--spp N] [--integrator NAME] [--irradiance MODE]
-//                     [--seed N] [--tonemap OP] [--key K]
+//                     [--seed N] [--tonemap OP] [--key K] [--resume]
+//
+// SIGINT or SIGTERM finishes the pass under way, writes the partial image, layers and report (its
+// spp the samples taken), and a checkpoint beside the image (OUT.checkpoint, render/checkpoint.h),
+// and exits 130; --resume continues from the checkpoint to the image an uninterrupted render gives,
+// bit for bit. A second signal ends the process at once (no half-written file, the checkpoint as
+// it was).
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
 #include <memory>
 
 #include "core/output_paths.h"
+#include "core/temp_files.h"
+#include "render/checkpoint.h"
 #include "commands.h"
 #include "integrators/registry.h"
 #include "scene/pipeline.h"
@@ -24,9 +32,25 @@ struct RenderArgs {
   double key = 0;
   int spp = 0;
   long seed = -1;
+  bool resume = false;
 };
 
-int run_render(const RenderArgs& a) {
+// The render, stoppable by SIGINT/SIGTERM and resumable from `state`.
+RenderResult render_with_progress(const LoadedScene& scene, RenderState& state) {
+  Progress progress("render");
+  std::string detail;
+  arm_graceful_stop(true);
+  RenderResult result = render_scene(scene, [&](const RenderProgress& p) {
+    const bool pass_end = p.noise >= 0;
+    if (pass_end) detail = fmt::format("{}/{} spp, noise {:.1f}%", p.spp_done, scene.spec.render.spp, 100 * p.noise);
+    progress.update(p.fraction, detail, pass_end);
+  }, {&graceful_stop_flag(), &state});
+  arm_graceful_stop(false);
+  return result;
+}
+
+// The scene file with the command line's overrides.
+SceneSpec render_spec(const RenderArgs& a) {
   SceneSpec spec = parse_scene_file(a.scene);
   if (!a.output.empty()) {
     const std::string ext = lower_extension(a.output);
@@ -61,19 +85,27 @@ int run_render(const RenderArgs& a) {
     spec.output.tonemap.key = a.key;
     spec.given.insert("output.tonemap.key");
   }
+  return spec;
+}
+
+int run_render(const RenderArgs& a) {
+  const SceneSpec spec = render_spec(a);
   LoadedScene scene = load_scene(spec);
   print_warnings(scene.warnings);
-  RenderResult result;
-  {
-    Progress progress("render");
-    std::string detail;
-    result = render_scene(scene, [&](const RenderProgress& p) {
-      const bool pass_end = p.noise >= 0;
-      if (pass_end) detail = fmt::format("{}/{} spp, noise {:.1f}%", p.spp_done, spec.render.spp, 100 * p.noise);
-      progress.update(p.fraction, detail, pass_end);
-    });
-  }
+  const std::string checkpoint = checkpoint_path(spec.output.image);
+  const std::uint64_t fingerprint = render_fingerprint(scene);
+  RenderState state;
+  if (a.resume) state = read_checkpoint(checkpoint, fingerprint);
+  const RenderResult result = render_with_progress(scene, state);
   write_outputs(scene, result);
+  if (result.layers.interrupted) {
+    write_checkpoint(checkpoint, state, fingerprint);
+    std::fprintf(stderr, "insitu: interrupted after %d of %d spp: wrote the partial image and %s (continue with --resume)\n",
+                 result.layers.spp_done, spec.render.spp, checkpoint.c_str());
+    return 130;
+  }
+  std::error_code ignored;
+  std::filesystem::remove(checkpoint, ignored);  // used up: the image is complete
   std::printf("%s\n", spec.output.image.c_str());
   if (!spec.output.layers.empty()) std::printf("%s\n", spec.output.layers.c_str());
   std::fprintf(stderr, "insitu: %s, %dx%d, %d spp, integrator %s: load %.2f s, prepare %.2f s, render %.2f s\n",
@@ -110,6 +142,7 @@ Command add_render_command(CLI::App& app) {
   cmd->add_option("--tonemap", a->tonemap,
                   "for PNG/JPEG: " + quoted_choices(names_of(kToneMaps)) + " [default: the scene's, else photo]")
       ->check(CLI::IsMember(names_of(kToneMaps)));
+  cmd->add_flag("--resume", a->resume, "continue an interrupted render from its checkpoint (OUT.checkpoint)");
   cmd->add_option("--key", a->key, "tone-mapping key [default: adaptive_log 1, reinhard 0.18, linear 1]")->check(CLI::PositiveNumber);
   return [cmd, a] { return cmd->parsed() ? run_render(*a) : -1; };
 }

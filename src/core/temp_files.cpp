@@ -15,8 +15,14 @@ char g_paths[kSlots][kPathMax];
 std::atomic<bool> g_claimed[kSlots];  // owned by a guard (its path may be half written)
 std::atomic<bool> g_used[kSlots];     // published: the handler may read the path
 std::atomic<bool> g_installed{false};
+std::atomic<bool> g_graceful{false}, g_stop{false};  // lock-free: safe to touch in a handler
+static_assert(std::atomic<bool>::is_always_lock_free);
 
 extern "C" void remove_temps_and_die(int sig) {
+  if ((sig == SIGINT || sig == SIGTERM) && g_graceful.exchange(false)) {
+    g_stop.store(true);
+    return;
+  }
   for (int i = 0; i < kSlots; ++i)
     if (g_used[i].load(std::memory_order_acquire)) ::unlink(g_paths[i]);
   std::signal(sig, SIG_DFL);  // then end as the signal would have (exit status 128 + sig)
@@ -30,8 +36,17 @@ void install_interrupt_cleanup() {
   struct sigaction sa {};
   sa.sa_handler = remove_temps_and_die;
   sigemptyset(&sa.sa_mask);
-  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaction(sig, &sa, nullptr);
+  // A signal ignored at start stays ignored: nohup's SIGHUP, SIGINT of a shell's background job.
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction old {};
+    if (sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+    sigaction(sig, &sa, nullptr);
+  }
 }
+
+void arm_graceful_stop(bool armed) { g_graceful.store(armed); }
+
+const std::atomic<bool>& graceful_stop_flag() { return g_stop; }
 
 TempFileGuard::TempFileGuard(const std::string& path) {
   if (path.size() >= kPathMax) return;  // not protected; still removed on ordinary failures

@@ -4,12 +4,20 @@
 // behind. A fixed table of slots, so that the handler only reads plain memory and calls unlink(2),
 // which is async-signal-safe.
 #pragma once
+#include <atomic>
 #include <string>
 
 namespace insitu {
 
 // Installs the handlers (once; later calls do nothing). The CLI calls it at start.
 void install_interrupt_cleanup();
+
+// A graceful stop (issue 15): while armed, the first SIGINT or SIGTERM only sets the flag that
+// graceful_stop_flag() returns (the render finishes its pass, writes its partial image and a
+// checkpoint, and exits 130); the stop disarms itself, so a second signal ends the process as
+// before. Disarming leaves a flag that was set as it is.
+void arm_graceful_stop(bool armed);
+const std::atomic<bool>& graceful_stop_flag();
 
 // A temporary file for as long as the object lives: registered on construction, unregistered on
 // destruction (after the rename, or after a failed write has removed it).

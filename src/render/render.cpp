@@ -6,22 +6,11 @@
 #include <atomic>
 #include <chrono>
 #include <mutex>
+#include <stdexcept>
 
 namespace insitu {
 
 namespace {
-
-// What a pixel has gathered so far. Samples are added in index order, pass after pass, so the
-// sums are the same whatever the passes and the threads.
-struct PixelSums {
-  Rgb objects = Rgb::Zero(), with = Rgb::Zero(), without = Rgb::Zero(), albedo = Rgb::Zero();
-  Vec3f normal = Vec3f::Zero();
-  double coverage = 0, depth = 0, y = 0, y2 = 0;
-  // The catcher's luminance with (w) and without (n) the objects: sums of w, n, w², n², w·n over
-  // all samples, and how many samples saw the catcher, for the composite's choice of estimator.
-  double w = 0, n = 0, w2 = 0, n2 = 0, wn = 0;
-  int met = 0, catcher = 0;
-};
 
 // Variance of the ratio of means R = w̄/n̄ by the delta method, with the correlation of w and n
 // (Cochran 1977, §6.3): Var(R) ≈ Σ(wᵢ − R nᵢ)² / (k (k − 1) n̄²) over k samples.
@@ -141,53 +130,91 @@ RenderLayers layers_from_sums(const std::vector<PixelSums>& sums, int w, int h, 
   return out;
 }
 
+// One pass: samples [s0, s1) of every pixel, tiles in parallel.
+struct PassContext {
+  const Camera& camera;
+  const Integrator& integrator;
+  const RenderSettings& settings;
+  const ProgressFn& progress;
+  int spp, grid;
+  Vec3f axis_world;
+  std::vector<PixelSums>& sums;
+  std::atomic<std::size_t>& nonfinite;
+  std::atomic<long>& area_done;
+  std::mutex& progress_mutex;
+  double total_work;
+};
+
+void run_pass(const PassContext& c, int s0, int s1) {
+  constexpr int kTile = 16;
+  const int w = c.camera.width, h = c.camera.height;
+  tbb::parallel_for(tbb::blocked_range2d<int>(0, h, kTile, 0, w, kTile), [&](const tbb::blocked_range2d<int>& r) {
+    std::size_t local_nonfinite = 0;
+    for (int y = r.rows().begin(); y < r.rows().end(); ++y)
+      for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
+        const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(w) + std::uint64_t(x);
+        for (int s = s0; s < s1; ++s) {
+          Sampler sampler(c.settings.seed, pixel, std::uint64_t(s));
+          const Ray ray = jittered_ray(c.camera, x, y, pixel, s, c.spp, c.grid, sampler);
+          if (!accumulate(c.sums[pixel], c.integrator.sample(ray, sampler), ray, c.axis_world)) ++local_nonfinite;
+        }
+      }
+    c.nonfinite += local_nonfinite;
+    if (c.progress) {
+      const long done = c.area_done += long(r.rows().size()) * long(r.cols().size()) * (s1 - s0);
+      std::lock_guard<std::mutex> lock(c.progress_mutex);
+      c.progress({double(done) / c.total_work, s0, -1.0});
+    }
+  });
+}
+
+// The state to start from: a fresh one, or the caller's (checked against the plan).
+void start_state(RenderState& st, int w, int h, int spp) {
+  if (st.passes_done == 0 && st.sums.empty()) {
+    st = RenderState{w, h, spp, 0, 0, 0, std::vector<PixelSums>(std::size_t(w) * h)};
+    return;
+  }
+  if (st.width != w || st.height != h || st.spp != spp || st.sums.size() != std::size_t(w) * h ||
+      st.passes_done < 0 || st.passes_done > render_passes(spp))
+    throw std::invalid_argument("render: the state to resume is of another image size or spp");
+}
+
 }  // namespace
 
 RenderLayers render(const Camera& camera, const Integrator& integrator, const RenderSettings& settings,
-                    const ProgressFn& progress) {
+                    const ProgressFn& progress, RenderState* state) {
   const auto start = std::chrono::steady_clock::now();
   const int w = camera.width, h = camera.height, spp = std::max(1, settings.spp);
-  const Vec3f axis_world = camera.R_cam_from_world.row(2).transpose().cast<float>();  // the optical axis
   int grid = int(std::lround(std::sqrt(double(spp))));
   if (grid * grid != spp) grid = 0;  // not a perfect square: plain jitter
-  std::vector<PixelSums> sums(std::size_t(w) * h);
-  std::atomic<std::size_t> nonfinite{0};
+  RenderState local;
+  RenderState& st = state ? *state : local;
+  start_state(st, w, h, spp);
+  std::atomic<std::size_t> nonfinite{st.nonfinite};
   std::mutex progress_mutex;
-  constexpr int kTile = 16;
   // Passes of samples over the whole image, so that progress can report samples per pixel done
   // and the noise reached: 8 passes (fewer when spp is smaller), area-weighted progress within.
-  const int passes = std::min(spp, 8);
-  if (progress) progress({0.0, 0, -1.0});  // the loop starts now (integrators may have precomputed before)
-  std::atomic<long> area_done{0};
-  const double total_work = double(w) * h * spp;
-
-  for (int pass = 0; pass < passes; ++pass) {
-    const int s0 = int(std::int64_t(spp) * pass / passes), s1 = int(std::int64_t(spp) * (pass + 1) / passes);
-    tbb::parallel_for(tbb::blocked_range2d<int>(0, h, kTile, 0, w, kTile), [&](const tbb::blocked_range2d<int>& r) {
-      std::size_t local_nonfinite = 0;
-      for (int y = r.rows().begin(); y < r.rows().end(); ++y)
-        for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
-          const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(w) + std::uint64_t(x);
-          for (int s = s0; s < s1; ++s) {
-            Sampler sampler(settings.seed, pixel, std::uint64_t(s));
-            const Ray ray = jittered_ray(camera, x, y, pixel, s, spp, grid, sampler);
-            if (!accumulate(sums[pixel], integrator.sample(ray, sampler), ray, axis_world)) ++local_nonfinite;
-          }
-        }
-      nonfinite += local_nonfinite;
-      if (progress) {
-        const long done = area_done += long(r.rows().size()) * long(r.cols().size()) * (s1 - s0);
-        std::lock_guard<std::mutex> lock(progress_mutex);
-        progress({double(done) / total_work, s0, -1.0});
-      }
-    });
+  const int passes = render_passes(spp);
+  std::atomic<long> area_done{long(w) * h * pass_start(spp, st.passes_done)};
+  const PassContext c{camera, integrator, settings, progress, spp, grid,
+                      camera.R_cam_from_world.row(2).transpose().cast<float>(),  // the optical axis
+                      st.sums, nonfinite, area_done, progress_mutex, double(w) * h * spp};
+  if (progress) progress({double(pass_start(spp, st.passes_done)) / spp, pass_start(spp, st.passes_done), -1.0});
+  for (; st.passes_done < passes; ++st.passes_done) {
+    if (settings.stop && settings.stop->load() && st.passes_done > 0) break;  // at least one pass: an image
+    const int s0 = pass_start(spp, st.passes_done), s1 = pass_start(spp, st.passes_done + 1);
+    run_pass(c, s0, s1);
+    st.spp_done = s1;
     if (progress) {
       std::lock_guard<std::mutex> lock(progress_mutex);
-      progress({double(s1) / spp, s1, mean_relative_noise(sums, s1)});
+      progress({double(s1) / spp, s1, mean_relative_noise(st.sums, s1)});
     }
   }
-  RenderLayers out = layers_from_sums(sums, w, h, spp);
-  out.nonfinite_samples = nonfinite;
+  st.nonfinite = nonfinite;
+  RenderLayers out = layers_from_sums(st.sums, w, h, st.spp_done);
+  out.spp_done = st.spp_done;
+  out.interrupted = st.spp_done < spp;
+  out.nonfinite_samples = st.nonfinite;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

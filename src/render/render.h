@@ -4,12 +4,14 @@
 // TBB; every sample's random numbers come from the counter-based hash and each pixel adds its
 // samples in index order, so the image does not depend on the number of threads or passes.
 #pragma once
+#include <atomic>
 #include <cstdint>
 #include <functional>
 
 #include "core/camera.h"
 #include "core/image.h"
 #include "render/integrator.h"
+#include "render/render_state.h"
 
 namespace insitu {
 
@@ -19,9 +21,12 @@ constexpr float kNoHitDepth = 1e10f;
 
 // What the render loop itself reads: samples per pixel and the seed of the counter-based random
 // numbers (the integrator reads its own parameters: integrators/registry.h).
+// `stop`, when set (a signal handler, a host's cancel), ends the render after the pass under way:
+// the layers are then the means over the samples taken (RenderLayers::spp_done).
 struct RenderSettings {
   int spp = 16;
   std::uint64_t seed = 1;
+  const std::atomic<bool>* stop = nullptr;
 };
 
 struct RenderLayers {
@@ -40,6 +45,8 @@ struct RenderLayers {
   // of the ratio of means W̄/N̄ and of the difference W̄ − N̄ (luminance), and the number of samples
   // that saw the catcher.
   Image ratio_variance, difference_variance, catcher_samples;
+  int spp_done = 0;           // samples per pixel taken (spp unless stopped)
+  bool interrupted = false;   // stopped before spp
   double mean_relative_noise = 0;  // mean over changed pixels of √variance / value
   std::size_t nonfinite_samples = 0;  // zeroed and counted, never propagated
   double seconds = 0;
@@ -55,7 +62,9 @@ struct RenderProgress {
 };
 using ProgressFn = std::function<void(const RenderProgress&)>;
 
+// With `state`, the render continues from it (a resumed checkpoint: its size and spp must be the
+// camera's and the settings', else std::invalid_argument) and leaves in it where it ended.
 RenderLayers render(const Camera& camera, const Integrator& integrator, const RenderSettings& settings,
-                    const ProgressFn& progress = {});
+                    const ProgressFn& progress = {}, RenderState* state = nullptr);
 
 }  // namespace insitu

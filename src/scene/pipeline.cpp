@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "output/composite.h"
+#include "render/checkpoint.h"
 #include "output/tonemap.h"
 #include "core/output_paths.h"
 #include "core/text_file.h"
@@ -91,7 +92,8 @@ std::vector<NamedPath> scene_output_files(const SceneSpec& spec) {
   if (spec.output.image.empty()) return {{spec.output.layers, "the layers"}};
   return {{spec.output.image, "the output image"},
           {spec.output.layers, "the layers"},
-          {report_path(spec.output.image), "the report"}};
+          {report_path(spec.output.image), "the report"},
+          {checkpoint_path(spec.output.image), "the checkpoint"}};
 }
 
 namespace {
@@ -210,7 +212,7 @@ LoadedScene load_scene(const SceneSpec& spec) {
   return s;
 }
 
-RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress) {
+RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress, const RenderControl& control) {
   RenderInputs inputs;
   inputs.objects = scene.objects.get();
   inputs.environment = &scene.environment;
@@ -243,7 +245,8 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress) 
   auto integrator = scene.integrator.entry->create(inputs, scene.integrator.params);
   RenderResult r;
   r.prepare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  r.layers = render(scene.camera, *integrator, {scene.spec.render.spp, scene.spec.render.seed}, progress);
+  r.layers = render(scene.camera, *integrator, {scene.spec.render.spp, scene.spec.render.seed, control.stop}, progress,
+                    control.state);
   r.composite_linear = composite(scene.photo_linear, r.layers, scene.spec.composite);
   r.composite_encoded = encode_composite(r.composite_linear, touched_mask(r.layers), scene.photo,
                                          scene.environment_info.response ? &*scene.environment_info.response : nullptr);
@@ -291,7 +294,9 @@ nlohmann::json render_report(const LoadedScene& s, const RenderResult& r) {
        {{"integrator", s.spec.render.integrator},
         {"parameters", s.integrator.params},
         {"irradiance", s.integrator.params.value("irradiance", json(nullptr))},
-        {"spp", s.spec.render.spp},
+        {"spp", r.layers.spp_done},  // the samples taken: fewer than planned when interrupted
+        {"spp_planned", s.spec.render.spp},
+        {"interrupted", r.layers.interrupted},
         {"max_depth", s.integrator.params.value("max_depth", json(nullptr))},
         {"seed", s.spec.render.seed},
         {"noise_relative", r.layers.mean_relative_noise},

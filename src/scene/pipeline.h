@@ -54,7 +54,19 @@ struct RenderResult {
   Image composite_encoded;  // what goes into a PNG/JPEG
 };
 
-RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress = {});
+// How a render may be stopped and resumed (issue 15): `stop` ends it after the pass under way;
+// `state` starts it from a checkpoint (render/checkpoint.h) and receives where it ended.
+struct RenderControl {
+  const std::atomic<bool>* stop = nullptr;
+  RenderState* state = nullptr;
+};
+RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress = {}, const RenderControl& control = {});
+
+// What a checkpoint must match to be resumed: a 64-bit FNV-1a hash of everything the render's
+// sums depend on — the camera, spp, seed, the integrator and its parameters, the photo and the
+// environment as loaded, the local scene, the room box and the meshes. Not the outputs' names, the
+// tone map or the composite's form, which act after the sums.
+std::uint64_t render_fingerprint(const LoadedScene& scene);
 
 // Writes the composite image, the layered EXR and the JSON report, each atomically.
 void write_outputs(const LoadedScene& scene, const RenderResult& result);

@@ -1,0 +1,73 @@
+// render_fingerprint (scene/pipeline.h): what a checkpoint must match to be resumed.
+#include <cstring>
+#include <string>
+
+#include "scene/pipeline.h"
+
+namespace insitu {
+namespace {
+
+// FNV-1a, 64 bits (Fowler, Noll, Vo): h = (h XOR byte) × 1099511628211 from 14695981039346656037.
+class Fnv1a {
+ public:
+  void bytes(const void* data, std::size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) h_ = (h_ ^ p[i]) * 1099511628211ull;
+  }
+  template <class T>
+  void value(const T& v) { bytes(&v, sizeof(T)); }
+  void text(const std::string& s) { value(s.size()), bytes(s.data(), s.size()); }
+  template <class T>
+  void array(const std::vector<T>& v) { value(v.size()), bytes(v.data(), v.size() * sizeof(T)); }
+  std::uint64_t digest() const { return h_; }
+
+ private:
+  std::uint64_t h_ = 14695981039346656037ull;
+};
+
+void add_camera(Fnv1a& h, const Camera& c) {
+  h.value(c.width), h.value(c.height), h.value(c.fx), h.value(c.fy), h.value(c.cx), h.value(c.cy);
+  h.bytes(c.R_cam_from_world.data(), 9 * sizeof(double)), h.bytes(c.t_cam_from_world.data(), 3 * sizeof(double));
+}
+
+void add_meshes(Fnv1a& h, const EmbreeScene* scene) {
+  if (!scene) return;
+  for (const Mesh& m : scene->meshes()) {
+    h.array(m.positions), h.array(m.normals), h.array(m.uvs), h.array(m.triangles);
+    for (const Material& mat : m.materials) {
+      h.bytes(mat.kd.data(), sizeof(Rgb)), h.bytes(mat.ks.data(), sizeof(Rgb)), h.value(mat.ns);
+      if (mat.map_kd) h.array(mat.map_kd->data);
+    }
+  }
+}
+
+void add_local_scene(Fnv1a& h, const LoadedScene& s) {
+  for (const PlaneSpec& p : s.spec.local_scene) {
+    h.bytes(p.point.data(), 3 * sizeof(double)), h.bytes(p.normal.data(), 3 * sizeof(double));
+    h.value(p.albedo_from_photo), h.bytes(p.albedo.data(), sizeof(Rgb)), h.value(bool(p.mesh));
+  }
+  if (s.room) {
+    h.bytes(s.room->min.data(), 3 * sizeof(float)), h.bytes(s.room->max.data(), 3 * sizeof(float));
+    h.bytes(s.room->capture.data(), 3 * sizeof(float));
+    for (const RoomOpening& o : s.room->openings)
+      h.value(o.axis), h.bytes(o.min.data(), 3 * sizeof(float)), h.bytes(o.max.data(), 3 * sizeof(float));
+  }
+}
+
+}  // namespace
+
+std::uint64_t render_fingerprint(const LoadedScene& s) {
+  Fnv1a h;
+  h.text("insitu render state 1");
+  add_camera(h, s.camera);
+  h.value(s.spec.render.spp), h.value(s.spec.render.seed);
+  h.text(s.spec.render.integrator), h.text(s.integrator.params.dump());
+  h.array(s.photo_linear.data);
+  for (int f = 0; f < 6; ++f) h.array(s.environment.face_image(f).data);
+  add_local_scene(h, s);
+  add_meshes(h, s.objects.get());
+  add_meshes(h, s.catcher_meshes.get());
+  return h.digest();
+}
+
+}  // namespace insitu

@@ -1,0 +1,215 @@
+// Renders that survive interruption (issue 15): a stopped render resumes from its state or its
+// checkpoint to the image an uninterrupted render gives, bit for bit; a checkpoint of other
+// settings is refused; SIGINT/SIGTERM during `insitu render` write the partial image and a
+// checkpoint and exit 130, SIGKILL leaves the previous checkpoint valid.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <chrono>
+#include <random>
+#include <thread>
+
+#include "cli_util.h"
+#include "render/checkpoint.h"
+#include "scene/pipeline.h"
+#include "scene_fixture.h"
+
+extern char** environ;
+
+namespace insitu {
+namespace {
+
+using test::SceneFixture;
+
+LoadedScene fixture_scene(SceneFixture& fx, int spp) {
+  auto j = fx.scene;
+  j["render"] = {{"integrator", "path"}, {"spp", spp}};
+  j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
+  return load_scene(parse_scene_file(fx.write(j)));
+}
+
+void expect_same_layers(const RenderLayers& a, const RenderLayers& b) {
+  EXPECT_EQ(a.spp_done, b.spp_done);
+  for (const auto& [x, y] : {std::pair{&a.objects, &b.objects}, {&a.alpha, &b.alpha}, {&a.with_objects, &b.with_objects},
+                             {&a.without_objects, &b.without_objects}, {&a.variance, &b.variance}, {&a.depth, &b.depth},
+                             {&a.ratio_variance, &b.ratio_variance}})
+    EXPECT_EQ(x->data, y->data);
+  EXPECT_EQ(a.mean_relative_noise, b.mean_relative_noise);
+}
+
+bool same_sums(const PixelSums& a, const PixelSums& b) {
+  return (a.objects == b.objects).all() && (a.with == b.with).all() && (a.without == b.without).all() &&
+         (a.albedo == b.albedo).all() && a.normal == b.normal && a.coverage == b.coverage && a.depth == b.depth &&
+         a.y == b.y && a.y2 == b.y2 && a.w == b.w && a.n == b.n && a.w2 == b.w2 && a.n2 == b.n2 && a.wn == b.wn &&
+         a.met == b.met && a.catcher == b.catcher;
+}
+
+// The pixels of every channel of an EXR (the files themselves differ: OpenImageIO stamps the time).
+std::vector<float> exr_pixels(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return {};
+  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<float> v(std::size_t(spec.width) * spec.height * spec.nchannels);
+  in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, v.data());
+  v.push_back(float(spec.nchannels));
+  return v;
+}
+
+// Stopped after pass k (a flag set from the progress callback), then continued from the state:
+// the same layers as a render that was never stopped; the partial layers are the means over the
+// samples taken.
+TEST(Resume, StoppedAndContinuedIsBitIdentical) {
+  SceneFixture fx;
+  const LoadedScene s = fixture_scene(fx, 24);
+  const RenderResult whole = render_scene(s);
+  EXPECT_FALSE(whole.layers.interrupted);
+  for (int stop_after : {3, 9, 21}) {  // pass ends at 3, 6, …, 24 samples
+    std::atomic<bool> stop{false};
+    RenderState state;
+    const RenderResult part = render_scene(s, [&](const RenderProgress& p) {
+      if (p.noise >= 0 && p.spp_done >= stop_after) stop = true;
+    }, {&stop, &state});
+    EXPECT_TRUE(part.layers.interrupted);
+    EXPECT_EQ(part.layers.spp_done, stop_after);
+    EXPECT_EQ(*part.layers.samples.at(0, 0), float(stop_after));
+    const RenderResult rest = render_scene(s, {}, {nullptr, &state});
+    expect_same_layers(rest.layers, whole.layers);
+    EXPECT_EQ(rest.composite_linear.data, whole.composite_linear.data);
+  }
+}
+
+// The checkpoint file: read back as written; refused for another fingerprint, when truncated, and
+// when it is not a checkpoint.
+TEST(Resume, CheckpointRoundTripAndRefusals) {
+  SceneFixture fx;
+  const LoadedScene s = fixture_scene(fx, 8);
+  std::atomic<bool> stop{true};
+  RenderState state;
+  render_scene(s, {}, {&stop, &state});
+  const std::string path = fx.dir.file("c.checkpoint");
+  write_checkpoint(path, state, 42);
+  const RenderState back = read_checkpoint(path, 42);
+  EXPECT_EQ(back.passes_done, state.passes_done);
+  EXPECT_EQ(back.spp_done, 1);
+  ASSERT_EQ(back.sums.size(), state.sums.size());
+  for (std::size_t i = 0; i < state.sums.size(); ++i) ASSERT_TRUE(same_sums(back.sums[i], state.sums[i])) << "pixel " << i;
+  EXPECT_THROW(read_checkpoint(path, 43), InputError);
+  const std::string bytes = test::slurp(path);
+  fx.dir.write("short.checkpoint", bytes.substr(0, bytes.size() - 1));
+  EXPECT_THROW(read_checkpoint(fx.dir.file("short.checkpoint"), 42), InputError);
+  fx.dir.write("text.checkpoint", "INSITUCK");
+  EXPECT_THROW(read_checkpoint(fx.dir.file("text.checkpoint"), 42), InputError);
+  EXPECT_THROW(read_checkpoint(fx.dir.file("none.checkpoint"), 42), InputError);
+}
+
+// The fingerprint follows what the sums depend on, and only that.
+TEST(Resume, FingerprintFollowsTheSettingsAndInputs) {
+  SceneFixture fx;
+  const std::uint64_t a = render_fingerprint(fixture_scene(fx, 8));
+  EXPECT_EQ(a, render_fingerprint(fixture_scene(fx, 8)));
+  EXPECT_NE(a, render_fingerprint(fixture_scene(fx, 9)));
+  SceneSpec spec = fixture_scene(fx, 8).spec;
+  spec.render.seed = 2;
+  EXPECT_NE(a, render_fingerprint(load_scene(spec)));
+  spec.render.seed = 1;
+  spec.output.image = fx.dir.file("elsewhere.png");
+  EXPECT_EQ(a, render_fingerprint(load_scene(spec)));
+  Image photo(fx.width, fx.height, 3, 0.5f);
+  write_image(fx.dir.file("photo.png"), photo);
+  EXPECT_NE(a, render_fingerprint(fixture_scene(fx, 8)));
+}
+
+// `insitu render ARGS` in the background, its output to files; returns its pid.
+pid_t spawn_insitu(const test::TempDir& dir, const std::string& args) {
+  const std::string cmd = test::child_environment() + "exec " + INSITU_BINARY + " " + args + " < /dev/null > " +
+                          dir.file("bg.out") + " 2> " + dir.file("bg.err");
+  const char* argv[] = {"/bin/sh", "-c", cmd.c_str(), nullptr};
+  pid_t pid = 0;
+  EXPECT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
+  return pid;
+}
+
+// Waits for the process: its exit code, or 1000 + the signal that ended it.
+int wait_for(pid_t pid) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 1000 + WTERMSIG(status);
+}
+
+double seconds_of(const std::string& report, const char* stage) {
+  return nlohmann::json::parse(test::slurp(report))["seconds"][stage].get<double>();
+}
+
+// Interrupted by SIGINT or SIGTERM at random moments of the sample loop, resumed (and interrupted
+// again) until done: the image and the layers are those of an uninterrupted render, bit for bit.
+// A SIGKILL on the way leaves the last checkpoint valid. A signal that lands while the scene
+// loads ends the process before anything is written; the loop simply starts again.
+TEST(Resume, KilledAtRandomMomentsResumesToTheSameImage) {
+  SceneFixture fx;
+  auto j = fx.scene;
+  // About 2 s of sample loop in the release build (a few times that under the sanitizers, whose
+  // share of the load time grows alike): room for a signal to land in it.
+  j["render"] = {{"integrator", "path"}, {"spp", test::kUnderAsan ? 512 : 4096}};
+  j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
+  const std::string scene = fx.write(j);
+  const std::string ref_args = "render " + scene + " -o " + fx.dir.file("ref.exr");
+  ASSERT_EQ(test::run_insitu(fx.dir, ref_args).exit_code, 0);
+  const double t_load = seconds_of(fx.dir.file("ref.exr.report.json"), "load");
+  const double t_render = seconds_of(fx.dir.file("ref.exr.report.json"), "render");
+  std::mt19937 rng(7);
+  int interrupted = 0;
+  for (int trial = 0; trial < 3; ++trial) {
+    const std::string out = fx.dir.file("run" + std::to_string(trial) + ".exr");
+    std::string resume;
+    for (int attempt = 0; attempt < 12; ++attempt) {
+      const pid_t pid = spawn_insitu(fx.dir, "render " + scene + " -o " + out + resume);
+      const double delay = 1.5 * t_load + std::uniform_real_distribution<double>(0.05, 0.9)(rng) * t_render;
+      std::this_thread::sleep_for(std::chrono::duration<double>(delay));
+      const int sig = attempt == 2 ? SIGKILL : (attempt % 2 ? SIGTERM : SIGINT);
+      kill(pid, sig);
+      const int code = wait_for(pid);
+      if (code == 0) break;
+      if (code == 130) {
+        ++interrupted, resume = " --resume";
+        EXPECT_TRUE(std::filesystem::exists(out + ".checkpoint"));
+      } else {
+        EXPECT_EQ(code, 1000 + sig) << test::slurp(fx.dir.file("bg.err"));
+      }
+    }
+    if (!std::filesystem::exists(out) || std::filesystem::exists(out + ".checkpoint")) {  // never finished: finish now
+      ASSERT_EQ(test::run_insitu(fx.dir, "render " + scene + " -o " + out + resume).exit_code, 0);
+    }
+    EXPECT_TRUE(exr_pixels(out) == exr_pixels(fx.dir.file("ref.exr"))) << "trial " << trial;
+    EXPECT_TRUE(exr_pixels(fx.dir.file("run" + std::to_string(trial) + ".layers.exr")) == exr_pixels(fx.dir.file("ref.layers.exr")))
+        << "trial " << trial;
+    EXPECT_FALSE(std::filesystem::exists(out + ".checkpoint")) << "a finished render leaves no checkpoint";
+  }
+  EXPECT_GT(interrupted, 0) << "no signal landed in the sample loop";
+}
+
+// A checkpoint is refused for other settings (one-line error, exit 2), and --resume without one.
+TEST(Resume, CheckpointOfOtherSettingsIsRefused) {
+  SceneFixture fx;
+  auto j = fx.scene;
+  j["render"] = {{"integrator", "path"}, {"spp", 8}};
+  const std::string scene = fx.write(j);
+  const std::string out = fx.dir.file("o.exr");
+  test::expect_one_line_error(test::run_insitu(fx.dir, "render " + scene + " -o " + out + " --resume"), "no checkpoint");
+  // A checkpoint written for spp 8, resumed with spp 9.
+  const LoadedScene s = load_scene(parse_scene_file(scene));
+  std::atomic<bool> stop{true};
+  RenderState state;
+  render_scene(s, {}, {&stop, &state});
+  write_checkpoint(out + ".checkpoint", state, render_fingerprint(s));
+  test::expect_one_line_error(test::run_insitu(fx.dir, "render " + scene + " -o " + out + " --resume --spp 9"),
+                              "another scene, other inputs or other settings");
+  EXPECT_EQ(test::run_insitu(fx.dir, "render " + scene + " -o " + out + " --resume").exit_code, 0);
+}
+
+}  // namespace
+}  // namespace insitu
