@@ -56,7 +56,7 @@ git -C "$repo" ls-files -z --cached --others --exclude-standard |
   (cd "$repo" && tar --null -T - -cf -) | tar -xf - -C "$root/root/insitu"
 # ../shared beside it, as on the machine (a copy: a few MB), so that the tests that need the shared
 # HDRIs and meshes run here too instead of skipping.
-if [ -d "$repo/../shared" ]; then cp -a "$repo/../shared" "$root/root/shared"; fi
+if [ -d "$repo/../shared" ]; then cp -r -L "$repo/../shared" "$root/root/shared"; fi  # -L: a linked ../shared is copied, not linked
 
 in_root() {
   chroot "$root" /usr/bin/env -i HOME=/root PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
