@@ -19,6 +19,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "calib/blender_camera.h"
 #include "core/camera.h"
 #include "core/colour.h"
 #include "core/image.h"
@@ -327,11 +328,7 @@ void write_scene(const fs::path& out, const Vec3f& shot_origin) {
 // p_fspy = (x, −z, y) of insitu's (x, y, z), the camera looking down −z with +y up.
 void write_fspy(const fs::path& out, const Camera& cam) {
   const double half_long = 0.5 * std::max(cam.width, cam.height), f_rel = cam.fx / half_long;
-  Mat3d B;
-  B << 1, 0, 0, 0, 0, -1, 0, 1, 0;
-  Mat4d M = Mat4d::Identity();
-  M.topLeftCorner<3, 3>() = B * cam.R_cam_from_world.transpose() * Vec3d(1, -1, -1).asDiagonal();
-  M.topRightCorner<3, 1>() = B * cam.eye_world();
+  const Mat4d M = blender_camera_to_world(cam);
   auto rows = [](const Mat4d& m) {
     nlohmann::ordered_json r = nlohmann::ordered_json::array();
     auto v = [](double x) { return x == 0 ? 0.0 : x; };  // no "-0.0" in the file

@@ -17,6 +17,12 @@
 
 namespace insitu {
 
+// insitu's Y-up world to Blender's Z-up world: B: (x, y, z) ↦ (x, −z, y). The one place it is written.
+Mat3d blender_from_insitu();
+inline Vec3d to_blender(const Vec3d& p) { return blender_from_insitu() * p; }
+// The camera's matrix_world in Blender (and fSpy's cameraTransform): [B R_cvᵀ diag(1, −1, −1) | B eye].
+Mat4d blender_camera_to_world(const Camera& camera);
+
 std::string blender_camera_script(const Camera& camera, const std::string& photo_path = "");
 // The script's body alone, for a larger script (scene/blender_export.h) that has imported bpy and
 // mathutils.Matrix and bound `scene`: sets the render size and creates the camera as scene.camera.

@@ -5,12 +5,10 @@
 #include <optional>
 #include <string>
 
+#include "calib/blender_camera.h"
 #include "render/mesh.h"
 
 namespace insitu {
-
-// insitu's Y-up world to Blender's Z-up world: (x, y, z) -> (x, −z, y), a proper rotation.
-inline Vec3d to_blender(const Vec3d& p) { return Vec3d(p.x(), -p.z(), p.y()); }
 
 // A Python literal: a string (JSON's escapes are Python's) or an RGB tuple.
 std::string py_string(const std::string& s);
