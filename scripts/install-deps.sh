@@ -6,6 +6,7 @@ packages=(
   libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libopencv-dev libceres-dev
   libtinyobjloader-dev libtbb-dev libeigen3-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev libgtest-dev libbenchmark-dev zlib1g-dev
+  pybind11-dev python3-dev python3-numpy python3-openimageio
 )
 missing=()
 for p in "${packages[@]}"; do

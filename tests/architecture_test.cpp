@@ -27,6 +27,7 @@ const std::map<std::string, std::set<std::string>> kAllowed = {
     {"integrators", {"core", "light", "render", "integrators"}},
     {"output", {"core", "light", "render", "output"}},
     {"scene", {"core", "calib", "light", "render", "integrators", "output", "scene"}},
+    {"api", {"core", "calib", "light", "render", "integrators", "output", "scene", "api"}},
 };
 
 // The quoted includes of a file, as written ("core/math.h").

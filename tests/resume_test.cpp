@@ -46,7 +46,7 @@ bool same_sums(const PixelSums& a, const PixelSums& b) {
   return (a.objects == b.objects).all() && (a.with == b.with).all() && (a.without == b.without).all() &&
          (a.albedo == b.albedo).all() && a.normal == b.normal && a.coverage == b.coverage && a.depth == b.depth &&
          a.y == b.y && a.y2 == b.y2 && a.w == b.w && a.n == b.n && a.w2 == b.w2 && a.n2 == b.n2 && a.wn == b.wn &&
-         a.met == b.met && a.catcher == b.catcher;
+         a.met == b.met && a.catcher == b.catcher && a.samples == b.samples;
 }
 
 // The pixels of every channel of an EXR (the files themselves differ: OpenImageIO stamps the time).
@@ -83,19 +83,58 @@ TEST(Resume, StoppedAndContinuedIsBitIdentical) {
   }
 }
 
+// Stopped between tiles of a pass (the flag raised as the k-th tile of the pass reports): the
+// pass has done whole tiles [0, tiles_done) in order; those pixels hold the pass's samples and the
+// others not (the samples layer says which); continued from the state, or from its checkpoint, to
+// the uninterrupted render's layers.
+TEST(Resume, StoppedBetweenTilesIsBitIdentical) {
+  SceneFixture fx(160, 96);  // 60 tiles: more than any machine's threads have in flight
+  const LoadedScene s = fixture_scene(fx, 16);  // passes of 2 samples
+  const RenderResult whole = render_scene(s);
+  const int tiles = tiles_across(fx.width) * tiles_across(fx.height);
+  ASSERT_GE(tiles, 4) << "the fixture must have several tiles";
+  for (int pass : {0, 5}) {
+    std::atomic<bool> stop{false};
+    int tile_reports = 0;
+    RenderState state;
+    const RenderResult part = render_scene(s, [&](const RenderProgress& p) {
+      if (p.noise < 0 && p.fraction > double(pass) / 8 && ++tile_reports == 2) stop = true;
+    }, {&stop, &state});
+    ASSERT_TRUE(part.layers.interrupted);
+    EXPECT_EQ(state.passes_done, pass);
+    EXPECT_GE(state.tiles_done, 2);
+    EXPECT_LT(state.tiles_done, tiles);
+    EXPECT_EQ(part.layers.spp_done, 2 * pass);
+    const int across = tiles_across(fx.width);
+    for (int y = 0; y < fx.height; ++y)
+      for (int x = 0; x < fx.width; ++x) {
+        const int tile = (y / kTilePixels) * across + x / kTilePixels;
+        ASSERT_EQ(*part.layers.samples.at(x, y), float(2 * pass + (tile < state.tiles_done ? 2 : 0))) << x << "," << y;
+      }
+    const std::string path = fx.dir.file("tiles.checkpoint");
+    write_checkpoint(path, state, 7);
+    RenderState back = read_checkpoint(path, 7);
+    EXPECT_EQ(back.tiles_done, state.tiles_done);
+    const RenderResult rest = render_scene(s, {}, {nullptr, &back});
+    expect_same_layers(rest.layers, whole.layers);
+    EXPECT_EQ(rest.layers.samples.data, whole.layers.samples.data);
+  }
+}
+
 // The checkpoint file: read back as written; refused for another fingerprint, when truncated, and
 // when it is not a checkpoint.
 TEST(Resume, CheckpointRoundTripAndRefusals) {
   SceneFixture fx;
   const LoadedScene s = fixture_scene(fx, 8);
-  std::atomic<bool> stop{true};
+  std::atomic<bool> stop{false};
   RenderState state;
-  render_scene(s, {}, {&stop, &state});
+  render_scene(s, [&](const RenderProgress& p) { stop = stop || p.spp_done >= 1; }, {&stop, &state});
   const std::string path = fx.dir.file("c.checkpoint");
   write_checkpoint(path, state, 42);
   const RenderState back = read_checkpoint(path, 42);
   EXPECT_EQ(back.passes_done, state.passes_done);
-  EXPECT_EQ(back.spp_done, 1);
+  EXPECT_EQ(back.tiles_done, state.tiles_done);
+  EXPECT_EQ(back.spp_done, state.spp_done);
   ASSERT_EQ(back.sums.size(), state.sums.size());
   for (std::size_t i = 0; i < state.sums.size(); ++i) ASSERT_TRUE(same_sums(back.sums[i], state.sums[i])) << "pixel " << i;
   EXPECT_THROW(read_checkpoint(path, 43), InputError);

@@ -12,9 +12,9 @@ namespace insitu::test {
 struct SceneFixture {
   TempDir dir;
   nlohmann::json scene;
-  int width = 48, height = 32;
+  int width, height;
 
-  SceneFixture() {
+  explicit SceneFixture(int photo_width = 48, int photo_height = 32) : width(photo_width), height(photo_height) {
     std::mt19937 rng(5);
     Image photo(width, height, 3);
     for (float& v : photo.data) v = float(rng() % 256) / 255.0f;

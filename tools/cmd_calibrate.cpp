@@ -7,7 +7,7 @@
 
 #include "calib/blender_camera.h"
 #include "calib/calibration.h"
-#include "calib/object_uncertainty.h"
+#include "calib/calibration_summary.h"
 #include "commands.h"
 #include "core/image.h"
 #include "core/output_paths.h"
@@ -51,7 +51,7 @@ int run_calibrate(const CalibrateArgs& a) {
   CalibrationOptions options;
   if (a.model != "auto") options.model = parse_model(a.model);
   if (!a.at.empty()) options.insertion_world = Vec3d(a.at[0], a.at[1], a.at[2]);
-  std::vector<std::pair<std::string, std::vector<NamedPoint>>> boxes;
+  std::vector<NamedBox> boxes;
   for (const auto& b : a.boxes) boxes.emplace_back(b.at(0), parse_box(b));
   const auto points = read_control_points(a.points, *parse_bottom_left_origin(a.origin), height);
   CalibrationResult r;
@@ -60,17 +60,9 @@ int run_calibrate(const CalibrateArgs& a) {
   } catch (const InputError& e) {
     throw e.with_context(a.points);
   }
-  std::printf("%s", calibration_report(r).c_str());
-  nlohmann::json camera_json = calibration_to_json(r);
-  if (!boxes.empty()) {
-    std::vector<ObjectUncertainty> objects;
-    for (const auto& [name, corners] : boxes) objects.push_back(object_uncertainty(r, name, corners));
-    const std::optional<ClickHint> hint = suggest_next_click(r, objects);
-    std::printf("%s", object_uncertainty_report(objects, hint).c_str());
-    const std::string warning = outside_clicks_warning(objects, hint);
-    if (!warning.empty()) std::printf("warning: %s\n", warning.c_str());
-    camera_json["calibration"]["at_objects"] = object_uncertainty_json(objects, hint);
-  }
+  const CalibrationSummary summary = summarize_calibration(r, boxes);
+  std::printf("%s", summary.report.c_str());
+  const nlohmann::json& camera_json = summary.camera_json;
   if (!a.output.empty()) {
     write_text_file(a.output, camera_json.dump(2) + "\n");
     std::printf("wrote %s\n", a.output.c_str());

@@ -75,23 +75,28 @@ json read_json_file(const std::string& path) {
   if (!in) throw InputError(path, exists_quietly(path) ? "cannot read file" : "file not found");
   std::stringstream ss;
   ss << in.rdbuf();
-  const std::string text = ss.str();
+  return parse_json_text(ss.str(), path);
+}
+
+json parse_json_text(const std::string& text, const std::string& name) {
+  if (text.size() > kMaxJsonBytes)
+    throw InputError(name, fmt::format("{} bytes: too large for a scene or points text (at most {} MiB)", text.size(), kMaxJsonBytes >> 20));
   if (const auto nul = text.find('\0'); nul != std::string::npos)
-    throw InputError(fmt::format("{}:{}", path, line_col(text, nul)), "a NUL byte: this is not a JSON text file");
+    throw InputError(fmt::format("{}:{}", name, line_col(text, nul)), "a NUL byte: this is not a JSON text");
   try {
-    return json::parse(text, DuplicateKeyCheck(path));
+    return json::parse(text, DuplicateKeyCheck(name));
   } catch (const json::parse_error& e) {
     // e.byte is the 1-based offset of the failure; turn it into line:col.
     const std::size_t byte = e.byte == 0 ? 0 : e.byte - 1;
     std::string what = e.what();
     // nlohmann's message is "[json.exception.parse_error.101] parse error at line L, column C: ..."
     if (auto p = what.find(": "); p != std::string::npos) what = what.substr(p + 2);
-    throw InputError(fmt::format("{}:{}", path, line_col(text, byte)), "malformed JSON: " + what);
+    throw InputError(fmt::format("{}:{}", name, line_col(text, byte)), "malformed JSON: " + what);
   } catch (const json::exception& e) {
     // out_of_range.406 (a number such as 1e400 that no double holds) and the like.
     std::string what = e.what();
     if (auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
-    throw InputError(path, "malformed JSON: " + what);
+    throw InputError(name, "malformed JSON: " + what);
   }
 }
 

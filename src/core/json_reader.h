@@ -22,6 +22,8 @@ constexpr std::uintmax_t kMaxJsonBytes = std::uintmax_t(64) << 20;
 // over kMaxJsonBytes, a NUL byte (line:col), a number no double holds (1e400), and a key given
 // twice in one object (its JSON path).
 json read_json_file(const std::string& path);
+// The same checks for JSON text held in memory; `name` stands for the file in messages.
+json parse_json_text(const std::string& text, const std::string& name);
 
 class JsonValue {
  public:

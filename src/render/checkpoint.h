@@ -2,9 +2,10 @@
 // file beside the output, OUT.checkpoint, written atomically (temporary name, then rename), so that
 // a kill at any moment leaves either the previous checkpoint or the new one, never half of one.
 //
-// Layout (little-endian): "INSITUCK", u32 version, u32 bytes per pixel (140), u64 fingerprint,
-// i32 width, height, spp, passes_done, spp_done, u64 nonfinite, then per pixel its PixelSums field
-// by field (4 RGB and the normal as float32, 9 float64 sums, 2 int32 counts).
+// Layout (little-endian): "INSITUCK", u32 version (2), u32 bytes per pixel (144), u64
+// fingerprint, i32 width, height, spp, passes_done, tiles_done, spp_done, u64 nonfinite, then per
+// pixel its PixelSums field by field (4 RGB and the normal as float32, 9 float64 sums, 3 int32
+// counts).
 // The fingerprint names the scene and settings it belongs to (scene/pipeline.h,
 // render_fingerprint): a checkpoint of another scene, other inputs or other settings is refused.
 #pragma once

@@ -165,6 +165,18 @@ Material convert_material(const tinyobj::material_t& m, const fs::path& base_dir
   return out;
 }
 
+}  // namespace
+
+// Degenerate: |e1 × e2| <= 1e-12 (|e1|² + |e2|²), in double, scale-free.
+bool degenerate_triangle(const Mesh& mesh, const Triangle& tri) {
+  const Vec3d p0 = mesh.positions[tri.v[0]].cast<double>();
+  const Vec3d e1 = mesh.positions[tri.v[1]].cast<double>() - p0;
+  const Vec3d e2 = mesh.positions[tri.v[2]].cast<double>() - p0;
+  return e1.cross(e2).norm() <= 1e-12 * (e1.squaredNorm() + e2.squaredNorm()) || (e1.squaredNorm() + e2.squaredNorm()) == 0.0;
+}
+
+namespace {
+
 // An index tinyobjloader gives: 0-based, −1 for "none" where that is allowed.
 bool index_in_range(int index, std::size_t count, bool may_be_absent) {
   return (may_be_absent && index == -1) || (index >= 0 && std::size_t(index) < count);
@@ -199,12 +211,7 @@ void add_triangles(const std::vector<tinyobj::shape_t>& shapes, const ObjScan& s
           tri.t[c] = corner[c].texcoord_index;
         }
         tri.material = mat;
-        // Degenerate: |e1 × e2| <= 1e-12 (|e1|² + |e2|²), in double, scale-free.
-        const Vec3d p0 = mesh.positions[tri.v[0]].cast<double>();
-        const Vec3d e1 = mesh.positions[tri.v[1]].cast<double>() - p0;
-        const Vec3d e2 = mesh.positions[tri.v[2]].cast<double>() - p0;
-        if (e1.cross(e2).norm() <= 1e-12 * (e1.squaredNorm() + e2.squaredNorm()) ||
-            (e1.squaredNorm() + e2.squaredNorm()) == 0.0) {
+        if (degenerate_triangle(mesh, tri)) {
           if (degenerate++ == 0) first_degenerate_line = line;
           continue;
         }

@@ -49,6 +49,9 @@ struct Mesh {
 // Throws InputError("file:line", ...) on bad input; adds counted warnings.
 Mesh load_obj(const std::string& path, Warnings& warnings);
 
+// A triangle whose edges are parallel or zero: |e1 × e2| ≤ 1e-12 (|e1|² + |e2|²), in double.
+bool degenerate_triangle(const Mesh& mesh, const Triangle& tri);
+
 // Applies an affine transform (positions by M, normals by its inverse transpose).
 void transform_mesh(Mesh& mesh, const Mat4d& M_world_from_object);
 

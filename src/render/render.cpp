@@ -1,7 +1,7 @@
 #include "render/render.h"
 
-#include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <atomic>
 #include <chrono>
@@ -36,11 +36,12 @@ double variance_of_mean(const PixelSums& p, int n) {
 // Mean over pixels the render changed (an object covers them or the catcher's estimates differ)
 // of √variance relative to the pixel's value. Changed pixels of variance 0 count as 0, so that the
 // set of pixels, and with it the figure, does not jump from pass to pass.
-double mean_relative_noise(const std::vector<PixelSums>& sums, int n) {
+double mean_relative_noise(const std::vector<PixelSums>& sums) {
   double noise = 0;
   long changed = 0;
   for (const PixelSums& p : sums) {
-    if (p.coverage == 0 && p.w == p.n) continue;
+    const int n = p.samples;
+    if (n == 0 || (p.coverage == 0 && p.w == p.n)) continue;
     const double v = variance_of_mean(p, n);
     const double value = (std::abs(luminance(Rgb(p.objects + p.with - p.without))) + luminance(p.without)) / double(n);
     if (value <= 0) continue;
@@ -94,8 +95,9 @@ bool accumulate(PixelSums& p, const CameraSample& cs, const Ray& ray, const Vec3
   return true;
 }
 
-// The layers: means over the spp samples (normal, albedo and depth over those that met something).
-RenderLayers layers_from_sums(const std::vector<PixelSums>& sums, int w, int h, int spp) {
+// The layers: means over each pixel's samples (normal, albedo and depth over those that met
+// something); a pixel without samples (a cancelled first pass) stays 0.
+RenderLayers layers_from_sums(const std::vector<PixelSums>& sums, int w, int h) {
   RenderLayers out;
   out.objects = Image(w, h, 3);
   out.alpha = Image(w, h, 1);
@@ -104,7 +106,7 @@ RenderLayers layers_from_sums(const std::vector<PixelSums>& sums, int w, int h, 
   out.normal = Image(w, h, 3);
   out.albedo = Image(w, h, 3);
   out.depth = Image(w, h, 1, kNoHitDepth);
-  out.samples = Image(w, h, 1, float(spp));
+  out.samples = Image(w, h, 1);
   out.variance = Image(w, h, 1);
   out.ratio_variance = Image(w, h, 1);
   out.difference_variance = Image(w, h, 1);
@@ -112,6 +114,9 @@ RenderLayers layers_from_sums(const std::vector<PixelSums>& sums, int w, int h, 
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const PixelSums& p = sums[std::size_t(y) * w + x];
+      const int spp = p.samples;
+      *out.samples.at(x, y) = float(spp);
+      if (spp == 0) continue;
       out.objects.set_rgb(x, y, p.objects / float(spp));
       *out.alpha.at(x, y) = float(p.coverage / spp);
       out.with_objects.set_rgb(x, y, p.with / float(spp));
@@ -126,7 +131,7 @@ RenderLayers layers_from_sums(const std::vector<PixelSums>& sums, int w, int h, 
       *out.difference_variance.at(x, y) = float(difference_variance(p, spp));
       *out.catcher_samples.at(x, y) = float(p.catcher);
     }
-  out.mean_relative_noise = mean_relative_noise(sums, spp);
+  out.mean_relative_noise = mean_relative_noise(sums);
   return out;
 }
 
@@ -145,37 +150,60 @@ struct PassContext {
   double total_work;
 };
 
-void run_pass(const PassContext& c, int s0, int s1) {
-  constexpr int kTile = 16;
-  const int w = c.camera.width, h = c.camera.height;
-  tbb::parallel_for(tbb::blocked_range2d<int>(0, h, kTile, 0, w, kTile), [&](const tbb::blocked_range2d<int>& r) {
-    std::size_t local_nonfinite = 0;
-    for (int y = r.rows().begin(); y < r.rows().end(); ++y)
-      for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
-        const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(w) + std::uint64_t(x);
-        for (int s = s0; s < s1; ++s) {
-          Sampler sampler(c.settings.seed, pixel, std::uint64_t(s));
-          const Ray ray = jittered_ray(c.camera, x, y, pixel, s, c.spp, c.grid, sampler);
-          if (!accumulate(c.sums[pixel], c.integrator.sample(ray, sampler), ray, c.axis_world)) ++local_nonfinite;
-        }
+// Samples [s0, s1) of the pixels of one tile.
+void render_tile(const PassContext& c, int tile, int s0, int s1) {
+  const int w = c.camera.width, h = c.camera.height, across = tiles_across(w);
+  const int x0 = (tile % across) * kTilePixels, y0 = (tile / across) * kTilePixels;
+  const int x1 = std::min(w, x0 + kTilePixels), y1 = std::min(h, y0 + kTilePixels);
+  std::size_t local_nonfinite = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(w) + std::uint64_t(x);
+      for (int s = s0; s < s1; ++s) {
+        Sampler sampler(c.settings.seed, pixel, std::uint64_t(s));
+        const Ray ray = jittered_ray(c.camera, x, y, pixel, s, c.spp, c.grid, sampler);
+        if (!accumulate(c.sums[pixel], c.integrator.sample(ray, sampler), ray, c.axis_world)) ++local_nonfinite;
+        ++c.sums[pixel].samples;
       }
-    c.nonfinite += local_nonfinite;
-    if (c.progress) {
-      const long done = c.area_done += long(r.rows().size()) * long(r.cols().size()) * (s1 - s0);
-      std::lock_guard<std::mutex> lock(c.progress_mutex);
-      c.progress({double(done) / c.total_work, s0, -1.0});
+    }
+  c.nonfinite += local_nonfinite;
+  if (c.progress) {
+    const long done = c.area_done += long(y1 - y0) * long(x1 - x0) * (s1 - s0);
+    std::lock_guard<std::mutex> lock(c.progress_mutex);
+    c.progress({double(done) / c.total_work, s0, -1.0});
+  }
+}
+
+// One pass: samples [s0, s1) of every pixel. The threads take tiles in order from *tiles_done
+// on and look at the stop flag before taking one, so that, stopped, the pass has done exactly the
+// tiles [0, *tiles_done), each whole: a resumed render carries on from there, bit for bit.
+// Returns whether the pass is complete.
+bool run_pass(const PassContext& c, int s0, int s1, int& tiles_done) {
+  const int tiles = tiles_across(c.camera.width) * tiles_across(c.camera.height);
+  std::atomic<int> next{tiles_done};
+  const int workers = std::max(1, tbb::this_task_arena::max_concurrency());
+  tbb::parallel_for(0, workers, [&](int) {
+    while (!(c.settings.stop && c.settings.stop->load())) {
+      const int tile = next++;
+      if (tile >= tiles) break;
+      render_tile(c, tile, s0, s1);
     }
   });
+  tiles_done = std::min(tiles, next.load());
+  if (tiles_done < tiles) return false;
+  tiles_done = 0;
+  return true;
 }
 
 // The state to start from: a fresh one, or the caller's (checked against the plan).
 void start_state(RenderState& st, int w, int h, int spp) {
   if (st.passes_done == 0 && st.sums.empty()) {
-    st = RenderState{w, h, spp, 0, 0, 0, std::vector<PixelSums>(std::size_t(w) * h)};
+    st = RenderState{w, h, spp, 0, 0, 0, 0, std::vector<PixelSums>(std::size_t(w) * h)};
     return;
   }
   if (st.width != w || st.height != h || st.spp != spp || st.sums.size() != std::size_t(w) * h ||
-      st.passes_done < 0 || st.passes_done > render_passes(spp))
+      st.passes_done < 0 || st.passes_done > render_passes(spp) || st.tiles_done < 0 ||
+      st.tiles_done >= tiles_across(w) * tiles_across(h))
     throw std::invalid_argument("render: the state to resume is of another image size or spp");
 }
 
@@ -195,23 +223,22 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
   // Passes of samples over the whole image, so that progress can report samples per pixel done
   // and the noise reached: 8 passes (fewer when spp is smaller), area-weighted progress within.
   const int passes = render_passes(spp);
-  std::atomic<long> area_done{long(w) * h * pass_start(spp, st.passes_done)};
+  std::atomic<long> area_done{long(w) * h * pass_start(spp, st.passes_done)};  // (a cancelled pass's tiles aside)
   const PassContext c{camera, integrator, settings, progress, spp, grid,
                       camera.R_cam_from_world.row(2).transpose().cast<float>(),  // the optical axis
                       st.sums, nonfinite, area_done, progress_mutex, double(w) * h * spp};
   if (progress) progress({double(pass_start(spp, st.passes_done)) / spp, pass_start(spp, st.passes_done), -1.0});
   for (; st.passes_done < passes; ++st.passes_done) {
-    if (settings.stop && settings.stop->load() && st.passes_done > 0) break;  // at least one pass: an image
     const int s0 = pass_start(spp, st.passes_done), s1 = pass_start(spp, st.passes_done + 1);
-    run_pass(c, s0, s1);
+    if (!run_pass(c, s0, s1, st.tiles_done)) break;  // stopped
     st.spp_done = s1;
     if (progress) {
       std::lock_guard<std::mutex> lock(progress_mutex);
-      progress({double(s1) / spp, s1, mean_relative_noise(st.sums, s1)});
+      progress({double(s1) / spp, s1, mean_relative_noise(st.sums)});
     }
   }
   st.nonfinite = nonfinite;
-  RenderLayers out = layers_from_sums(st.sums, w, h, st.spp_done);
+  RenderLayers out = layers_from_sums(st.sums, w, h);
   out.spp_done = st.spp_done;
   out.interrupted = st.spp_done < spp;
   out.nonfinite_samples = st.nonfinite;

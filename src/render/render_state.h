@@ -20,15 +20,22 @@ struct PixelSums {
   // all samples, and how many samples saw the catcher, for the composite's choice of estimator.
   double w = 0, n = 0, w2 = 0, n2 = 0, wn = 0;
   int met = 0, catcher = 0;
+  int samples = 0;  // taken (a non-finite one counts, as zero): a cancelled pass leaves pixels unequal
 };
 
 struct RenderState {
   int width = 0, height = 0, spp = 0;  // the plan: the strata depend on spp
   int passes_done = 0;                 // of render_passes(spp)
+  int tiles_done = 0;                  // of pass passes_done, in tile order (a cancelled pass)
   int spp_done = 0;                    // samples every pixel has
   std::size_t nonfinite = 0;
   std::vector<PixelSums> sums;
 };
+
+// Tiles of kTilePixels² pixels, numbered row by row; a pass renders them in that order, however
+// many threads share it, so that a pass cancelled midway has done tiles [0, tiles_done).
+constexpr int kTilePixels = 16;
+inline int tiles_across(int pixels) { return (pixels + kTilePixels - 1) / kTilePixels; }
 
 // The passes a render of spp samples per pixel makes (progress and interruption come between them).
 inline int render_passes(int spp) { return spp < 8 ? spp : 8; }

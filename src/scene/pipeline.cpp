@@ -113,7 +113,11 @@ void load_camera(const SceneSpec& spec, int width, int height, LoadedScene& s) {
     options.insertion_world = mean;
   }
   try {
-    const auto points = read_control_points(spec.camera.points, spec.camera.bottom_left_origin, height);
+    std::vector<ControlPoint> points;
+    for (std::size_t i = 0; i < spec.camera.point_list.size(); ++i)
+      points.push_back({spec.camera.point_list[i].uv_px, spec.camera.point_list[i].p_world, fmt::format("#{}", i + 1),
+                        fmt::format("points[{}]", i)});
+    if (points.empty()) points = read_control_points(spec.camera.points, spec.camera.bottom_left_origin, height);
     s.calibration = calibrate(points, width, height, options);
   } catch (const InputError& e) {
     throw e.with_context(spec.camera.where + ".points");
@@ -129,7 +133,9 @@ void objects_uncertainty(const SceneSpec& spec, const std::vector<Mesh>& meshes,
   for (std::size_t i = 0; i < meshes.size(); ++i) {
     const Bounds b = mesh_bounds(meshes[i]);
     if (!b.lo.allFinite() || !b.hi.allFinite()) continue;
-    const std::string name = fmt::format("objects[{}] ({})", i, std::filesystem::path(spec.objects[i].mesh).filename().string());
+    const std::string name = i < spec.objects.size()
+                                 ? fmt::format("objects[{}] ({})", i, std::filesystem::path(spec.objects[i].mesh).filename().string())
+                                 : meshes[i].source;
     s.object_uncertainty.push_back(object_uncertainty(*s.calibration, name, box_corners(b.lo.cast<double>(), b.hi.cast<double>())));
   }
   s.click_hint = suggest_next_click(*s.calibration, s.object_uncertainty);
@@ -164,7 +170,7 @@ void check_mesh_files(const std::vector<Mesh>& meshes, const SceneSpec& spec) {
 
 }  // namespace
 
-LoadedScene load_scene(const SceneSpec& spec) {
+LoadedScene load_scene(const SceneSpec& spec, std::vector<Mesh> memory_objects) {
   const auto start = std::chrono::steady_clock::now();
   // Before any work: no output may replace an input or another output.
   check_outputs(scene_input_files(spec), scene_output_files(spec));
@@ -201,6 +207,12 @@ LoadedScene load_scene(const SceneSpec& spec) {
       s.warnings.add(obj.where, "the object lies entirely outside the camera's view (it covers no pixel): check translate and the camera");
   }
   check_mesh_files(meshes, spec);
+  for (Mesh& m : memory_objects) {
+    warn_if_collapsed(m, m.source, s.warnings);
+    if (outside_view(s.camera, mesh_bounds(m)))
+      s.warnings.add(m.source, "the object lies entirely outside the camera's view (it covers no pixel): check its transform and the camera");
+    meshes.push_back(std::move(m));
+  }
   objects_uncertainty(spec, meshes, s);
   s.objects = std::make_unique<EmbreeScene>(std::move(meshes));
   std::vector<Mesh> catcher_meshes;
@@ -260,8 +272,10 @@ std::string layers_path_for(const std::string& image_path) {
   return (p.parent_path() / (p.stem().string() + ".layers.exr")).string();
 }
 
-nlohmann::json render_report(const LoadedScene& s, const RenderResult& r) {
+nlohmann::json render_report(const LoadedScene& s, const RenderResult& r, const OutputSpec* output) {
   using nlohmann::json;
+  SceneSpec tonemap_spec;
+  tonemap_spec.output = output ? *output : s.spec.output;
   const auto& info = s.environment_info;
   json shots = json::array();
   if (s.spec.environment.from_shots())
@@ -302,43 +316,9 @@ nlohmann::json render_report(const LoadedScene& s, const RenderResult& r) {
         {"noise_relative", r.layers.mean_relative_noise},
         {"nonfinite_samples", r.layers.nonfinite_samples}}},
       {"composite", name_of(kCompositeModes, s.spec.composite)},
-      {"tonemap", effective_tonemap(s.spec)},
+      {"tonemap", effective_tonemap(tonemap_spec)},
       {"warnings", s.warnings.items},
   };
-}
-
-void write_outputs(const LoadedScene& scene, const RenderResult& r) {
-  const std::string& image = scene.spec.output.image;
-  const bool linear_out = is_linear_output(image);
-  const ToneMapSettings& tm = scene.spec.output.tonemap;
-  write_image(image, linear_out ? r.composite_linear
-                                : tm.op == ToneMap::kPhoto ? r.composite_encoded : tonemap(r.composite_linear, tm));
-  write_text_file(report_path(image), render_report(scene, r).dump(2) + "\n");
-  if (!scene.spec.output.layers.empty()) {
-    // Every layer is finite, always: ±inf (a variance that overflowed float) becomes the largest
-    // float of its sign, so that it still reads as huge, and NaN becomes 0.
-    auto finite = [](Image img) {
-      constexpr float kMax = std::numeric_limits<float>::max();
-      for (float& v : img.data)
-        if (!std::isfinite(v)) v = std::isnan(v) ? 0.0f : std::copysign(kMax, v);
-      return img;
-    };
-    const Image c = finite(r.composite_linear), o = finite(r.layers.objects), a = finite(r.layers.alpha);
-    const Image w = finite(r.layers.with_objects), n = finite(r.layers.without_objects);
-    const Image ratio = finite(shadow_ratio(r.layers));
-    const Image normal = finite(r.layers.normal), albedo = finite(r.layers.albedo), depth = finite(r.layers.depth);
-    const Image variance = finite(r.layers.variance), photo = finite(scene.photo_linear);
-    write_exr_channels(scene.spec.output.layers, c.width, c.height,
-                       {{"R", &c, 0}, {"G", &c, 1}, {"B", &c, 2},
-                        {"objects.R", &o, 0}, {"objects.G", &o, 1}, {"objects.B", &o, 2}, {"objects.A", &a, 0},
-                        {"with.R", &w, 0}, {"with.G", &w, 1}, {"with.B", &w, 2},
-                        {"without.R", &n, 0}, {"without.G", &n, 1}, {"without.B", &n, 2},
-                        {"shadow_ratio.R", &ratio, 0}, {"shadow_ratio.G", &ratio, 1}, {"shadow_ratio.B", &ratio, 2},
-                        {"normal.X", &normal, 0}, {"normal.Y", &normal, 1}, {"normal.Z", &normal, 2},
-                        {"albedo.R", &albedo, 0}, {"albedo.G", &albedo, 1}, {"albedo.B", &albedo, 2},
-                        {"depth.Z", &depth, 0}, {"samples.Y", &r.layers.samples, 0}, {"variance.Y", &variance, 0},
-                        {"photo.R", &photo, 0}, {"photo.G", &photo, 1}, {"photo.B", &photo, 2}});
-  }
 }
 
 }  // namespace insitu

@@ -41,7 +41,8 @@ struct LoadedScene {
 
 // Refuses (InputError) before reading anything when an output would replace an input or another
 // output (output_paths.h), and again once the meshes have named their MTL files and textures.
-LoadedScene load_scene(const SceneSpec& spec);
+// `memory_objects`: meshes given in memory (the C API), already placed, after the spec's objects.
+LoadedScene load_scene(const SceneSpec& spec, std::vector<Mesh> memory_objects = {});
 
 // The files a scene reads (before loading its meshes) and writes.
 std::vector<NamedPath> scene_input_files(const SceneSpec& spec);
@@ -68,13 +69,14 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress =
 // tone map or the composite's form, which act after the sums.
 std::uint64_t render_fingerprint(const LoadedScene& scene);
 
-// Writes the composite image, the layered EXR and the JSON report, each atomically.
-void write_outputs(const LoadedScene& scene, const RenderResult& result);
+// Writes the composite image, the layered EXR (scene/output_layers.h) and the JSON report, each
+// atomically, to the scene's outputs or to `output`'s (checked first against every input).
+void write_outputs(const LoadedScene& scene, const RenderResult& result, const OutputSpec* output = nullptr);
 
 // The report written next to the image (IMAGE_STEM.report.json): stage timings, the calibration's
 // RMS, the integrator, irradiance mode, samples per pixel, noise estimate, non-finite samples, and
 // per shot the coverage and clipped percentage.
-nlohmann::json render_report(const LoadedScene& scene, const RenderResult& result);
+nlohmann::json render_report(const LoadedScene& scene, const RenderResult& result, const OutputSpec* output = nullptr);
 // The report of an image: its whole name + ".report.json" (a.png and a.exr keep their own).
 std::string report_path(const std::string& image_path);
 // The layers that go with an image given by -o: IMAGE_STEM.layers.exr beside it.

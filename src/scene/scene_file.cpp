@@ -413,8 +413,11 @@ void parse_output(const std::optional<JsonValue>& out, const fs::path& dir, Scen
 }  // namespace
 
 SceneSpec parse_scene_file(const std::string& path) {
-  const json doc = read_json_file(path);
-  const fs::path dir = fs::path(path).parent_path();
+  return parse_scene_json(read_json_file(path), path, fs::path(path).parent_path().string());
+}
+
+SceneSpec parse_scene_json(const json& doc, const std::string& path, const std::string& base_dir) {
+  const fs::path dir(base_dir);
   SceneSpec scene;
   scene.path = path;
   scene.render.block.file = path;

@@ -11,6 +11,9 @@
 namespace insitu {
 
 SceneSpec parse_scene_file(const std::string& path);
+// A scene held in memory (the C API's insitu_scene_from_json): `path` names it in messages and
+// relative paths in it are resolved against `base_dir` ("" : the working directory).
+SceneSpec parse_scene_json(const json& doc, const std::string& path, const std::string& base_dir);
 
 // Outputs whose format ignores the tone map: EXR and TIFF stay linear, scene-referred.
 bool is_linear_output(const std::string& image_path);

@@ -16,6 +16,12 @@
 
 namespace insitu {
 
+// A control point handed over in memory (the C API), not read from a file.
+struct PointSpec {
+  Vec2d uv_px = Vec2d::Zero();  // top-left origin
+  Vec3d p_world = Vec3d::Zero();
+};
+
 struct CameraSpec {
   enum class Kind { LookAt, Explicit, File, Fspy, Points } kind = Kind::LookAt;
   std::string where;  // JSON location, for messages
@@ -28,6 +34,7 @@ struct CameraSpec {
   std::string file;  // File: a camera.json; Fspy: the JSON fSpy exports (calib/fspy.h)
   // Points: calibrate from control points (calibration.h).
   std::string points;
+  std::vector<PointSpec> point_list;  // given in memory (the C API): used in place of the file
   std::optional<std::string> model;  // "f", "f+c", "f+c+a"; nullopt: auto
   bool bottom_left_origin = false;
 };
