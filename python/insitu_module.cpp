@@ -202,13 +202,14 @@ class Scene {
     check(get(s_.get(), &t));
     return t;
   }
-  Result render(const std::optional<py::function>& progress) {
+  Result render(const std::optional<py::function>& progress, const std::optional<std::string>& checkpoint) {
     Progress prog{progress ? *progress : py::function(), std::nullopt};
     insitu_result* r = nullptr;
     insitu_status status;
     {
       py::gil_scoped_release release;
-      status = insitu_render(s_.get(), progress ? call_progress : nullptr, &prog, &r);
+      status = checkpoint ? insitu_render_resumable(s_.get(), checkpoint->c_str(), progress ? call_progress : nullptr, &prog, &r)
+                          : insitu_render(s_.get(), progress ? call_progress : nullptr, &prog, &r);
     }
     Result result(r);
     if (prog.error) throw std::move(*prog.error);
@@ -241,6 +242,10 @@ class Calibration {
   double rms_px() const { return insitu_calibration_rms_px(c_.get()); }
   std::string report() const { return insitu_calibration_report(c_.get()); }
   std::string json() const { return insitu_calibration_json(c_.get()); }
+  std::string blender_script(const std::optional<std::string>& photo) {
+    return insitu_calibration_blender_script(c_.get(), photo ? photo->c_str() : nullptr);
+  }
+  void write_vc(const std::string& path) const { check(insitu_calibration_write_vc(c_.get(), path.c_str())); }
   void add_box(const std::string& name, std::array<double, 3> lo, std::array<double, 3> hi) {
     check(insitu_calibration_add_box(c_.get(), name.c_str(), lo.data(), hi.data()));
   }
@@ -296,8 +301,9 @@ PYBIND11_MODULE(insitu, m) {
       .def_property_readonly("camera", &Scene::camera)
       .def_property_readonly("calibration_report", [](Scene& s) { return s.text(insitu_scene_calibration_report); })
       .def_property_readonly("warnings", [](Scene& s) { return s.text(insitu_scene_warnings); })
-      .def("render", &Scene::render, py::arg("progress") = py::none(),
-           "render; progress(dict) is called as tiles and passes finish, and cancels the render by returning True")
+      .def("render", &Scene::render, py::arg("progress") = py::none(), py::arg("checkpoint") = py::none(),
+           "render; progress(dict) is called as tiles and passes finish, and cancels the render by returning True; "
+           "with a checkpoint path, a cancelled render writes its checkpoint and the next call continues from it")
       .def("cancel", &Scene::cancel, "cancel the render under way (from another thread)");
 
   py::class_<Calibration>(m, "Calibration", "a camera calibrated from 2D-3D control points")
@@ -307,5 +313,7 @@ PYBIND11_MODULE(insitu, m) {
       .def_property_readonly("rms_px", &Calibration::rms_px)
       .def_property_readonly("report", &Calibration::report)
       .def_property_readonly("json", &Calibration::json)
+      .def("blender_script", &Calibration::blender_script, py::arg("photo") = py::none())
+      .def("write_vc", &Calibration::write_vc, py::arg("path"))
       .def("add_box", &Calibration::add_box, py::arg("name"), py::arg("lo"), py::arg("hi"));
 }

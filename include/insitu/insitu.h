@@ -120,6 +120,12 @@ INSITU_API const char* insitu_calibration_report(const insitu_calibration* calib
 INSITU_API const char* insitu_calibration_json(const insitu_calibration* calibration);
 /* Adds an object's bounding box (world metres): the report and the JSON gain the uncertainty at
  * its corners and, over all boxes, where one more click would help most (`--box`). */
+/* What `insitu calibrate --blender` writes: a Blender Python script that creates the camera, with
+ * the photo (NULL: none) as its background; valid while the handle lives. */
+INSITU_API const char* insitu_calibration_blender_script(insitu_calibration* calibration, const char* photo_path);
+/* What `insitu calibrate --vc` writes: the View Correlation parameter set of the camera and the
+ * inlying points. Refuses to replace an existing file that is not a .vc file. */
+INSITU_API insitu_status insitu_calibration_write_vc(const insitu_calibration* calibration, const char* path);
 INSITU_API insitu_status insitu_calibration_add_box(insitu_calibration* calibration, const char* name,
                                                     const double lo_world[3], const double hi_world[3]);
 
@@ -159,6 +165,12 @@ typedef int (*insitu_progress_fn)(const insitu_progress* progress, void* user);
 INSITU_API insitu_status insitu_render(insitu_scene* scene, insitu_progress_fn progress, void* user,
                                        insitu_result** result);
 INSITU_API void insitu_scene_cancel(insitu_scene* scene);
+/* As insitu_render, resumable as `insitu render --resume` is: when `checkpoint_path` holds a
+ * checkpoint of this scene and these settings the render continues from it (one of another scene
+ * or other settings is refused, INSITU_ERROR_INPUT); a cancelled render writes its checkpoint
+ * there, and a finished one removes it. The result is bit-identical to an uninterrupted render. */
+INSITU_API insitu_status insitu_render_resumable(insitu_scene* scene, const char* checkpoint_path,
+                                                 insitu_progress_fn progress, void* user, insitu_result** result);
 
 INSITU_API void insitu_result_free(insitu_result* result);
 INSITU_API int insitu_result_width(const insitu_result* result);

@@ -2,7 +2,10 @@
 #include <fmt/format.h>
 
 #include "api/api_internal.h"
+#include "calib/blender_camera.h"
 #include "calib/calibration_summary.h"
+#include "calib/view_correlation.h"
+#include "core/output_paths.h"
 
 using namespace insitu;
 using insitu::api::ApiMisuse;
@@ -61,7 +64,8 @@ insitu_status insitu_calibrate(const insitu_control_point* points, size_t n, int
     if (const auto m = model_name_or_auto(model)) options.model = parse_model(*m);
     if (at_world) options.insertion_world = Vec3d(at_world[0], at_world[1], at_world[2]);
     auto c = std::make_unique<insitu_calibration>();
-    c->result = calibrate(control_points(points, n), width, height, options);
+    c->points = control_points(points, n);
+    c->result = calibrate(c->points, width, height, options);
     summarize(*c);
     *out = c.release();
   });
@@ -81,6 +85,24 @@ const char* insitu_calibration_report(const insitu_calibration* calibration) {
 }
 const char* insitu_calibration_json(const insitu_calibration* calibration) {
   return calibration ? calibration->json.c_str() : "";
+}
+
+const char* insitu_calibration_blender_script(insitu_calibration* calibration, const char* photo_path) {
+  if (!calibration) return "";
+  calibration->blender = blender_camera_script(calibration->result.camera, photo_path ? photo_path : "");
+  return calibration->blender.c_str();
+}
+
+insitu_status insitu_calibration_write_vc(const insitu_calibration* calibration, const char* path) {
+  return guarded([&] {
+    const insitu_calibration& c = require(calibration, "the calibration");
+    const std::string p = not_null(path, "the path");
+    if (lower_extension(p) != ".vc") throw InputError(p, "a View Correlation file ends in .vc");
+    std::vector<ControlPoint> inliers;
+    for (std::size_t i = 0; i < c.points.size(); ++i)
+      if (!c.result.points[i].outlier) inliers.push_back(c.points[i]);
+    write_view_correlation(p, view_correlation_from_camera(c.result.camera, inliers));
+  });
 }
 
 insitu_status insitu_calibration_add_box(insitu_calibration* calibration, const char* name, const double lo_world[3],

@@ -36,9 +36,10 @@ struct insitu_result {
 };
 
 struct insitu_calibration {
+  std::vector<insitu::ControlPoint> points;
   insitu::CalibrationResult result;
   std::vector<std::pair<std::string, std::vector<insitu::NamedPoint>>> boxes;
-  std::string report, json;
+  std::string report, json, blender;
 };
 
 namespace insitu::api {

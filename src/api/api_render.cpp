@@ -1,10 +1,13 @@
 // insitu.h: rendering, cancellation and the results.
 #include <chrono>
 #include <cstring>
+#include <filesystem>
 #include <fmt/format.h>
 
 #include "api/api_internal.h"
 #include "core/output_paths.h"
+#include "core/file_check.h"
+#include "render/checkpoint.h"
 
 using namespace insitu;
 using insitu::api::ApiMisuse;
@@ -44,23 +47,50 @@ const OutputLayer& layer_named(const insitu_result& r, const char* name) {
 
 extern "C" {
 
-insitu_status insitu_render(insitu_scene* scene, insitu_progress_fn progress, void* user, insitu_result** result) {
+}  // extern "C"
+
+namespace {
+
+// A render, from a checkpoint when `checkpoint` names one (then written when cancelled, removed
+// when done: as `insitu render --resume`).
+insitu_status render(insitu_scene* scene, const char* checkpoint, insitu_progress_fn progress, void* user,
+                     insitu_result** result) {
   bool cancelled = false;
   const insitu_status st = guarded([&] {
     insitu_scene& s = require(scene, "the scene");
     require(result, "the result pointer");
     *result = nullptr;
     const LoadedScene& l = insitu::api::loaded(s);
+    RenderState state;
+    if (checkpoint) check_outputs(loaded_scene_inputs(l), {{checkpoint, "the checkpoint"}});
+    const std::uint64_t fingerprint = checkpoint ? render_fingerprint(l) : 0;
+    if (checkpoint && exists_quietly(checkpoint)) state = read_checkpoint(checkpoint, fingerprint);
     s.cancel = false;
     auto r = std::make_unique<insitu_result>();
     r->scene = s.loaded;
-    r->result = render_scene(l, progress_adapter(progress, user, l.spec.render.spp, s.cancel), {&s.cancel, nullptr});
+    r->result = render_scene(l, progress_adapter(progress, user, l.spec.render.spp, s.cancel), {&s.cancel, &state});
+    if (checkpoint && r->result.layers.interrupted) write_checkpoint(checkpoint, state, fingerprint);
+    if (checkpoint && !r->result.layers.interrupted) std::filesystem::remove(checkpoint);
     r->layers = output_layers(l, r->result);
     r->report = render_report(l, r->result).dump(2) + "\n";
     cancelled = r->result.layers.interrupted;
     *result = r.release();
   });
   return st == INSITU_OK && cancelled ? INSITU_CANCELLED : st;
+}
+
+}  // namespace
+
+extern "C" {
+
+insitu_status insitu_render(insitu_scene* scene, insitu_progress_fn progress, void* user, insitu_result** result) {
+  return render(scene, nullptr, progress, user, result);
+}
+
+insitu_status insitu_render_resumable(insitu_scene* scene, const char* checkpoint_path, insitu_progress_fn progress,
+                                      void* user, insitu_result** result) {
+  if (!checkpoint_path) return guarded([] { throw insitu::api::ApiMisuse("the checkpoint path is NULL"); });
+  return render(scene, checkpoint_path, progress, user, result);
 }
 
 void insitu_scene_cancel(insitu_scene* scene) {

@@ -56,16 +56,20 @@ std::vector<OutputLayer> output_layers(const LoadedScene& scene, const RenderRes
           {"display", rgb, finite(display_image(r, output ? *output : scene.spec.output)), false}};
 }
 
+std::vector<NamedPath> loaded_scene_inputs(const LoadedScene& scene) {
+  std::vector<NamedPath> inputs = scene_input_files(scene.spec);
+  for (const EmbreeScene* meshes : {scene.objects.get(), scene.catcher_meshes.get()})
+    for (const Mesh& m : meshes->meshes())
+      for (const auto& f : m.files) inputs.push_back({f, "read by " + m.source});
+  return inputs;
+}
+
 void write_outputs(const LoadedScene& scene, const RenderResult& r, const OutputSpec* output) {
   const OutputSpec& out = output ? *output : scene.spec.output;
   if (output) {
     SceneSpec spec = scene.spec;
     spec.output = out;
-    std::vector<NamedPath> inputs = scene_input_files(spec);
-    for (const EmbreeScene* meshes : {scene.objects.get(), scene.catcher_meshes.get()})
-      for (const Mesh& m : meshes->meshes())
-        for (const auto& f : m.files) inputs.push_back({f, "read by " + m.source});
-    check_outputs(inputs, scene_output_files(spec));
+    check_outputs(loaded_scene_inputs(scene), scene_output_files(spec));
   }
   const std::vector<OutputLayer> layers = output_layers(scene, r, &out);
   write_image(out.image, layers.back().image);

@@ -21,6 +21,9 @@ struct OutputLayer {
 // Every layer is finite: ±inf (a variance that overflowed float) becomes the largest float of its
 // sign, NaN 0. "display" is the composite tone-mapped for `output`'s format (scene.spec.output's
 // by default), in [0, 1] before the 8-bit rounding.
+// Every file the loaded scene read: scene_input_files and the meshes' MTL files and textures.
+std::vector<NamedPath> loaded_scene_inputs(const LoadedScene& scene);
+
 std::vector<OutputLayer> output_layers(const LoadedScene& scene, const RenderResult& result, const OutputSpec* output = nullptr);
 
 }  // namespace insitu

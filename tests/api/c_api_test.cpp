@@ -347,3 +347,78 @@ TEST(CApi, ResultBuffersAndFiles) {
 }
 
 }  // namespace
+
+namespace {
+
+// The README's "Use as a library" listings are the example files the install test builds and runs.
+TEST(CApi, ReadmeShowsTheTestedExamples) {
+  const std::string readme = insitu::test::slurp(std::string(INSITU_SOURCE_DIR) + "/README.md");
+  for (const auto& [file, fence] : {std::pair{"minimal.c", "```c\n"}, std::pair{"minimal.py", "```python\n"}}) {
+    const std::string text = insitu::test::slurp(std::string(INSITU_SOURCE_DIR) + "/examples/" + file);
+    ASSERT_FALSE(text.empty()) << file;
+    EXPECT_NE(readme.find(fence + text + "```\n"), std::string::npos) << "README.md does not show examples/" << file;
+    EXPECT_LE(std::count(text.begin(), text.end(), '\n'), std::string(file) == "minimal.c" ? 24 : 10) << file;
+  }
+}
+
+}  // namespace
+
+namespace {
+
+// A resumable render cancelled midway writes its checkpoint; the next call continues from it to
+// the uninterrupted render's layers, bit for bit, and removes it; a checkpoint of other settings
+// is refused, and the photo cannot be the checkpoint.
+TEST(CApi, ResumableRenderContinuesBitForBit) {
+  SceneFixture fx(160, 96);
+  insitu_scene* s = scene_from(fx.write(path_scene(fx, 16)));
+  Result whole;
+  ASSERT_EQ(insitu_render(s, nullptr, nullptr, &whole.r), INSITU_OK);
+  const std::string checkpoint = fx.dir.file("api.checkpoint");
+  auto cancel_early = [](const insitu_progress* p, void*) -> int { return p->fraction > 0.4; };
+  Result part;
+  ASSERT_EQ(insitu_render_resumable(s, checkpoint.c_str(), cancel_early, nullptr, &part.r), INSITU_CANCELLED)
+      << insitu_last_error();
+  ASSERT_TRUE(std::filesystem::exists(checkpoint));
+  Result rest;
+  ASSERT_EQ(insitu_render_resumable(s, checkpoint.c_str(), nullptr, nullptr, &rest.r), INSITU_OK) << insitu_last_error();
+  for (const char* name : {"composite", "objects", "with", "without", "variance", "samples"})
+    EXPECT_EQ(layer(rest.r, name), layer(whole.r, name)) << name;
+  EXPECT_FALSE(std::filesystem::exists(checkpoint));
+  Result again;
+  ASSERT_EQ(insitu_render_resumable(s, checkpoint.c_str(), cancel_early, nullptr, &again.r), INSITU_CANCELLED);
+  ASSERT_EQ(insitu_scene_set(s, "render.seed", "2"), INSITU_OK);
+  Result refused;
+  EXPECT_EQ(insitu_render_resumable(s, checkpoint.c_str(), nullptr, nullptr, &refused.r), INSITU_ERROR_INPUT);
+  EXPECT_NE(std::string(insitu_last_error()).find("a checkpoint of another scene"), std::string::npos) << insitu_last_error();
+  EXPECT_EQ(insitu_render_resumable(s, fx.dir.file("photo.png").c_str(), nullptr, nullptr, &refused.r), INSITU_ERROR_INPUT);
+  insitu_scene_free(s);
+}
+
+// The calibrate verb's other outputs: the Blender script and the View Correlation file, as the CLI
+// writes them.
+TEST(CApi, CalibrationBlenderScriptAndViewCorrelation) {
+  SceneFixture fx;
+  const insitu::Camera truth = insitu::Camera::look_at({0.5, 2.0, 1.5}, {0.5, 0.0, -0.5}, {0, 1, 0}, 60, fx.width, fx.height);
+  std::vector<insitu_control_point> points;
+  nlohmann::json file = nlohmann::json::array();
+  for (const insitu::Vec3d& p : {insitu::Vec3d(0, 0, 0), {1, 0, 0}, {1, 0, -1}, {0, 0, -1}, {0.5, 0.5, -0.5}, {0.2, 0.8, -0.9}}) {
+    const insitu::Vec2d uv = truth.project(p);
+    points.push_back({uv.x(), uv.y(), p.x(), p.y(), p.z()});
+    file.push_back({{"uv", {uv.x(), uv.y()}}, {"xyz", {p.x(), p.y(), p.z()}}});
+  }
+  fx.dir.write("points.json", file.dump());
+  const auto cli = insitu::test::run_insitu(fx.dir, "calibrate --points " + fx.dir.file("points.json") + " --image " +
+                                                        fx.dir.file("photo.png") + " --vc " + fx.dir.file("cli.vc") +
+                                                        " --blender " + fx.dir.file("cli.py"));
+  ASSERT_EQ(cli.exit_code, 0) << cli.err;
+  insitu_calibration* c = nullptr;
+  ASSERT_EQ(insitu_calibrate(points.data(), points.size(), 48, 32, nullptr, nullptr, &c), INSITU_OK);
+  EXPECT_EQ(std::string(insitu_calibration_blender_script(c, fx.dir.file("photo.png").c_str())),
+            insitu::test::slurp(fx.dir.file("cli.py")));
+  ASSERT_EQ(insitu_calibration_write_vc(c, fx.dir.file("api.vc").c_str()), INSITU_OK) << insitu_last_error();
+  EXPECT_EQ(insitu::test::slurp(fx.dir.file("api.vc")), insitu::test::slurp(fx.dir.file("cli.vc")));
+  EXPECT_EQ(insitu_calibration_write_vc(c, fx.dir.file("points.json").c_str()), INSITU_ERROR_INPUT);
+  insitu_calibration_free(c);
+}
+
+}  // namespace

@@ -107,6 +107,20 @@ class Module(unittest.TestCase):
         with self.assertRaisesRegex(RuntimeError, "from the callback"):
             scene.render(progress=boom)
 
+    def test_resumable_render_is_bit_identical(self):
+        scene = insitu.Scene(DEMO)
+        scene.set("render.spp", 4)
+        whole = scene.render()
+        with tempfile.TemporaryDirectory() as tmp:
+            checkpoint = os.path.join(tmp, "demo.checkpoint")
+            part = scene.render(progress=lambda p: p["fraction"] > 0.3, checkpoint=checkpoint)
+            self.assertTrue(part.cancelled)
+            self.assertTrue(os.path.exists(checkpoint))
+            rest = scene.render(checkpoint=checkpoint)
+            self.assertFalse(os.path.exists(checkpoint))
+        for name in ("composite", "objects", "with", "without"):
+            self.assertTrue(np.array_equal(rest.layers[name], whole.layers[name]), name)
+
     def test_cancel_from_another_thread(self):
         scene = insitu.Scene(DEMO)
         scene.set("render.spp", 4096)
