@@ -69,6 +69,23 @@ std::vector<float> channel_of(const std::vector<float>& interleaved, int channel
   return v;
 }
 
+// The fixture's camera, and six points as it sees them: in memory, and in the file points.json.
+insitu::Camera fixture_camera(const SceneFixture& fx) {
+  return insitu::Camera::look_at({0.5, 2.0, 1.5}, {0.5, 0.0, -0.5}, {0, 1, 0}, 60, fx.width, fx.height);
+}
+
+std::vector<insitu_control_point> known_points(const SceneFixture& fx, const insitu::Camera& truth) {
+  std::vector<insitu_control_point> points;
+  nlohmann::json file = nlohmann::json::array();
+  for (const insitu::Vec3d& p : {insitu::Vec3d(0, 0, 0), {1, 0, 0}, {1, 0, -1}, {0, 0, -1}, {0.5, 0.5, -0.5}, {0.2, 0.8, -0.9}}) {
+    const insitu::Vec2d uv = truth.project(p);
+    points.push_back({uv.x(), uv.y(), p.x(), p.y(), p.z()});
+    file.push_back({{"uv", {uv.x(), uv.y()}}, {"xyz", {p.x(), p.y(), p.z()}}});
+  }
+  fx.dir.write("points.json", file.dump());
+  return points;
+}
+
 TEST(CApi, Version) {
   EXPECT_EQ(insitu_api_version(), INSITU_API_VERSION);
   EXPECT_STREQ(insitu_version(), INSITU_VERSION);
@@ -202,15 +219,8 @@ TEST(CApi, MeshFromMemoryRendersAsTheObj) {
 // Points in memory calibrate as the CLI calibrates them from a file; the scene takes them too.
 TEST(CApi, CalibrationFromMemoryIsTheCLIs) {
   SceneFixture fx;
-  const insitu::Camera truth = insitu::Camera::look_at({0.5, 2.0, 1.5}, {0.5, 0.0, -0.5}, {0, 1, 0}, 60, fx.width, fx.height);
-  std::vector<insitu_control_point> points;
-  nlohmann::json file = nlohmann::json::array();
-  for (const insitu::Vec3d& p : {insitu::Vec3d(0, 0, 0), {1, 0, 0}, {1, 0, -1}, {0, 0, -1}, {0.5, 0.5, -0.5}, {0.2, 0.8, -0.9}}) {
-    const insitu::Vec2d uv = truth.project(p);
-    points.push_back({uv.x(), uv.y(), p.x(), p.y(), p.z()});
-    file.push_back({{"uv", {uv.x(), uv.y()}}, {"xyz", {p.x(), p.y(), p.z()}}});
-  }
-  fx.dir.write("points.json", file.dump());
+  const insitu::Camera truth = fixture_camera(fx);
+  const std::vector<insitu_control_point> points = known_points(fx, truth);
   const auto cli = insitu::test::run_insitu(fx.dir, "calibrate --points " + fx.dir.file("points.json") + " --size 48 32 " +
                                                         "--box sofa 0 0 -1 1 0.5 0 -o " + fx.dir.file("camera.json"));
   ASSERT_EQ(cli.exit_code, 0) << cli.err;
@@ -398,15 +408,8 @@ TEST(CApi, ResumableRenderContinuesBitForBit) {
 // writes them.
 TEST(CApi, CalibrationBlenderScriptAndViewCorrelation) {
   SceneFixture fx;
-  const insitu::Camera truth = insitu::Camera::look_at({0.5, 2.0, 1.5}, {0.5, 0.0, -0.5}, {0, 1, 0}, 60, fx.width, fx.height);
-  std::vector<insitu_control_point> points;
-  nlohmann::json file = nlohmann::json::array();
-  for (const insitu::Vec3d& p : {insitu::Vec3d(0, 0, 0), {1, 0, 0}, {1, 0, -1}, {0, 0, -1}, {0.5, 0.5, -0.5}, {0.2, 0.8, -0.9}}) {
-    const insitu::Vec2d uv = truth.project(p);
-    points.push_back({uv.x(), uv.y(), p.x(), p.y(), p.z()});
-    file.push_back({{"uv", {uv.x(), uv.y()}}, {"xyz", {p.x(), p.y(), p.z()}}});
-  }
-  fx.dir.write("points.json", file.dump());
+  const insitu::Camera truth = fixture_camera(fx);
+  const std::vector<insitu_control_point> points = known_points(fx, truth);
   const auto cli = insitu::test::run_insitu(fx.dir, "calibrate --points " + fx.dir.file("points.json") + " --image " +
                                                         fx.dir.file("photo.png") + " --vc " + fx.dir.file("cli.vc") +
                                                         " --blender " + fx.dir.file("cli.py"));
