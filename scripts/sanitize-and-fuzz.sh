@@ -35,13 +35,13 @@ for target in fuzz_scene fuzz_obj fuzz_points fuzz_image; do
   log=$(mktemp)
   # Full stacks, so that lsan.supp can name OpenImageIO's leaking frame (see there). The image
   # reader's stderr capture is off: a crash report written into it would be lost (core/image.cpp).
-  # -malloc_limit_mb above -rss_limit_mb: OpenEXR 3.1 allocates an attribute's declared size (up
-  # to 2 GB) before it finds the file too short (Imf::OpaqueAttribute::readValueFrom; the seed
+  # -malloc_limit_mb: OpenEXR 3.1 allocates an attribute's declared size (up to 2 GB) before it
+  # finds the file too short (Imf::OpaqueAttribute::readValueFrom; the seed
   # exr_attribute_declares_1gb). That block is never touched: address space, not memory, so the
-  # resident limit still catches real growth. -rss_limit_mb covers the largest image insitu accepts
-  # (kMaxImagePixels, 2^27 pixels, 1.5 GiB of float RGB): a 678-byte EXR whose header declares 64
-  # megapixels of one colour decodes to them honestly and took 3.9 GB resident under ASan (the seed
-  # exr_header_declares_64_megapixels.exr, found by this fuzzer on 2026-11-23), so 2^27 needs ~8 GB.
+  # resident limit still catches real growth. -rss_limit_mb: a 678-byte EXR declaring 64 megapixels
+  # of one colour (the seed exr_header_declares_64_megapixels.exr, found on 2026-11-23) decoded
+  # honestly and passed 10 GB in this process; core/image.h now refuses such decompression bombs
+  # from the header (kMaxPixelsPerByte), and the fuzzer's peak fell to 2 GB.
   if INSITU_KEEP_STDERR=1 ASAN_OPTIONS="$ASAN_OPTIONS:fast_unwind_on_malloc=0" "$build/tests/fuzz/$target" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=10240 -malloc_limit_mb=10240 \
        -print_final_stats=1 -artifact_prefix="$build/$target-" >"$log" 2>&1; then
     echo "fuzz: $target: $(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | awk '{print $2}') executions, no crash"

@@ -137,6 +137,26 @@ TEST(Image, TruncatedHugePngFailsWithoutAllocatingItsHeaderSize) {
   EXPECT_LT(usage.ru_maxrss / 1024, 1024) << "peak resident MB";  // the header implies 3.7 GB
 }
 
+// A decompression bomb (the image fuzzer's find): a 677-byte EXR whose header declares 7995408 × 8
+// pixels of one colour decodes honestly to 64 megapixels; it is refused from its header, naming
+// the file, the size and the reason, before anything is decoded.
+TEST(Image, DecompressionBombIsRefusedFromItsHeader) {
+  const std::string path = test::test_data("bomb_64_megapixels.exr");
+  try {
+    read_image_file(path);
+    FAIL() << "the bomb was read";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), path);
+    EXPECT_NE(e.message().find("7995408x8 pixels in a file of 677 bytes"), std::string::npos) << e.what();
+  }
+  // The same pixels per byte below the floor of 16 megapixels are read (small constant images are real).
+  test::TempDir dir;
+  Image flat(4096, 4096, 3, 0.5f);
+  const std::string small = dir.file("flat.exr");
+  write_image(small, flat);
+  EXPECT_EQ(read_image_file(small).stored.width, 4096);
+}
+
 // A name the system refuses (longer than NAME_MAX) is a one-line InputError naming it, not a
 // filesystem_error (the OBJ fuzzer found it through a texture name).
 TEST(Image, ANameTooLongIsAnInputError) {

@@ -136,6 +136,12 @@ ImageFile read_image_file_quietly(const std::string& path) {
   if (std::uint64_t(spec.width) * std::uint64_t(spec.height) > kMaxImagePixels)
     throw InputError(path, fmt::format("the header declares {}x{} pixels, more than the {} megapixels insitu reads",
                                        spec.width, spec.height, kMaxImagePixels / 1000000));
+  std::error_code ec;
+  const std::uint64_t bytes = std::filesystem::file_size(path, ec);
+  const std::uint64_t pixels = std::uint64_t(spec.width) * std::uint64_t(spec.height);
+  if (!ec && pixels > kBombFloorPixels && pixels > kMaxPixelsPerByte * bytes)
+    throw InputError(path, fmt::format("the header declares {}x{} pixels in a file of {} bytes: too compressed to be a photo "
+                                       "or an environment (a decompression bomb?)", spec.width, spec.height, bytes));
   ImageFile file;
   file.path = path;
   file.format = in->format_name();

@@ -47,6 +47,11 @@ struct ImageFile {
 // Images larger than this are refused from their header, before decoding (a 16384 × 8192 HDRI is
 // 134 megapixels; phone photos are 12–50).
 constexpr std::uint64_t kMaxImagePixels = std::uint64_t(1) << 27;
+// A decompression bomb: more than 16 megapixels, and more than 1024 pixels per byte of file (real
+// images, even 8-bit JPEGs of a plain wall, stay far below 100 pixels per byte; a constant EXR of
+// 64 megapixels fits in 678 bytes, found by the image fuzzer). Refused from the header too.
+constexpr std::uint64_t kBombFloorPixels = std::uint64_t(1) << 24;
+constexpr std::uint64_t kMaxPixelsPerByte = 1024;
 
 // Refuses (InputError naming the file) a missing, unreadable, oversized, truncated or corrupt image.
 ImageFile read_image_file(const std::string& path);
