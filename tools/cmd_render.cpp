@@ -1,11 +1,15 @@
 // insitu render SCENE [-o OUT] [--layers PATH|none] [--spp N] [--integrator NAME] [--irradiance MODE]
-//                     [--seed N] [--tonemap OP] [--key K] [--resume]
+//                     [--seed N] [--tonemap OP] [--key K] [--resume] [--samples A:B [--part PATH]]
 //
 // SIGINT or SIGTERM finishes the pass under way, writes the partial image, layers and report (its
 // spp the samples taken), and a checkpoint beside the image (OUT.checkpoint, render/checkpoint.h),
 // and exits 130; --resume continues from the checkpoint to the image an uninterrupted render gives,
 // bit for bit. A second signal ends the process at once (no half-written file, the checkpoint as
 // it was).
+//
+// --samples A:B renders a part of a split render (issue 17): only those sample indices of the spp,
+// with the random numbers of a whole render, their sums written to a part file that `insitu
+// merge` adds to the others' (cmd_merge.cpp).
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
@@ -18,6 +22,8 @@
 #include "integrators/registry.h"
 #include "scene/pipeline.h"
 #include "progress.h"
+#include "render_args.h"
+#include "scene/output_layers.h"
 
 namespace insitu {
 
@@ -27,69 +33,71 @@ void print_warnings(const Warnings& w) {
 
 namespace {
 
-struct RenderArgs {
-  std::string scene, output, layers, integrator, irradiance, tonemap;
-  double key = 0;
-  int spp = 0;
-  long seed = -1;
-  bool resume = false;
-};
 
-// The render, stoppable by SIGINT/SIGTERM and resumable from `state`.
-RenderResult render_with_progress(const LoadedScene& scene, RenderState& state) {
+// The render of samples [begin, end) (end −1: all), stoppable by SIGINT/SIGTERM and resumable
+// from `state`.
+RenderResult render_with_progress(const LoadedScene& scene, RenderState& state, int begin = 0, int end = -1) {
   Progress progress("render");
   std::string detail;
+  const int samples = (end < 0 ? scene.spec.render.spp : end) - begin;
   arm_graceful_stop(true);
   RenderResult result = render_scene(scene, [&](const RenderProgress& p) {
     const bool pass_end = p.noise >= 0;
-    if (pass_end) detail = fmt::format("{}/{} spp, noise {:.1f}%", p.spp_done, scene.spec.render.spp, 100 * p.noise);
+    if (pass_end) detail = fmt::format("{}/{} spp, noise {:.1f}%", p.spp_done, samples, 100 * p.noise);
     progress.update(p.fraction, detail, pass_end);
-  }, {&graceful_stop_flag(), &state});
+  }, {&graceful_stop_flag(), &state, begin, end});
   arm_graceful_stop(false);
   return result;
 }
 
-// The scene file with the command line's overrides.
-SceneSpec render_spec(const RenderArgs& a) {
-  SceneSpec spec = parse_scene_file(a.scene);
-  if (!a.output.empty()) {
-    const std::string ext = lower_extension(a.output);
-    if (ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".exr" && ext != ".tif" && ext != ".tiff")
-      throw InputError("-o " + a.output, "unsupported extension '" + ext + "' (use .png, .jpg, .exr, .tif)");
-    spec.output.image = a.output;
-    // A quick `-o test.png` must not overwrite the final render's layers and report.
-    spec.output.layers = layers_path_for(a.output);
+// --samples A:B, within the render's spp.
+std::pair<int, int> parse_sample_range(const std::string& text, int spp) {
+  int begin = 0, end = 0, used = 0;
+  if (std::sscanf(text.c_str(), "%d:%d%n", &begin, &end, &used) != 2 || used != int(text.size()))
+    throw InputError("--samples " + text, "not a range of sample indices A:B (for example 0:16)");
+  if (begin < 0 || end <= begin || end > spp)
+    throw InputError("--samples " + text, fmt::format("not within the render's {} samples per pixel (0 <= A < B <= {})", spp, spp));
+  return {begin, end};
+}
+
+// A part of a split render (issue 17): samples [A, B) of render.spp, their sums written to the
+// part file (render/checkpoint.h) for `insitu merge`; interrupted, a checkpoint beside the part.
+int run_part(const RenderArgs& a, const SceneSpec& spec) {
+  const auto [begin, end] = parse_sample_range(a.samples, spec.render.spp);
+  const std::string part = a.part.empty() ? fmt::format("{}.samples-{}-{}.part", spec.output.image, begin, end) : a.part;
+  const std::string checkpoint = checkpoint_path(part);
+  const LoadedScene scene = load_scene(spec);
+  print_warnings(scene.warnings);
+  check_outputs(loaded_scene_inputs(scene), {{part, "--part " + part}, {checkpoint, "the part's checkpoint"}});
+  const std::uint64_t fingerprint = render_fingerprint(scene);
+  RenderState state;
+  if (a.resume) state = read_checkpoint(checkpoint, fingerprint);
+  if (a.resume && (state.sample_begin != begin || state.sample_end != end))
+    throw InputError(checkpoint, fmt::format("a checkpoint of samples {}:{}, not {}", state.sample_begin, state.sample_end, a.samples));
+  const RenderResult result = render_with_progress(scene, state, begin, end);
+  if (result.layers.interrupted) {
+    write_checkpoint(checkpoint, state, fingerprint);
+    std::fprintf(stderr, "insitu: interrupted after %d of %d spp: wrote %s (continue with --resume)\n",
+                 result.layers.spp_done, end - begin, checkpoint.c_str());
+    return 130;
   }
-  if (!a.layers.empty()) {
-    if (a.layers == "none") {
-      spec.output.layers.clear();
-    } else {
-      if (lower_extension(a.layers) != ".exr") throw InputError("--layers " + a.layers, "the layers are a multi-layer EXR: use .exr, or none");
-      spec.output.layers = a.layers;
-    }
-  }
-  if (a.spp > 0) spec.render.spp = a.spp;
-  if (a.seed >= 0) spec.render.seed = std::uint64_t(a.seed);
-  if (!a.integrator.empty()) {
-    if (!find_integrator(a.integrator)) throw InputError("--integrator", unknown_integrator_message(a.integrator));
-    spec.render.integrator = a.integrator;
-  }
-  if (!a.irradiance.empty()) {
-    spec.render.block.value["irradiance"] = a.irradiance;
-  }
-  if (!a.tonemap.empty()) {
-    spec.output.tonemap.op = *parse_tonemap(a.tonemap);
-    spec.given.insert("output.tonemap");
-  }
-  if (a.key > 0) {
-    spec.output.tonemap.key = a.key;
-    spec.given.insert("output.tonemap.key");
-  }
-  return spec;
+  const nlohmann::json record = {{"args", sum_args_json(a)},
+                                  {"prepare_seconds", result.prepare_seconds},
+                                  {"render_seconds", result.layers.seconds}};
+  write_checkpoint(part, state, fingerprint, record.dump());
+  std::error_code ignored;
+  std::filesystem::remove(checkpoint, ignored);
+  std::printf("%s\n", part.c_str());
+  std::fprintf(stderr, "insitu: %s, samples %d:%d of %d, integrator %s: load %.2f s, prepare %.2f s, render %.2f s\n",
+               spec.path.c_str(), begin, end, spec.render.spp, spec.render.integrator.c_str(), scene.load_seconds,
+               result.prepare_seconds, result.layers.seconds);
+  return 0;
 }
 
 int run_render(const RenderArgs& a) {
   const SceneSpec spec = render_spec(a);
+  if (!a.samples.empty()) return run_part(a, spec);
+  if (!a.part.empty()) throw InputError("--part " + a.part, "a part file is written only with --samples A:B");
   LoadedScene scene = load_scene(spec);
   print_warnings(scene.warnings);
   const std::string checkpoint = checkpoint_path(spec.output.image);
@@ -143,6 +151,10 @@ Command add_render_command(CLI::App& app) {
                   "for PNG/JPEG: " + quoted_choices(names_of(kToneMaps)) + " [default: the scene's, else photo]")
       ->check(CLI::IsMember(names_of(kToneMaps)));
   cmd->add_flag("--resume", a->resume, "continue an interrupted render from its checkpoint (OUT.checkpoint)");
+  cmd->add_option("--samples", a->samples,
+                  "A:B: render only the samples A to B-1 of the spp, as a part of a split render, and write their sums "
+                  "to the part file instead of the image (merge the parts with `insitu merge`)");
+  cmd->add_option("--part", a->part, "the part file of --samples [default: OUT.samples-A-B.part]");
   cmd->add_option("--key", a->key, "tone-mapping key [default: adaptive_log 1, reinhard 0.18, linear 1]")->check(CLI::PositiveNumber);
   return [cmd, a] { return cmd->parsed() ? run_render(*a) : -1; };
 }

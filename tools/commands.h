@@ -19,6 +19,8 @@ Command add_irradiance_report_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
 Command add_tradeoff_command(CLI::App& app);
 Command add_export_blender_command(CLI::App& app);
+Command add_merge_command(CLI::App& app);
+Command add_batch_command(CLI::App& app);
 
 void print_warnings(const Warnings& warnings);
 

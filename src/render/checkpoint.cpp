@@ -8,12 +8,13 @@
 #include "core/error.h"
 #include "core/file_check.h"
 #include "core/text_file.h"
+#include "render/pixel_blocks.h"
 
 namespace insitu {
 namespace {
 
 constexpr char kMagic[8] = {'I', 'N', 'S', 'I', 'T', 'U', 'C', 'K'};
-constexpr std::uint32_t kVersion = 2;
+constexpr std::uint32_t kVersion = 3;
 
 template <class T>
 void put(std::string& out, T v) {
@@ -52,46 +53,103 @@ PixelSums get_sums(const std::string& in, std::size_t& at, const std::string& pa
   return p;
 }
 
+// Each pixel holds the canonical blocks of [begin, begin + n) with n the samples of the passes
+// done, plus the pass under way for the tiles before tiles_done.
+void check_pixels(const RenderState& st, const std::string& path) {
+  const int begin = st.sample_begin, end = st.sample_end;
+  const int done = pass_start(begin, end, st.passes_done) - begin;
+  const int next = st.passes_done < render_passes(end - begin) ? pass_start(begin, end, st.passes_done + 1) - begin : done;
+  if (st.spp_done != done) throw InputError(path, "inconsistent checkpoint (samples done)");
+  for (std::size_t i = 0; i < st.pixels.size(); ++i) {
+    const int n = block_samples(st.pixels[i]);
+    if ((n != done && n != next) || !canonical_blocks(st.pixels[i], begin))
+      throw InputError(path, fmt::format("inconsistent checkpoint (pixel {})", i));
+  }
+}
+
+// The header's plan: a size, a sample range within spp, passes and tiles within it.
+void check_plan(const RenderState& st, const std::string& path) {
+  const bool ok = st.width > 0 && st.height > 0 && st.spp > 0 && st.sample_begin >= 0 && st.sample_begin < st.sample_end &&
+                  st.sample_end <= st.spp && st.passes_done >= 0 && st.passes_done <= render_passes(st.sample_end - st.sample_begin) &&
+                  st.tiles_done >= 0 && st.tiles_done < tiles_across(st.width) * tiles_across(st.height);
+  if (!ok) throw InputError(path, "inconsistent checkpoint (size, samples or passes)");
+}
+
+RenderState read_header(const std::string& in, std::size_t& at, const std::string& path) {
+  RenderState st;
+  for (int* v : {&st.width, &st.height, &st.spp, &st.sample_begin, &st.sample_end, &st.passes_done, &st.tiles_done, &st.spp_done})
+    *v = get<std::int32_t>(in, at, path);
+  st.nonfinite = std::size_t(get<std::uint64_t>(in, at, path));
+  check_plan(st, path);
+  return st;
+}
+
+void read_pixels(RenderState& st, const std::string& in, std::size_t& at, const std::string& path) {
+  const std::size_t n = std::size_t(st.width) * std::size_t(st.height);
+  if ((in.size() - at) / 4 < n) throw InputError(path, "truncated checkpoint");
+  st.pixels.resize(n);
+  for (PixelBlocks& blocks : st.pixels) {
+    const std::int32_t count = get<std::int32_t>(in, at, path);
+    if (count < 0 || count > 64 || (in.size() - at) / kPixelBytes < std::size_t(count))
+      throw InputError(path, "truncated checkpoint");
+    blocks.reserve(std::size_t(count));
+    for (int k = 0; k < count; ++k) blocks.push_back(get_sums(in, at, path));
+  }
+  if (at != in.size()) throw InputError(path, "inconsistent checkpoint (bytes after the last pixel)");
+  check_pixels(st, path);
+}
+
 }  // namespace
 
 std::string checkpoint_path(const std::string& image_path) { return image_path + ".checkpoint"; }
 
-void write_checkpoint(const std::string& path, const RenderState& st, std::uint64_t fingerprint) {
+void write_checkpoint(const std::string& path, const RenderState& st, std::uint64_t fingerprint,
+                      const std::string& settings) {
   std::string out(kMagic, sizeof(kMagic));
   put(out, kVersion), put(out, kPixelBytes), put(out, fingerprint);
-  for (int v : {st.width, st.height, st.spp, st.passes_done, st.tiles_done, st.spp_done}) put(out, std::int32_t(v));
+  for (int v : {st.width, st.height, st.spp, st.sample_begin, st.sample_end, st.passes_done, st.tiles_done, st.spp_done})
+    put(out, std::int32_t(v));
   put(out, std::uint64_t(st.nonfinite));
-  out.reserve(out.size() + st.sums.size() * kPixelBytes);
-  for (const PixelSums& p : st.sums) put_sums(out, p);
+  put(out, std::uint32_t(settings.size()));
+  out += settings;
+  out.reserve(out.size() + st.pixels.size() * (4 + 3 * kPixelBytes));
+  for (const PixelBlocks& blocks : st.pixels) {
+    put(out, std::int32_t(blocks.size()));
+    for (const PixelSums& p : blocks) put_sums(out, p);
+  }
   write_binary_file(path, out);
 }
 
-RenderState read_checkpoint(const std::string& path, std::uint64_t fingerprint) {
-  if (!exists_quietly(path)) throw InputError(path, "no checkpoint to resume from (render without --resume)");
+StateFile read_state_file(const std::string& path) {
+  if (!exists_quietly(path)) throw InputError(path, "no such file");
   if (is_directory_quietly(path)) throw InputError(path, "is a directory");
   std::ifstream f(path, std::ios::binary);
   std::stringstream ss;
   ss << f.rdbuf();
   const std::string in = ss.str();
   if (in.size() < sizeof(kMagic) || std::memcmp(in.data(), kMagic, sizeof(kMagic)) != 0)
-    throw InputError(path, "not an insitu checkpoint");
+    throw InputError(path, "not an insitu checkpoint or part");
   std::size_t at = sizeof(kMagic);
   if (get<std::uint32_t>(in, at, path) != kVersion || get<std::uint32_t>(in, at, path) != kPixelBytes)
     throw InputError(path, "a checkpoint of another insitu version");
-  if (get<std::uint64_t>(in, at, path) != fingerprint)
+  StateFile file;
+  file.fingerprint = get<std::uint64_t>(in, at, path);
+  file.state = read_header(in, at, path);
+  const std::uint32_t length = get<std::uint32_t>(in, at, path);
+  if (in.size() - at < length) throw InputError(path, "truncated checkpoint");
+  file.settings = in.substr(at, length);
+  at += length;
+  read_pixels(file.state, in, at, path);
+  return file;
+}
+
+RenderState read_checkpoint(const std::string& path, std::uint64_t fingerprint) {
+  if (!exists_quietly(path)) throw InputError(path, "no checkpoint to resume from (render without --resume)");
+  StateFile file = read_state_file(path);
+  if (file.fingerprint != fingerprint)
     throw InputError(path, "a checkpoint of another scene, other inputs or other settings (spp, seed, integrator): "
                            "render without --resume to start again");
-  RenderState st;
-  st.width = get<std::int32_t>(in, at, path), st.height = get<std::int32_t>(in, at, path);
-  st.spp = get<std::int32_t>(in, at, path), st.passes_done = get<std::int32_t>(in, at, path);
-  st.tiles_done = get<std::int32_t>(in, at, path);
-  st.spp_done = get<std::int32_t>(in, at, path);
-  st.nonfinite = std::size_t(get<std::uint64_t>(in, at, path));
-  const std::size_t n = std::size_t(std::max(0, st.width)) * std::size_t(std::max(0, st.height));
-  if (in.size() - at != n * kPixelBytes) throw InputError(path, "truncated checkpoint");
-  st.sums.reserve(n);
-  for (std::size_t i = 0; i < n; ++i) st.sums.push_back(get_sums(in, at, path));
-  return st;
+  return std::move(file.state);
 }
 
 }  // namespace insitu

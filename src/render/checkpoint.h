@@ -1,11 +1,15 @@
-// Checkpoints of an interrupted render (issue 15): the render state (render_state.h) in a binary
-// file beside the output, OUT.checkpoint, written atomically (temporary name, then rename), so that
-// a kill at any moment leaves either the previous checkpoint or the new one, never half of one.
+// Checkpoints of an interrupted render (issue 15) and the parts of a split one (issue 17): the
+// render state (render_state.h) in a binary file, written atomically (temporary name, then
+// rename), so that a kill at any moment leaves either the previous file or the new one, never half
+// of one. A checkpoint lies beside the output, OUT.checkpoint; a part is the state of a finished
+// render of a sample range, which `insitu merge` adds to the others.
 //
-// Layout (little-endian): "INSITUCK", u32 version (2), u32 bytes per pixel (144), u64
-// fingerprint, i32 width, height, spp, passes_done, tiles_done, spp_done, u64 nonfinite, then per
-// pixel its PixelSums field by field (4 RGB and the normal as float32, 9 float64 sums, 3 int32
-// counts).
+// Layout (little-endian): "INSITUCK", u32 version (3), u32 bytes per block (144), u64
+// fingerprint, i32 width, height, spp, sample_begin, sample_end, passes_done, tiles_done, spp_done,
+// u64 nonfinite, u32 length and the text of the settings (what `insitu merge` needs to load the
+// scene again: JSON, may be empty), then per pixel an i32 count of blocks and the blocks
+// (render/pixel_blocks.h), each a PixelSums field by field (4 RGB and the normal as float32, 9
+// float64 sums, 3 int32 counts).
 // The fingerprint names the scene and settings it belongs to (scene/pipeline.h,
 // render_fingerprint): a checkpoint of another scene, other inputs or other settings is refused.
 #pragma once
@@ -18,9 +22,18 @@ namespace insitu {
 
 std::string checkpoint_path(const std::string& image_path);  // OUT.checkpoint
 
-void write_checkpoint(const std::string& path, const RenderState& state, std::uint64_t fingerprint);
-// Throws InputError("path", ...) when it is absent, truncated, of another layout, or of another
-// fingerprint.
+struct StateFile {
+  RenderState state;
+  std::uint64_t fingerprint = 0;
+  std::string settings;
+};
+
+void write_checkpoint(const std::string& path, const RenderState& state, std::uint64_t fingerprint,
+                      const std::string& settings = "");
+// Throws InputError("path", ...) when it is absent, truncated, of another layout or inconsistent
+// (blocks that are not the canonical ones of the samples the pass reached).
+StateFile read_state_file(const std::string& path);
+// read_state_file, and refused unless of this fingerprint.
 RenderState read_checkpoint(const std::string& path, std::uint64_t fingerprint);
 
 }  // namespace insitu

@@ -1,5 +1,7 @@
 #include "render/render.h"
 
+#include "render/pixel_blocks.h"
+
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -141,9 +143,9 @@ struct PassContext {
   const Integrator& integrator;
   const RenderSettings& settings;
   const ProgressFn& progress;
-  int spp, grid;
+  int spp, grid, first;  // first: the first sample of the range rendered
   Vec3f axis_world;
-  std::vector<PixelSums>& sums;
+  std::vector<PixelBlocks>& pixels;
   std::atomic<std::size_t>& nonfinite;
   std::atomic<long>& area_done;
   std::mutex& progress_mutex;
@@ -159,18 +161,22 @@ void render_tile(const PassContext& c, int tile, int s0, int s1) {
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) {
       const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(w) + std::uint64_t(x);
+      PixelBlocks& blocks = c.pixels[pixel];
       for (int s = s0; s < s1; ++s) {
         Sampler sampler(c.settings.seed, pixel, std::uint64_t(s));
         const Ray ray = jittered_ray(c.camera, x, y, pixel, s, c.spp, c.grid, sampler);
-        if (!accumulate(c.sums[pixel], c.integrator.sample(ray, sampler), ray, c.axis_world)) ++local_nonfinite;
-        ++c.sums[pixel].samples;
+        PixelSums leaf;
+        if (!accumulate(leaf, c.integrator.sample(ray, sampler), ray, c.axis_world)) ++local_nonfinite;
+        leaf.samples = 1;
+        push_block(blocks, c.first, leaf);
       }
+      blocks.shrink_to_fit();  // a few blocks stay of the log2(s1 − s0) the pass stacked
     }
   c.nonfinite += local_nonfinite;
   if (c.progress) {
     const long done = c.area_done += long(y1 - y0) * long(x1 - x0) * (s1 - s0);
     std::lock_guard<std::mutex> lock(c.progress_mutex);
-    c.progress({double(done) / c.total_work, s0, -1.0});
+    c.progress({double(done) / c.total_work, s0 - c.first, -1.0});
   }
 }
 
@@ -196,15 +202,49 @@ bool run_pass(const PassContext& c, int s0, int s1, int& tiles_done) {
 }
 
 // The state to start from: a fresh one, or the caller's (checked against the plan).
-void start_state(RenderState& st, int w, int h, int spp) {
-  if (st.passes_done == 0 && st.sums.empty()) {
-    st = RenderState{w, h, spp, 0, 0, 0, 0, std::vector<PixelSums>(std::size_t(w) * h)};
+void start_state(RenderState& st, int w, int h, int spp, int begin, int end) {
+  if (st.passes_done == 0 && st.pixels.empty()) {
+    st = RenderState{w, h, spp, begin, end, 0, 0, 0, 0, std::vector<PixelBlocks>(std::size_t(w) * h)};
     return;
   }
-  if (st.width != w || st.height != h || st.spp != spp || st.sums.size() != std::size_t(w) * h ||
-      st.passes_done < 0 || st.passes_done > render_passes(spp) || st.tiles_done < 0 ||
-      st.tiles_done >= tiles_across(w) * tiles_across(h))
-    throw std::invalid_argument("render: the state to resume is of another image size or spp");
+  if (st.width != w || st.height != h || st.spp != spp || st.sample_begin != begin || st.sample_end != end ||
+      st.pixels.size() != std::size_t(w) * h || st.passes_done < 0 || st.passes_done > render_passes(end - begin) ||
+      st.tiles_done < 0 || st.tiles_done >= tiles_across(w) * tiles_across(h))
+    throw std::invalid_argument("render: the state to resume is of another image size, spp or sample range");
+}
+
+// Each pixel's sum over the samples it has (its blocks folded).
+std::vector<PixelSums> pixel_totals(const RenderState& st) {
+  std::vector<PixelSums> totals(st.pixels.size());
+  tbb::parallel_for(std::size_t(0), st.pixels.size(), [&](std::size_t i) { totals[i] = fold_blocks(st.pixels[i]); });
+  return totals;
+}
+
+}  // namespace
+
+RenderLayers layers_from_state(const RenderState& st) {
+  RenderLayers out = layers_from_sums(pixel_totals(st), st.width, st.height);
+  out.spp_done = st.spp_done;
+  out.sample_begin = st.sample_begin;
+  out.interrupted = st.spp_done < st.sample_end - st.sample_begin;
+  out.nonfinite_samples = st.nonfinite;
+  return out;
+}
+
+namespace {
+
+// The passes over [st.sample_begin, st.sample_end), from where the state is.
+void run_passes(const PassContext& c, RenderState& st) {
+  const int begin = st.sample_begin, end = st.sample_end, passes = render_passes(end - begin);
+  for (; st.passes_done < passes; ++st.passes_done) {
+    const int s0 = pass_start(begin, end, st.passes_done), s1 = pass_start(begin, end, st.passes_done + 1);
+    if (!run_pass(c, s0, s1, st.tiles_done)) break;  // stopped
+    st.spp_done = s1 - begin;
+    if (c.progress) {
+      std::lock_guard<std::mutex> lock(c.progress_mutex);
+      c.progress({double(st.spp_done) / (end - begin), st.spp_done, mean_relative_noise(pixel_totals(st))});
+    }
+  }
 }
 
 }  // namespace
@@ -213,35 +253,27 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
                     const ProgressFn& progress, RenderState* state) {
   const auto start = std::chrono::steady_clock::now();
   const int w = camera.width, h = camera.height, spp = std::max(1, settings.spp);
+  const int begin = settings.sample_begin, end = settings.sample_end < 0 ? spp : settings.sample_end;
+  if (begin < 0 || end <= begin || end > spp) throw std::invalid_argument("render: the sample range is not within [0, spp)");
   int grid = int(std::lround(std::sqrt(double(spp))));
   if (grid * grid != spp) grid = 0;  // not a perfect square: plain jitter
   RenderState local;
   RenderState& st = state ? *state : local;
-  start_state(st, w, h, spp);
+  start_state(st, w, h, spp, begin, end);
   std::atomic<std::size_t> nonfinite{st.nonfinite};
   std::mutex progress_mutex;
   // Passes of samples over the whole image, so that progress can report samples per pixel done
-  // and the noise reached: 8 passes (fewer when spp is smaller), area-weighted progress within.
-  const int passes = render_passes(spp);
-  std::atomic<long> area_done{long(w) * h * pass_start(spp, st.passes_done)};  // (a cancelled pass's tiles aside)
-  const PassContext c{camera, integrator, settings, progress, spp, grid,
+  // and the noise reached: 8 passes (fewer when there are fewer samples), area-weighted progress
+  // within.
+  const int done = pass_start(begin, end, st.passes_done) - begin;
+  std::atomic<long> area_done{long(w) * h * done};  // (a cancelled pass's tiles aside)
+  const PassContext c{camera, integrator, settings, progress, spp, grid, begin,
                       camera.R_cam_from_world.row(2).transpose().cast<float>(),  // the optical axis
-                      st.sums, nonfinite, area_done, progress_mutex, double(w) * h * spp};
-  if (progress) progress({double(pass_start(spp, st.passes_done)) / spp, pass_start(spp, st.passes_done), -1.0});
-  for (; st.passes_done < passes; ++st.passes_done) {
-    const int s0 = pass_start(spp, st.passes_done), s1 = pass_start(spp, st.passes_done + 1);
-    if (!run_pass(c, s0, s1, st.tiles_done)) break;  // stopped
-    st.spp_done = s1;
-    if (progress) {
-      std::lock_guard<std::mutex> lock(progress_mutex);
-      progress({double(s1) / spp, s1, mean_relative_noise(st.sums)});
-    }
-  }
+                      st.pixels, nonfinite, area_done, progress_mutex, double(w) * h * (end - begin)};
+  if (progress) progress({double(done) / (end - begin), done, -1.0});
+  run_passes(c, st);
   st.nonfinite = nonfinite;
-  RenderLayers out = layers_from_sums(st.sums, w, h);
-  out.spp_done = st.spp_done;
-  out.interrupted = st.spp_done < spp;
-  out.nonfinite_samples = st.nonfinite;
+  RenderLayers out = layers_from_state(st);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -1,8 +1,9 @@
 // The render loop: for every pixel, spp camera samples at jittered sub-pixel positions (a
 // stratified jittered grid when spp is a perfect square), each traced by the integrator, in up to
 // 8 passes over the image so that progress can report the noise reached. Tiles run in parallel on
-// TBB; every sample's random numbers come from the counter-based hash and each pixel adds its
-// samples in index order, so the image does not depend on the number of threads or passes.
+// TBB; every sample's random numbers come from the counter-based hash and each pixel sums its
+// samples over a fixed tree of sample indices (render/pixel_blocks.h), so the image does not
+// depend on the number of threads or passes, or on how a split render was split.
 #pragma once
 #include <atomic>
 #include <cstdint>
@@ -23,10 +24,13 @@ constexpr float kNoHitDepth = 1e10f;
 // numbers (the integrator reads its own parameters: integrators/registry.h).
 // `stop`, when set (a signal handler, a host's cancel), ends the render after the pass under way:
 // the layers are then the means over the samples taken (RenderLayers::spp_done).
+// `sample_begin`, `sample_end`: render only the samples [begin, end) of the spp (a part of a split
+// render, issue 17; end −1: spp).
 struct RenderSettings {
   int spp = 16;
   std::uint64_t seed = 1;
   const std::atomic<bool>* stop = nullptr;
+  int sample_begin = 0, sample_end = -1;
 };
 
 struct RenderLayers {
@@ -46,6 +50,7 @@ struct RenderLayers {
   // that saw the catcher.
   Image ratio_variance, difference_variance, catcher_samples;
   int spp_done = 0;           // samples per pixel taken (spp unless stopped)
+  int sample_begin = 0;       // the first of them (a part of a split render, or parts merged)
   bool interrupted = false;   // stopped before spp
   double mean_relative_noise = 0;  // mean over changed pixels of √variance / value
   std::size_t nonfinite_samples = 0;  // zeroed and counted, never propagated
@@ -61,6 +66,10 @@ struct RenderProgress {
   double noise = -1;
 };
 using ProgressFn = std::function<void(const RenderProgress&)>;
+
+// The layers of a render's state: the means over the samples each pixel has (a part of a split
+// render, or parts merged: render/checkpoint.h).
+RenderLayers layers_from_state(const RenderState& state);
 
 // With `state`, the render continues from it (a resumed checkpoint: its size and spp must be the
 // camera's and the settings', else std::invalid_argument) and leaves in it where it ended.

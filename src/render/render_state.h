@@ -1,7 +1,9 @@
 // The render loop's state between passes: every pixel's sums and the passes done. What a
-// checkpoint holds (render/checkpoint.h): an interrupted render resumes from it to the image an
-// uninterrupted one gives, bit for bit, because each pixel adds its samples in index order and
-// every sample's random numbers depend only on (seed, pixel, sample).
+// checkpoint and a part of a split render hold (render/checkpoint.h): an interrupted render
+// resumes from it, and parts merge, to the image one uninterrupted render gives, bit for bit,
+// because every sample's random numbers depend only on (seed, pixel, sample) and each pixel sums
+// its samples over a tree of sample indices that no pass, thread or split changes
+// (render/pixel_blocks.h).
 #pragma once
 #include <cstddef>
 #include <vector>
@@ -10,8 +12,7 @@
 
 namespace insitu {
 
-// What a pixel has gathered so far. Samples are added in index order, pass after pass, so the
-// sums are the same whatever the passes and the threads. render/checkpoint.cpp writes every field.
+// What a pixel gathered over some of its samples. render/checkpoint.cpp writes every field.
 struct PixelSums {
   Rgb objects = Rgb::Zero(), with = Rgb::Zero(), without = Rgb::Zero(), albedo = Rgb::Zero();
   Vec3f normal = Vec3f::Zero();
@@ -23,13 +24,20 @@ struct PixelSums {
   int samples = 0;  // taken (a non-finite one counts, as zero): a cancelled pass leaves pixels unequal
 };
 
+// A pixel's sums over the samples [first, first + n) it has, as the canonical aligned blocks of
+// that range, in order (render/pixel_blocks.h).
+using PixelBlocks = std::vector<PixelSums>;
+
+// The render of the samples [sample_begin, sample_end) of a plan of spp per pixel (all of them
+// unless the render is a part of a split one, issue 17).
 struct RenderState {
   int width = 0, height = 0, spp = 0;  // the plan: the strata depend on spp
-  int passes_done = 0;                 // of render_passes(spp)
+  int sample_begin = 0, sample_end = 0;
+  int passes_done = 0;                 // of render_passes(sample_end − sample_begin)
   int tiles_done = 0;                  // of pass passes_done, in tile order (a cancelled pass)
   int spp_done = 0;                    // samples every pixel has
   std::size_t nonfinite = 0;
-  std::vector<PixelSums> sums;
+  std::vector<PixelBlocks> pixels;
 };
 
 // Tiles of kTilePixels² pixels, numbered row by row; a pass renders them in that order, however
@@ -37,9 +45,11 @@ struct RenderState {
 constexpr int kTilePixels = 16;
 inline int tiles_across(int pixels) { return (pixels + kTilePixels - 1) / kTilePixels; }
 
-// The passes a render of spp samples per pixel makes (progress and interruption come between them).
-inline int render_passes(int spp) { return spp < 8 ? spp : 8; }
-// The first sample of pass `pass` (pass = passes: spp).
-inline int pass_start(int spp, int pass) { return int(long(spp) * pass / render_passes(spp)); }
+// The passes a render of n samples per pixel makes (progress and interruption come between them).
+inline int render_passes(int n) { return n < 8 ? n : 8; }
+// The first sample of pass `pass` of the samples [begin, end) (pass = passes: end).
+inline int pass_start(int begin, int end, int pass) {
+  return begin + int(long(end - begin) * pass / render_passes(end - begin));
+}
 
 }  // namespace insitu

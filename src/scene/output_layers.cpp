@@ -64,7 +64,8 @@ std::vector<NamedPath> loaded_scene_inputs(const LoadedScene& scene) {
   return inputs;
 }
 
-void write_outputs(const LoadedScene& scene, const RenderResult& r, const OutputSpec* output) {
+void write_outputs(const LoadedScene& scene, const RenderResult& r, const OutputSpec* output,
+                   const nlohmann::json& report_extra) {
   const OutputSpec& out = output ? *output : scene.spec.output;
   if (output) {
     SceneSpec spec = scene.spec;
@@ -72,14 +73,17 @@ void write_outputs(const LoadedScene& scene, const RenderResult& r, const Output
     check_outputs(loaded_scene_inputs(scene), scene_output_files(spec));
   }
   const std::vector<OutputLayer> layers = output_layers(scene, r, &out);
+  if (!out.layers.empty()) {
+    std::vector<ExrChannel> channels;
+    for (const OutputLayer& layer : layers)
+      if (layer.in_exr)
+        for (std::size_t c = 0; c < layer.channels.size(); ++c) channels.push_back({layer.exr_channel(c), &layer.image, int(c)});
+    write_exr_channels(out.layers, r.composite_linear.width, r.composite_linear.height, channels);
+  }
   write_image(out.image, layers.back().image);
-  write_text_file(report_path(out.image), render_report(scene, r, &out).dump(2) + "\n");
-  if (out.layers.empty()) return;
-  std::vector<ExrChannel> channels;
-  for (const OutputLayer& layer : layers)
-    if (layer.in_exr)
-      for (std::size_t c = 0; c < layer.channels.size(); ++c) channels.push_back({layer.exr_channel(c), &layer.image, int(c)});
-  write_exr_channels(out.layers, r.composite_linear.width, r.composite_linear.height, channels);
+  nlohmann::json report = render_report(scene, r, &out);
+  if (report_extra.is_object()) report.update(report_extra);
+  write_text_file(report_path(out.image), report.dump(2) + "\n");
 }
 
 }  // namespace insitu

@@ -170,18 +170,11 @@ void check_mesh_files(const std::vector<Mesh>& meshes, const SceneSpec& spec) {
 
 }  // namespace
 
-LoadedScene load_scene(const SceneSpec& spec, std::vector<Mesh> memory_objects) {
-  const auto start = std::chrono::steady_clock::now();
-  // Before any work: no output may replace an input or another output.
-  check_outputs(scene_input_files(spec), scene_output_files(spec));
-  LoadedScene s;
-  s.spec = spec;
-  s.warnings = spec.warnings;
-  // The integrator reads its parameters before anything is loaded: a typo costs nothing.
-  s.integrator = resolve_integrator(spec.render.integrator, spec.render.block, s.warnings);
-  warn_ineffective_settings(spec, s.integrator, s.warnings);
-  if (s.integrator.params.value("irradiance", "") == "volume" && !spec.environment.room_box)
-    throw InputError(spec.render.block.file + ":" + spec.render.block.path, "the volume irradiance mode needs environment.room_box");
+namespace {
+
+// The room: the photo, the environment (the photo linearized with its response), the camera, the
+// room box and the clipped light recovered against the photo.
+void load_room(const SceneSpec& spec, LoadedScene& s) {
   try {
     s.photo = read_image_file(spec.photo);
   } catch (const InputError& e) {
@@ -199,7 +192,18 @@ LoadedScene load_scene(const SceneSpec& spec, std::vector<Mesh> memory_objects) 
     s.room = room;
   }
   recover_clipped_light(s);
+}
 
+// The room of `from`, loaded already (a batch's entries share it).
+void copy_room(const LoadedScene& from, LoadedScene& s) {
+  s.photo = from.photo, s.photo_linear = from.photo_linear, s.camera = from.camera, s.calibration = from.calibration;
+  s.environment = from.environment, s.environment_info = from.environment_info, s.room = from.room;
+  s.inverse_lighting = from.inverse_lighting;
+  s.warnings.items.insert(s.warnings.items.end(), from.room_warnings.items.begin(), from.room_warnings.items.end());
+}
+
+// The objects (from the spec, then from memory) and the local scene's meshes.
+void load_objects(const SceneSpec& spec, std::vector<Mesh> memory_objects, LoadedScene& s) {
   std::vector<Mesh> meshes;
   for (const ObjectSpec& obj : spec.objects) {
     meshes.push_back(load_placed_mesh(obj, s.warnings));
@@ -220,6 +224,30 @@ LoadedScene load_scene(const SceneSpec& spec, std::vector<Mesh> memory_objects) 
     if (p.mesh) catcher_meshes.push_back(load_placed_mesh(*p.mesh, s.warnings));
   check_mesh_files(catcher_meshes, spec);
   s.catcher_meshes = std::make_unique<EmbreeScene>(std::move(catcher_meshes));
+}
+
+}  // namespace
+
+LoadedScene load_scene(const SceneSpec& spec, std::vector<Mesh> memory_objects, const LoadedScene* room) {
+  const auto start = std::chrono::steady_clock::now();
+  // Before any work: no output may replace an input or another output.
+  check_outputs(scene_input_files(spec), scene_output_files(spec));
+  LoadedScene s;
+  s.spec = spec;
+  s.warnings = spec.warnings;
+  // The integrator reads its parameters before anything is loaded: a typo costs nothing.
+  s.integrator = resolve_integrator(spec.render.integrator, spec.render.block, s.warnings);
+  warn_ineffective_settings(spec, s.integrator, s.warnings);
+  if (s.integrator.params.value("irradiance", "") == "volume" && !spec.environment.room_box)
+    throw InputError(spec.render.block.file + ":" + spec.render.block.path, "the volume irradiance mode needs environment.room_box");
+  if (room) {
+    copy_room(*room, s);
+  } else {
+    const std::size_t before = s.warnings.items.size();
+    load_room(spec, s);
+    s.room_warnings.items.assign(s.warnings.items.begin() + long(before), s.warnings.items.end());
+  }
+  load_objects(spec, std::move(memory_objects), s);
   s.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return s;
 }
@@ -255,10 +283,16 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress, 
     inputs.catcher_irradiance = catcher_irradiance.get();
   }
   auto integrator = scene.integrator.entry->create(inputs, scene.integrator.params);
+  const double prepare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const RenderSettings settings{scene.spec.render.spp, scene.spec.render.seed, control.stop, control.sample_begin,
+                                control.sample_end};
+  return finish_render(scene, render(scene.camera, *integrator, settings, progress, control.state), prepare_seconds);
+}
+
+RenderResult finish_render(const LoadedScene& scene, RenderLayers layers, double prepare_seconds) {
   RenderResult r;
-  r.prepare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  r.layers = render(scene.camera, *integrator, {scene.spec.render.spp, scene.spec.render.seed, control.stop}, progress,
-                    control.state);
+  r.prepare_seconds = prepare_seconds;
+  r.layers = std::move(layers);
   r.composite_linear = composite(scene.photo_linear, r.layers, scene.spec.composite);
   r.composite_encoded = encode_composite(r.composite_linear, touched_mask(r.layers), scene.photo,
                                          scene.environment_info.response ? &*scene.environment_info.response : nullptr);
@@ -310,6 +344,7 @@ nlohmann::json render_report(const LoadedScene& s, const RenderResult& r, const 
         {"irradiance", s.integrator.params.value("irradiance", json(nullptr))},
         {"spp", r.layers.spp_done},  // the samples taken: fewer than planned when interrupted
         {"spp_planned", s.spec.render.spp},
+        {"samples", {r.layers.sample_begin, r.layers.sample_begin + r.layers.spp_done}},  // indices [A, B) of the plan
         {"interrupted", r.layers.interrupted},
         {"max_depth", s.integrator.params.value("max_depth", json(nullptr))},
         {"seed", s.spec.render.seed},

@@ -36,13 +36,17 @@ struct LoadedScene {
   std::unique_ptr<EmbreeScene> catcher_meshes;  // meshes of the local scene
   ResolvedIntegrator integrator;  // the entry and its parameters, read from the render object
   Warnings warnings;
+  Warnings room_warnings;  // those of loading the room (what a scene sharing it repeats)
   double load_seconds = 0;
 };
 
 // Refuses (InputError) before reading anything when an output would replace an input or another
 // output (output_paths.h), and again once the meshes have named their MTL files and textures.
 // `memory_objects`: meshes given in memory (the C API), already placed, after the spec's objects.
-LoadedScene load_scene(const SceneSpec& spec, std::vector<Mesh> memory_objects = {});
+// `room`: a scene loaded already whose room (photo, camera, environment, room box, recovered
+// light) this one shares, not read again (a batch's entries: the caller checks that the room's
+// settings are the same).
+LoadedScene load_scene(const SceneSpec& spec, std::vector<Mesh> memory_objects = {}, const LoadedScene* room = nullptr);
 
 // The files a scene reads (before loading its meshes) and writes.
 std::vector<NamedPath> scene_input_files(const SceneSpec& spec);
@@ -56,12 +60,17 @@ struct RenderResult {
 };
 
 // How a render may be stopped and resumed (issue 15): `stop` ends it after the pass under way;
-// `state` starts it from a checkpoint (render/checkpoint.h) and receives where it ended.
+// `state` starts it from a checkpoint (render/checkpoint.h) and receives where it ended. A part of
+// a split render (issue 17) takes only the samples [sample_begin, sample_end) of render.spp (end
+// −1: spp).
 struct RenderControl {
   const std::atomic<bool>* stop = nullptr;
   RenderState* state = nullptr;
+  int sample_begin = 0, sample_end = -1;
 };
 RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress = {}, const RenderControl& control = {});
+// The composite of layers rendered (or merged from parts) for this scene.
+RenderResult finish_render(const LoadedScene& scene, RenderLayers layers, double prepare_seconds = 0);
 
 // What a checkpoint must match to be resumed: a 64-bit FNV-1a hash of everything the render's
 // sums depend on — the camera, spp, seed, the integrator and its parameters, the photo and the
@@ -69,9 +78,12 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress =
 // tone map or the composite's form, which act after the sums.
 std::uint64_t render_fingerprint(const LoadedScene& scene);
 
-// Writes the composite image, the layered EXR (scene/output_layers.h) and the JSON report, each
-// atomically, to the scene's outputs or to `output`'s (checked first against every input).
-void write_outputs(const LoadedScene& scene, const RenderResult& result, const OutputSpec* output = nullptr);
+// Writes the layered EXR (scene/output_layers.h), the composite image and the JSON report, each
+// atomically, to the scene's outputs or to `output`'s (checked first against every input). The
+// report comes last: where it exists, the image and the layers are whole (a batch's mark of an
+// entry done). `report_extra`: keys added to the report (a batch entry's).
+void write_outputs(const LoadedScene& scene, const RenderResult& result, const OutputSpec* output = nullptr,
+                   const nlohmann::json& report_extra = {});
 
 // The report written next to the image (IMAGE_STEM.report.json): stage timings, the calibration's
 // RMS, the integrator, irradiance mode, samples per pixel, noise estimate, non-finite samples, and

@@ -1,0 +1,137 @@
+// Catalogue batches (issue 17): `insitu batch` renders each entry as `insitu render` renders the
+// entry's scene, bit for bit, whether the room is loaded for it or shared; a rerun skips entries
+// whose outputs are there of the same inputs and renders those whose inputs changed; --index
+// renders one entry; a killed batch leaves no output of the entry it was on; bad batches are
+// refused with a one-line error naming the entry.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fmt/format.h>
+#include <thread>
+
+#include "cli_util.h"
+#include "exr_pixels.h"
+#include "scene_fixture.h"
+
+namespace insitu {
+namespace {
+
+using test::exr_pixels;
+using test::run_insitu;
+using test::SceneFixture;
+namespace fs = std::filesystem;
+
+// The fixture's scene as the room, and entries that move the quad and name their outputs.
+struct BatchFixture {
+  SceneFixture fx;
+  std::string scene;
+  nlohmann::json entries = nlohmann::json::array();
+
+  explicit BatchFixture(int spp = 8) {
+    auto j = fx.scene;
+    j["render"] = {{"integrator", "path"}, {"spp", spp}};
+    j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
+    scene = fx.write(j);
+    for (int i = 0; i < 3; ++i)
+      entries.push_back({{"objects", {{{"mesh", "good_quad.obj"}, {"translate", {0.1 * i, 0.0, 0.0}}}}},
+                         {"output", {{"image", fmt::format("out/e{}.exr", i)}}}});
+  }
+  std::string write_batch() const {
+    return fx.dir.write("batch.json", nlohmann::json{{"scene", "scene.json"}, {"entries", entries}}.dump(2));
+  }
+  std::string out(int i) const { return fx.dir.file(fmt::format("out/e{}.exr", i)); }
+};
+
+TEST(Batch, EachEntryIsTheRenderOfItsSceneAndReRunsSkipWhatIsDone) {
+  BatchFixture b;
+  const std::string batch = b.write_batch();
+  auto r = run_insitu(b.fx.dir, "batch " + batch);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("(room shared)"), std::string::npos) << r.err;
+  // Entry 2, rendered on its own from its merged scene file: the same pixels.
+  auto j = nlohmann::json::parse(test::slurp(b.scene));
+  j.merge_patch(b.entries[2]);
+  j["output"]["image"] = "alone.exr";
+  ASSERT_EQ(run_insitu(b.fx.dir, "render " + b.fx.dir.write("alone.json", j.dump())).exit_code, 0);
+  ASSERT_FALSE(exr_pixels(b.out(2)).empty());
+  EXPECT_TRUE(exr_pixels(b.out(2)) == exr_pixels(b.fx.dir.file("alone.exr")));
+  EXPECT_FALSE(exr_pixels(b.out(1)) == exr_pixels(b.out(2)));
+  // Again: nothing to do.
+  const auto written = fs::last_write_time(b.out(0));
+  r = run_insitu(b.fx.dir, "batch " + batch);
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.err.find("0 rendered, 3 done already"), std::string::npos) << r.err;
+  EXPECT_EQ(fs::last_write_time(b.out(0)), written);
+  // Entry 1 changed: only it is rendered again.
+  b.entries[1]["objects"][0]["translate"] = {0.3, 0.0, 0.0};
+  b.write_batch();
+  r = run_insitu(b.fx.dir, "batch " + batch);
+  EXPECT_NE(r.err.find("1 rendered, 2 done already"), std::string::npos) << r.err;
+  r = run_insitu(b.fx.dir, "batch " + batch + " --force --index 0");
+  EXPECT_NE(r.err.find("1 rendered, 0 done already"), std::string::npos) << r.err;
+  EXPECT_NE(fs::last_write_time(b.out(0)), written);
+}
+
+TEST(Batch, IndexRendersOneEntryAndCountCountsThem) {
+  BatchFixture b;
+  const std::string batch = b.write_batch();
+  auto r = run_insitu(b.fx.dir, "batch " + batch + " --count");
+  EXPECT_EQ(r.out, "3\n");
+  r = run_insitu(b.fx.dir, "batch " + batch + " --index 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, b.out(1) + "\n");
+  EXPECT_FALSE(fs::exists(b.out(0)));
+  EXPECT_FALSE(fs::exists(b.out(2)));
+  EXPECT_TRUE(fs::exists(b.out(1) + ".report.json"));
+  test::expect_one_line_error(run_insitu(b.fx.dir, "batch " + batch + " --index 3"), "has entries 0 to 2");
+}
+
+// SIGKILL in the middle of an entry's render (once its progress shows it under way): none of its
+// outputs has a final name.
+TEST(Batch, AKilledTaskLeavesNoOutput) {
+  BatchFixture b(1 << 16);  // minutes of rendering: the kill lands in it
+  b.entries.erase(b.entries.begin() + 1, b.entries.end());
+  const std::string batch = b.write_batch(), err = b.fx.dir.file("batch.err");
+  const std::string cmd = std::string(INSITU_BINARY) + " batch " + batch + " > /dev/null 2> " + err + " & echo $!";
+  FILE* p = popen(cmd.c_str(), "r");
+  int pid = 0;
+  ASSERT_EQ(fscanf(p, "%d", &pid), 1);
+  pclose(p);
+  for (int i = 0; i < 600 && test::slurp(err).find("entry 0: ") == std::string::npos; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_NE(test::slurp(err).find("entry 0: "), std::string::npos) << "no progress within 60 s";
+  kill(pid, SIGKILL);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_FALSE(fs::exists(b.out(0)));
+  EXPECT_FALSE(fs::exists(b.out(0) + ".report.json"));
+  EXPECT_FALSE(fs::exists(b.fx.dir.file("out/e0.layers.exr")));
+}
+
+TEST(Batch, BadBatchesAreRefusedNamingTheEntry) {
+  BatchFixture b;
+  auto refused = [&](const nlohmann::json& doc, const std::string& says) {
+    const std::string path = b.fx.dir.write("bad.json", doc.dump());
+    test::expect_one_line_error(run_insitu(b.fx.dir, "batch " + path), says);
+  };
+  refused({{"scene", "scene.json"}, {"entries", nlohmann::json::array()}}, "non-empty array");
+  refused({{"scene", "scene.json"}, {"entries", b.entries}, {"extra", 1}}, "$.extra");
+  refused({{"entries", b.entries}}, "$.scene");
+  refused({{"scene", "none.json"}, {"entries", b.entries}}, "none.json");
+  auto twice = b.entries;
+  twice[2]["output"]["image"] = "out/e0.exr";
+  refused({{"scene", "scene.json"}, {"entries", twice}}, "entries[2]");
+  auto unnamed = b.entries;
+  unnamed[1].erase("output");
+  refused({{"scene", "scene.json"}, {"entries", unnamed}}, "entries[1]: every entry names its own output.image");
+  auto missing = b.entries;
+  missing[2]["objects"][0]["mesh"] = "no_such.obj";
+  refused({{"scene", "scene.json"}, {"entries", missing}}, "entries[2]");
+  EXPECT_FALSE(fs::exists(b.out(0)));
+}
+
+}  // namespace
+}  // namespace insitu

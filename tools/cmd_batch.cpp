@@ -1,0 +1,169 @@
+// insitu batch BATCH.json [--index I] [--force] [--count]
+//
+// A catalogue batch (issue 17): one room, many stills. BATCH.json is
+//   {"scene": "room/scene.json", "entries": [PATCH, PATCH, ...]}
+// where each entry is a JSON merge patch (RFC 7386) of the room's scene file: the keys it gives
+// replace the room's (arrays whole: "objects"), null removes one. It is read as if it were that
+// scene file, so its relative paths are relative to the scene file's folder. Every entry must name
+// its own output.image.
+//
+// --index I renders entry I only (a Slurm array task: --index $SLURM_ARRAY_TASK_ID); without it,
+// every entry in turn, the room (photo, camera, environment, recovered light) loaded once and
+// shared by the entries that leave it as it is. An entry's outputs are written atomically, the
+// report last (scene/pipeline.h, write_outputs); a killed task leaves none of its files under a
+// final name. A rerun skips an entry whose report exists and records the same inputs hash: the
+// entry's scene as merged, the insitu version and the bytes of the files it names (MTL files and
+// textures that an OBJ names are not hashed: --force renders again).
+#include <cstdio>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <memory>
+
+#include "commands.h"
+#include "core/fnv1a.h"
+#include "core/json_reader.h"
+#include "core/output_paths.h"
+#include "progress.h"
+#include "scene/pipeline.h"
+
+namespace insitu {
+namespace {
+
+struct BatchArgs {
+  std::string batch;
+  int index = -1;
+  bool force = false, count = false;
+};
+
+struct Entry {
+  json scene;  // the room's scene file with the entry's patch
+  SceneSpec spec;
+};
+
+// The room's scene file, then each entry merged into it and parsed (every error names the entry).
+std::vector<Entry> read_batch(const std::string& path) {
+  const json doc = read_json_file(path);
+  if (!doc.is_object()) throw InputError(path, "a batch is a JSON object {\"scene\": ..., \"entries\": [...]}");
+  for (const auto& [key, value] : doc.items())
+    if (key != "scene" && key != "entries") throw InputError(path + ":$." + key, "unknown key (a batch has scene and entries)");
+  if (!doc.contains("scene") || !doc["scene"].is_string()) throw InputError(path + ":$.scene", "the room's scene file is required (a string)");
+  if (!doc.contains("entries") || !doc["entries"].is_array() || doc["entries"].empty())
+    throw InputError(path + ":$.entries", "a non-empty array of entries is required");
+  const std::filesystem::path scene_path = std::filesystem::path(path).parent_path() / doc["scene"].get<std::string>();
+  const json room = read_json_file(scene_path.string());
+  parse_scene_file(scene_path.string());  // the room's own errors, named in its own file
+  std::vector<Entry> entries;
+  for (std::size_t i = 0; i < doc["entries"].size(); ++i) {
+    const json& patch = doc["entries"][i];
+    const std::string where = fmt::format("{}:$.entries[{}]", path, i);
+    if (!patch.is_object()) throw InputError(where, "an entry is a JSON object (a merge patch of the room's scene file)");
+    if (!patch.contains("output") || !patch["output"].is_object() || !patch["output"].contains("image"))
+      throw InputError(where, "every entry names its own output.image");
+    json merged = room;
+    merged.merge_patch(patch);
+    entries.push_back({merged, parse_scene_json(merged, where, scene_path.parent_path().string())});
+  }
+  for (std::size_t i = 0; i < entries.size(); ++i)
+    for (std::size_t k = 0; k < i; ++k)
+      if (same_file(entries[i].spec.output.image, entries[k].spec.output.image))
+        throw InputError(entries[i].spec.path, fmt::format("output.image {} is entry {}'s too", entries[i].spec.output.image, k));
+  return entries;
+}
+
+// The entry's inputs hash (see the top of the file), in hex.
+std::string inputs_hash(const Entry& e) {
+  Fnv1a h;
+  h.text("insitu batch entry 1"), h.text(INSITU_VERSION), h.text(e.scene.dump());
+  for (const NamedPath& in : scene_input_files(e.spec)) {
+    h.text(in.path);
+    std::ifstream f(in.path, std::ios::binary);
+    std::vector<char> buffer(1 << 16);
+    while (f.read(buffer.data(), std::streamsize(buffer.size())) || f.gcount() > 0) h.bytes(buffer.data(), std::size_t(f.gcount()));
+  }
+  return fmt::format("{:016x}", h.digest());
+}
+
+// Whether the entry's outputs are there, of these inputs.
+bool done_already(const Entry& e, const std::string& hash) {
+  const std::string report = report_path(e.spec.output.image);
+  if (!std::filesystem::exists(report) || !std::filesystem::exists(e.spec.output.image)) return false;
+  if (!e.spec.output.layers.empty() && !std::filesystem::exists(e.spec.output.layers)) return false;
+  try {
+    return read_json_file(report).at("batch").at("inputs_hash") == hash;
+  } catch (const std::exception&) {
+    return false;  // not a batch's report, or unreadable: render again
+  }
+}
+
+// The keys of a scene file that make the room (a batch's entries that leave them as the room has
+// them share its loaded room).
+json room_keys(const json& scene) {
+  json keys = json::object();
+  for (const char* k : {"photo", "camera", "environment", "local_scene"})
+    if (scene.contains(k)) keys[k] = scene[k];
+  return keys;
+}
+
+struct RoomCache {
+  json keys;
+  std::unique_ptr<LoadedScene> scene;
+};
+
+void render_entry(const BatchArgs& a, const Entry& e, int index, const std::string& hash, RoomCache& room) {
+  const bool share = room.scene && room_keys(e.scene) == room.keys;
+  auto scene = std::make_unique<LoadedScene>(load_scene(e.spec, {}, share ? room.scene.get() : nullptr));
+  print_warnings(scene->warnings);
+  Progress progress(fmt::format("entry {}", index));
+  std::string detail;
+  const RenderResult result = render_scene(*scene, [&](const RenderProgress& p) {
+    if (p.noise >= 0) detail = fmt::format("{}/{} spp, noise {:.1f}%", p.spp_done, e.spec.render.spp, 100 * p.noise);
+    progress.update(p.fraction, detail, p.noise >= 0);
+  });
+  write_outputs(*scene, result, nullptr, {{"batch", {{"file", a.batch}, {"index", index}, {"inputs_hash", hash}}}});
+  std::printf("%s\n", e.spec.output.image.c_str());
+  std::fprintf(stderr, "insitu: entry %d: %s: load %.2f s%s, prepare %.2f s, render %.2f s\n", index,
+               e.spec.output.image.c_str(), scene->load_seconds, share ? " (room shared)" : "", result.prepare_seconds,
+               result.layers.seconds);
+  if (!share) room = {room_keys(e.scene), std::move(scene)};
+}
+
+int run_batch(const BatchArgs& a) {
+  const std::vector<Entry> entries = read_batch(a.batch);
+  if (a.count) {
+    std::printf("%zu\n", entries.size());
+    return 0;
+  }
+  if (a.index >= int(entries.size()))
+    throw InputError("--index " + std::to_string(a.index), fmt::format("{} has entries 0 to {}", a.batch, entries.size() - 1));
+  RoomCache room;
+  int rendered = 0, skipped = 0;
+  for (int i = 0; i < int(entries.size()); ++i) {
+    if (a.index >= 0 && i != a.index) continue;
+    const std::string hash = inputs_hash(entries[std::size_t(i)]);
+    if (!a.force && done_already(entries[std::size_t(i)], hash)) {
+      std::fprintf(stderr, "insitu: entry %d: %s is done, of the same inputs (--force renders it again)\n", i,
+                   entries[std::size_t(i)].spec.output.image.c_str());
+      ++skipped;
+      continue;
+    }
+    render_entry(a, entries[std::size_t(i)], i, hash, room);
+    ++rendered;
+  }
+  std::fprintf(stderr, "insitu: %s: %d rendered, %d done already\n", a.batch.c_str(), rendered, skipped);
+  return 0;
+}
+
+}  // namespace
+
+Command add_batch_command(CLI::App& app) {
+  auto a = std::make_shared<BatchArgs>();
+  CLI::App* cmd = app.add_subcommand("batch", "render the entries of a batch file: one room, many objects and outputs");
+  cmd->add_option("batch", a->batch, "the batch file (JSON: the room's scene file and its entries)")->required();
+  cmd->add_option("--index", a->index, "render entry I only (a Slurm array task's $SLURM_ARRAY_TASK_ID)")->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--force", a->force, "render entries whose outputs are there, of the same inputs, again");
+  cmd->add_flag("--count", a->count, "print the number of entries and render nothing (for sbatch --array=0-(N-1))");
+  return [cmd, a] { return cmd->parsed() ? run_batch(*a) : -1; };
+}
+
+}  // namespace insitu
