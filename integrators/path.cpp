@@ -71,20 +71,28 @@ class PathIntegrator final : public Integrator {
   PathIntegrator(const RenderInputs& in, int max_depth)
       : in_(in),
         objects_(in.objects),
-        room_(*in.environment, in.room),
+        cache_(room_cache(in)),
+        room_light_(cache_->light()),
+        room_(*room_light_),
         max_depth_(std::max(1, max_depth)) {
     // In a room box the irradiance behind a photo-derived albedo varies over the plane.
     if (!in_.room) return;
     for (const CatcherPlane& p : in_.planes)
-      plane_irradiance_.push_back(p.albedo_from_photo ? std::make_unique<PlaneIrradiance>(room_, *in_.room, p.point, p.normal) : nullptr);
+      plane_irradiance_.push_back(p.albedo_from_photo ? cache_->plane(p.point, p.normal, 64) : nullptr);
     // The box's faces catch too (by face: +x, −x, +y, −y, +z, −z; normals into the room).
     for (int face = 0; face < 6; ++face) {
       const int axis = face / 2;
       Vec3f point = in_.room->min, normal = Vec3f::Zero();
       if (face % 2 == 0) point[axis] = in_.room->max[axis];
       normal[axis] = face % 2 == 0 ? -1.0f : 1.0f;
-      wall_irradiance_[std::size_t(face)] = std::make_unique<PlaneIrradiance>(room_, *in_.room, point, normal, 32);
+      wall_irradiance_[std::size_t(face)] = cache_->plane(point, normal, 32);
     }
+  }
+
+  // The room's cache when the caller shares one of this room (a batch's entries), else our own.
+  static std::shared_ptr<RoomCache> room_cache(const RenderInputs& in) {
+    if (in.room_cache && in.room_cache->serves(*in.environment, in.room)) return in.room_cache;
+    return std::make_shared<RoomCache>(*in.environment, in.room);
   }
 
   CameraSample sample(const Ray& camera_ray, Sampler& sampler) const override {
@@ -320,10 +328,12 @@ class PathIntegrator final : public Integrator {
 
   const RenderInputs in_;
   const EmbreeScene* objects_;
-  RoomLight room_;
+  std::shared_ptr<RoomCache> cache_;
+  std::shared_ptr<const RoomLight> room_light_;
+  const RoomLight& room_;
   int max_depth_;
-  std::vector<std::unique_ptr<PlaneIrradiance>> plane_irradiance_;  // by plane, with a room box
-  std::array<std::unique_ptr<PlaneIrradiance>, 6> wall_irradiance_;  // by face of the room box
+  std::vector<std::shared_ptr<const PlaneIrradiance>> plane_irradiance_;  // by plane, with a room box
+  std::array<std::shared_ptr<const PlaneIrradiance>, 6> wall_irradiance_;  // by face of the room box
 };
 
 }  // namespace

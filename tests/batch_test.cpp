@@ -31,10 +31,15 @@ struct BatchFixture {
   std::string scene;
   nlohmann::json entries = nlohmann::json::array();
 
-  explicit BatchFixture(int spp = 8) {
+  // room_box: the environment as an emitting box, whose room light and irradiance grids the
+  // entries sharing the room share (render/room_cache.h).
+  explicit BatchFixture(int spp = 8, bool room_box = false) {
     auto j = fx.scene;
     j["render"] = {{"integrator", "path"}, {"spp", spp}};
     j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
+    if (room_box)
+      j["environment"] = {{"image", j["environment"]},
+                          {"room_box", {{"min", {-3, 0, -4}}, {"max", {3, 3, 3}}, {"capture", {0.5, 1.0, -0.5}}}}};
     scene = fx.write(j);
     for (int i = 0; i < 3; ++i)
       entries.push_back({{"objects", {{{"mesh", "good_quad.obj"}, {"translate", {0.1 * i, 0.0, 0.0}}}}},
@@ -45,6 +50,25 @@ struct BatchFixture {
   }
   std::string out(int i) const { return fx.dir.file(fmt::format("out/e{}.exr", i)); }
 };
+
+// A room box: the shared room light and grids give the pixels of grids built for the entry alone.
+TEST(Batch, EntriesSharingARoomBoxAreTheirScenesRenders) {
+  BatchFixture b(4, true);
+  const std::string batch = b.write_batch();
+  auto r = run_insitu(b.fx.dir, "batch " + batch);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("(room shared)"), std::string::npos) << r.err;
+  for (int i : {1, 2}) {
+    auto j = nlohmann::json::parse(test::slurp(b.scene));
+    j.merge_patch(b.entries[std::size_t(i)]);
+    j["output"]["image"] = fmt::format("alone{}.exr", i);
+    b.fx.dir.write(fmt::format("alone{}.json", i), j.dump());
+    r = run_insitu(b.fx.dir, fmt::format("render {}", b.fx.dir.file(fmt::format("alone{}.json", i))));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_FALSE(exr_pixels(b.out(i)).empty());
+    EXPECT_TRUE(exr_pixels(b.out(i)) == exr_pixels(b.fx.dir.file(fmt::format("alone{}.exr", i)))) << i;
+  }
+}
 
 TEST(Batch, EachEntryIsTheRenderOfItsSceneAndReRunsSkipWhatIsDone) {
   BatchFixture b;
@@ -88,6 +112,23 @@ TEST(Batch, IndexRendersOneEntryAndCountCountsThem) {
   EXPECT_FALSE(fs::exists(b.out(2)));
   EXPECT_TRUE(fs::exists(b.out(1) + ".report.json"));
   test::expect_one_line_error(run_insitu(b.fx.dir, "batch " + batch + " --index 3"), "has entries 0 to 2");
+}
+
+// --per-task K: task I renders entries I·K … I·K + K − 1 (the last task fewer), sharing the room.
+TEST(Batch, PerTaskGroupsEntries) {
+  BatchFixture b;
+  const std::string batch = b.write_batch();
+  auto r = run_insitu(b.fx.dir, "batch " + batch + " --count --per-task 2");
+  EXPECT_EQ(r.out, "2\n");
+  r = run_insitu(b.fx.dir, "batch " + batch + " --index 0 --per-task 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, b.out(0) + "\n" + b.out(1) + "\n");
+  EXPECT_NE(r.err.find("(room shared)"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(b.out(2)));
+  r = run_insitu(b.fx.dir, "batch " + batch + " --index 1 --per-task 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, b.out(2) + "\n");
+  test::expect_one_line_error(run_insitu(b.fx.dir, "batch " + batch + " --index 2 --per-task 2"), "tasks 0 to 1 of 2 entries");
 }
 
 // SIGKILL in the middle of an entry's render (once its progress shows it under way): none of its

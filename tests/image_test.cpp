@@ -11,6 +11,7 @@
 
 #include "core/colour.h"
 #include "core/error.h"
+#include "core/exr_header.h"
 #include "core/image.h"
 #include "test_util.h"
 
@@ -155,6 +156,21 @@ TEST(Image, DecompressionBombIsRefusedFromItsHeader) {
   const std::string small = dir.file("flat.exr");
   write_image(small, flat);
   EXPECT_EQ(read_image_file(small).stored.width, 4096);
+}
+
+// The bomb's size comes from OpenEXRCore's header alone, before OpenEXR's reader reserves line
+// buffers for its 8-million-pixel rows (under the sanitizers that took more than the fuzzer's 10 s).
+TEST(Image, ExrHeaderIsReadWithoutOpeningTheImage) {
+  const auto bomb = exr_declared_size(test::test_data("bomb_64_megapixels.exr"));
+  ASSERT_TRUE(bomb.has_value());
+  EXPECT_EQ(bomb->first, 7995408);
+  EXPECT_EQ(bomb->second, 8);
+  test::TempDir dir;
+  write_image(dir.file("a.exr"), Image(5, 3, 3, 1.0f));
+  write_image(dir.file("a.png"), Image(5, 3, 3, 0.5f));
+  EXPECT_EQ(exr_declared_size(dir.file("a.exr")), std::make_pair(std::int64_t(5), std::int64_t(3)));
+  EXPECT_FALSE(exr_declared_size(dir.file("a.png")).has_value());
+  EXPECT_FALSE(exr_declared_size(dir.file("missing.exr")).has_value());
 }
 
 // A name the system refuses (longer than NAME_MAX) is a one-line InputError naming it, not a

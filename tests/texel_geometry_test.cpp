@@ -18,6 +18,21 @@
 namespace insitu {
 namespace {
 
+// The table (corners shared between texels) against the texel-by-texel formula.
+TEST(TexelGeometry, FaceTableIsTheTexelFormula) {
+  for (int n : {1, 2, 7, 64}) {
+    const std::vector<double> omega = face_solid_angles(n);
+    ASSERT_EQ(omega.size(), std::size_t(n) * std::size_t(n));
+    double sum = 0;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        EXPECT_NEAR(omega[std::size_t(j) * std::size_t(n) + std::size_t(i)], texel_solid_angle(i, j, n), 1e-15) << n << " " << i << " " << j;
+        sum += omega[std::size_t(j) * std::size_t(n) + std::size_t(i)];
+      }
+    EXPECT_NEAR(sum, 4 * kPi / 6, 1e-12);  // a face is a sixth of the sphere
+  }
+}
+
 TEST(TexelGeometry, SolidAnglesAndLambertVectorsSumAsTheSphere) {
   for (int n : {1, 3, 16}) {
     double omega = 0;

@@ -1,4 +1,4 @@
-// insitu batch BATCH.json [--index I] [--force] [--count]
+// insitu batch BATCH.json [--index I [--per-task K]] [--force] [--count]
 //
 // A catalogue batch (issue 17): one room, many stills. BATCH.json is
 //   {"scene": "room/scene.json", "entries": [PATCH, PATCH, ...]}
@@ -7,13 +7,18 @@
 // scene file, so its relative paths are relative to the scene file's folder. Every entry must name
 // its own output.image.
 //
-// --index I renders entry I only (a Slurm array task: --index $SLURM_ARRAY_TASK_ID); without it,
-// every entry in turn, the room (photo, camera, environment, recovered light) loaded once and
-// shared by the entries that leave it as it is. An entry's outputs are written atomically, the
+// --index I renders entry I only (a Slurm array task: --index $SLURM_ARRAY_TASK_ID); with
+// --per-task K, task I renders entries I·K … I·K + K − 1 and --count prints the number of tasks.
+// Without --index, every entry in turn. The room (photo, camera, environment, recovered light, and
+// the room light and irradiance grids the path integrator prepares: render/room_cache.h) is loaded
+// once and shared by the entries of the process that leave it as it is, so a task of K entries
+// pays the room's start-up once. An entry's outputs are written atomically, the
 // report last (scene/pipeline.h, write_outputs); a killed task leaves none of its files under a
 // final name. A rerun skips an entry whose report exists and records the same inputs hash: the
 // entry's scene as merged, the insitu version and the bytes of the files it names (MTL files and
 // textures that an OBJ names are not hashed: --force renders again).
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
@@ -33,6 +38,7 @@ namespace {
 struct BatchArgs {
   std::string batch;
   int index = -1;
+  int per_task = 1;  // entries per --index
   bool force = false, count = false;
 };
 
@@ -105,12 +111,12 @@ json room_keys(const json& scene) {
   return keys;
 }
 
-struct RoomCache {
+struct SharedRoom {
   json keys;
   std::unique_ptr<LoadedScene> scene;
 };
 
-void render_entry(const BatchArgs& a, const Entry& e, int index, const std::string& hash, RoomCache& room) {
+void render_entry(const BatchArgs& a, const Entry& e, int index, const std::string& hash, SharedRoom& room) {
   const bool share = room.scene && room_keys(e.scene) == room.keys;
   auto scene = std::make_unique<LoadedScene>(load_scene(e.spec, {}, share ? room.scene.get() : nullptr));
   print_warnings(scene->warnings);
@@ -130,16 +136,21 @@ void render_entry(const BatchArgs& a, const Entry& e, int index, const std::stri
 
 int run_batch(const BatchArgs& a) {
   const std::vector<Entry> entries = read_batch(a.batch);
+  const int n = int(entries.size());
+  const int tasks = int((std::int64_t(n) + a.per_task - 1) / a.per_task);
   if (a.count) {
-    std::printf("%zu\n", entries.size());
+    std::printf("%d\n", tasks);
     return 0;
   }
-  if (a.index >= int(entries.size()))
-    throw InputError("--index " + std::to_string(a.index), fmt::format("{} has entries 0 to {}", a.batch, entries.size() - 1));
-  RoomCache room;
+  if (a.index >= tasks)
+    throw InputError("--index " + std::to_string(a.index),
+                     a.per_task == 1 ? fmt::format("{} has entries 0 to {}", a.batch, n - 1)
+                                     : fmt::format("{} has {} entries: tasks 0 to {} of {} entries", a.batch, n, tasks - 1, a.per_task));
+  const int first = a.index < 0 ? 0 : int(std::int64_t(a.index) * a.per_task);
+  const int last = a.index < 0 ? n : int(std::min<std::int64_t>(n, std::int64_t(first) + a.per_task));
+  SharedRoom room;
   int rendered = 0, skipped = 0;
-  for (int i = 0; i < int(entries.size()); ++i) {
-    if (a.index >= 0 && i != a.index) continue;
+  for (int i = first; i < last; ++i) {
     const std::string hash = inputs_hash(entries[std::size_t(i)]);
     if (!a.force && done_already(entries[std::size_t(i)], hash)) {
       std::fprintf(stderr, "insitu: entry %d: %s is done, of the same inputs (--force renders it again)\n", i,
@@ -161,8 +172,10 @@ Command add_batch_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("batch", "render the entries of a batch file: one room, many objects and outputs");
   cmd->add_option("batch", a->batch, "the batch file (JSON: the room's scene file and its entries)")->required();
   cmd->add_option("--index", a->index, "render entry I only (a Slurm array task's $SLURM_ARRAY_TASK_ID)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--per-task", a->per_task, "entries per --index: task I renders entries I*K to I*K+K-1 (default 1)")
+      ->check(CLI::PositiveNumber);
   cmd->add_flag("--force", a->force, "render entries whose outputs are there, of the same inputs, again");
-  cmd->add_flag("--count", a->count, "print the number of entries and render nothing (for sbatch --array=0-(N-1))");
+  cmd->add_flag("--count", a->count, "print the number of tasks (entries, or groups of --per-task) and render nothing (for sbatch --array=0-(N-1))");
   return [cmd, a] { return cmd->parsed() ? run_batch(*a) : -1; };
 }
 

@@ -16,6 +16,7 @@
 
 #include "core/colour.h"
 #include "core/error.h"
+#include "core/exr_header.h"
 #include "core/temp_files.h"
 
 namespace insitu {
@@ -124,24 +125,31 @@ Image decode_rgb(ImageInput& in, const std::string& path) {
   return img;
 }
 
+// The header's size is checked before anything is allocated: a 100000² header must not cost
+// memory or minutes.
+void check_declared_size(const std::string& path, std::int64_t width, std::int64_t height) {
+  if (width <= 0 || height <= 0) return;
+  const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
+  if (pixels > kMaxImagePixels)
+    throw InputError(path, fmt::format("the header declares {}x{} pixels, more than the {} megapixels insitu reads",
+                                       width, height, kMaxImagePixels / 1000000));
+  std::error_code ec;
+  const std::uint64_t bytes = std::filesystem::file_size(path, ec);
+  if (!ec && pixels > kBombFloorPixels && pixels > kMaxPixelsPerByte * bytes)
+    throw InputError(path, fmt::format("the header declares {}x{} pixels in a file of {} bytes: too compressed to be a photo "
+                                       "or an environment (a decompression bomb?)", width, height, bytes));
+}
+
 ImageFile read_image_file_quietly(const std::string& path) {
+  // An EXR's header is read before OpenEXR's reader allocates its line buffers (exr_header.h).
+  if (const auto exr = exr_declared_size(path)) check_declared_size(path, exr->first, exr->second);
   auto in = ImageInput::open(path);
   if (!in) throw InputError(path, "cannot read image: " + one_line(geterror()));
   const ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     throw InputError(path, "image has no pixels");
   if (spec.depth > 1) throw InputError(path, fmt::format("a volume image ({} slices); insitu reads flat images", spec.depth));
-  // The header's size is checked before anything is allocated: a 100000² header must not cost
-  // memory or minutes.
-  if (std::uint64_t(spec.width) * std::uint64_t(spec.height) > kMaxImagePixels)
-    throw InputError(path, fmt::format("the header declares {}x{} pixels, more than the {} megapixels insitu reads",
-                                       spec.width, spec.height, kMaxImagePixels / 1000000));
-  std::error_code ec;
-  const std::uint64_t bytes = std::filesystem::file_size(path, ec);
-  const std::uint64_t pixels = std::uint64_t(spec.width) * std::uint64_t(spec.height);
-  if (!ec && pixels > kBombFloorPixels && pixels > kMaxPixelsPerByte * bytes)
-    throw InputError(path, fmt::format("the header declares {}x{} pixels in a file of {} bytes: too compressed to be a photo "
-                                       "or an environment (a decompression bomb?)", spec.width, spec.height, bytes));
+  check_declared_size(path, spec.width, spec.height);
   ImageFile file;
   file.path = path;
   file.format = in->format_name();
@@ -170,6 +178,7 @@ std::optional<double> Exposure::relative() const {
 
 std::pair<int, int> read_image_size(const std::string& path) {
   require_existing(path);
+  if (const auto exr = exr_declared_size(path)) check_declared_size(path, exr->first, exr->second);
   auto in = ImageInput::open(path);
   if (!in) throw InputError(path, "cannot read image: " + geterror());
   return {in->spec().width, in->spec().height};

@@ -110,10 +110,11 @@ CubeMap with_scaled_sources(const CubeMap& radiance, const std::vector<ClippedSo
 
 double cube_power(const CubeMap& radiance) {
   const int n = radiance.size();
+  const std::vector<double> omega = face_solid_angles(n);
   double sum = 0;
   for (int f = 0; f < 6; ++f)
     for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) sum += luminance(radiance.texel(f, i, j)) * texel_solid_angle(i, j, n);
+      for (int i = 0; i < n; ++i) sum += luminance(radiance.texel(f, i, j)) * omega[std::size_t(j) * std::size_t(n) + std::size_t(i)];
   return sum;
 }
 

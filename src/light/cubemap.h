@@ -50,6 +50,9 @@ class CubeMap {
   // After texels change: copy each border texel from the nearest texel of the neighbour face.
   void update_borders();
 
+  // The same size and texels, bit for bit (borders included).
+  bool same_texels(const CubeMap& other) const { return size_ == other.size_ && faces_ == other.faces_; }
+
   // Bilinear, seamless radiance in direction `dir` (need not be unit length).
   Rgb lookup(const Vec3f& dir) const;
   // Nearest-texel value (no filtering).

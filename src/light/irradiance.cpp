@@ -38,9 +38,7 @@ Sh9 project_sh9(const CubeMap& radiance) {
   const int N = radiance.size();
   std::array<Eigen::Array3d, 9> acc;
   for (auto& a : acc) a.setZero();
-  std::vector<double> d_omega(std::size_t(N) * N);
-  for (int j = 0; j < N; ++j)
-    for (int i = 0; i < N; ++i) d_omega[std::size_t(j) * N + i] = texel_solid_angle(i, j, N);
+  const std::vector<double> d_omega = face_solid_angles(N);
   for (int f = 0; f < 6; ++f)
     for (int j = 0; j < N; ++j)
       for (int i = 0; i < N; ++i) {

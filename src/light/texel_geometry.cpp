@@ -29,6 +29,17 @@ double texel_solid_angle(int i, int j, int n) {
   return area_element(x0, y0) - area_element(x0, y1) - area_element(x1, y0) + area_element(x1, y1);
 }
 
+std::vector<double> face_solid_angles(int n) {
+  std::vector<double> corner(std::size_t(n + 1) * std::size_t(n + 1));
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) corner[std::size_t(j) * std::size_t(n + 1) + std::size_t(i)] = area_element(2.0 * i / n - 1, 2.0 * j / n - 1);
+  auto a = [&](int i, int j) { return corner[std::size_t(j) * std::size_t(n + 1) + std::size_t(i)]; };
+  std::vector<double> omega(std::size_t(n) * std::size_t(n));
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) omega[std::size_t(j) * std::size_t(n) + std::size_t(i)] = a(i, j) - a(i, j + 1) - a(i + 1, j) + a(i + 1, j + 1);
+  return omega;
+}
+
 std::vector<Vec3d> texel_corners(int face, int i, int j, int n) {
   const double s0 = double(i) / n, s1 = double(i + 1) / n, t0 = double(j) / n, t1 = double(j + 1) / n;
   return {face_point(face, s0, t0), face_point(face, s1, t0), face_point(face, s1, t1), face_point(face, s0, t1)};

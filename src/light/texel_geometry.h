@@ -17,6 +17,9 @@
 namespace insitu {
 
 double texel_solid_angle(int i, int j, int n);
+// texel_solid_angle of every texel of a face, row by row (index j·n + i; the same for all six
+// faces): the corners' A(x, y) once each, (n + 1)² atan2 instead of 4n².
+std::vector<double> face_solid_angles(int n);
 // ∫ ω dω over the texel (Lambert's vector); its length is ≤ the solid angle.
 Vec3d texel_vector_irradiance(int face, int i, int j, int n);
 // Lambert's vector of a planar polygon (vertices in order, any length, not through the origin).

@@ -9,20 +9,21 @@ namespace insitu {
 EnvSampler::EnvSampler(const CubeMap& radiance, const TexelShare& share, bool mis_compensation)
     : cube_(&radiance), n_(radiance.size()) {
   const std::size_t count = std::size_t(6) * n_ * n_;
-  std::vector<double> w(count), y(count), omega(count);
+  const std::size_t face_count = std::size_t(n_) * std::size_t(n_);
+  const std::vector<double> omega = face_solid_angles(n_);  // by j·n + i, the same on every face
+  std::vector<double> w(count), y(count);
   double mean_y = 0;
   for (int f = 0; f < 6; ++f)
     for (int j = 0; j < n_; ++j)
       for (int i = 0; i < n_; ++i) {
         const std::size_t k = (std::size_t(f) * n_ + j) * n_ + i;
         y[k] = std::max(0.0f, luminance(radiance.texel(f, i, j)));
-        omega[k] = texel_solid_angle(i, j, n_);
-        mean_y += y[k] * omega[k] / (4 * kPi);
+        mean_y += y[k] * omega[k % face_count] / (4 * kPi);
       }
   double total = 0;
   for (std::size_t k = 0; k < count; ++k) {
-    const int f = int(k / (std::size_t(n_) * n_)), j = int((k / std::size_t(n_)) % std::size_t(n_)), i = int(k % std::size_t(n_));
-    w[k] = std::max(0.0, y[k] - (mis_compensation ? mean_y : 0.0)) * omega[k] * (share ? share(f, i, j) : 1.0);
+    const int f = int(k / face_count), j = int((k / std::size_t(n_)) % std::size_t(n_)), i = int(k % std::size_t(n_));
+    w[k] = std::max(0.0, y[k] - (mis_compensation ? mean_y : 0.0)) * omega[k % face_count] * (share ? share(f, i, j) : 1.0);
     total += w[k];
   }
   // A floor so that every texel can be drawn (also keeps a black environment well defined).

@@ -10,6 +10,7 @@
 #include "core/camera.h"
 #include "light/cubemap.h"
 #include "render/embree_scene.h"
+#include "render/room_cache.h"
 #include "render/room_light.h"
 #include "light/irradiance.h"
 #include "core/sampler.h"
@@ -42,6 +43,9 @@ struct RenderInputs {
   // were taken, and its windows.
   std::optional<RoomBox> room;
   const Camera* camera = nullptr;
+  // The room's prepared light and grids, shared by every render of this room (room_cache.h);
+  // null: the integrator prepares its own.
+  std::shared_ptr<RoomCache> room_cache;
 };
 
 // One camera sample: the objects' radiance where they cover the sample, and the coverage (0/1

@@ -87,10 +87,11 @@ void RoomLight::set_strategies(const CubeMap& cube) {
   wall_cube_.update_borders();
   outside_cube_.update_borders();
   double power_out = 0, power_wall = 0;
+  const std::vector<double> face_omega = face_solid_angles(n);
   for (int f = 0; f < 6; ++f)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        const double omega = texel_solid_angle(i, j, n);
+        const double omega = face_omega[std::size_t(j) * std::size_t(n) + std::size_t(i)];
         power_out += share_of(f, i, j) * omega * std::max(0.0f, luminance(outside_cube_.texel(f, i, j)));
         power_wall += (1 - share_of(f, i, j)) * omega * std::max(0.0f, luminance(wall_cube_.texel(f, i, j)));
       }

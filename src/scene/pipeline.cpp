@@ -192,13 +192,14 @@ void load_room(const SceneSpec& spec, LoadedScene& s) {
     s.room = room;
   }
   recover_clipped_light(s);
+  s.room_cache = std::make_shared<RoomCache>(s.environment, s.room);
 }
 
 // The room of `from`, loaded already (a batch's entries share it).
 void copy_room(const LoadedScene& from, LoadedScene& s) {
   s.photo = from.photo, s.photo_linear = from.photo_linear, s.camera = from.camera, s.calibration = from.calibration;
   s.environment = from.environment, s.environment_info = from.environment_info, s.room = from.room;
-  s.inverse_lighting = from.inverse_lighting;
+  s.inverse_lighting = from.inverse_lighting, s.room_cache = from.room_cache;
   s.warnings.items.insert(s.warnings.items.end(), from.room_warnings.items.begin(), from.room_warnings.items.end());
 }
 
@@ -259,6 +260,7 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress, 
   inputs.photo_linear = &scene.photo_linear;
   inputs.room = scene.room;
   inputs.camera = &scene.camera;
+  inputs.room_cache = scene.room_cache;
   // Everything before the sample loop is preparation: the catcher's irradiance included.
   const auto start = std::chrono::steady_clock::now();
   std::unique_ptr<IrradianceField> catcher_irradiance;

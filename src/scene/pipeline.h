@@ -9,6 +9,7 @@
 #include "core/camera.h"
 #include "light/cubemap.h"
 #include "render/embree_scene.h"
+#include "render/room_cache.h"
 #include "light/environment.h"
 #include "core/error.h"
 #include "core/image.h"
@@ -32,6 +33,7 @@ struct LoadedScene {
   EnvironmentInfo environment_info;
   std::optional<RoomBox> room;                              // environment.room_box, for the renderer
   std::optional<InverseLightingResult> inverse_lighting;    // when shots clipped (light_recovery.h)
+  std::shared_ptr<RoomCache> room_cache;  // the room's prepared light and grids (room_cache.h), shared
   std::unique_ptr<EmbreeScene> objects;
   std::unique_ptr<EmbreeScene> catcher_meshes;  // meshes of the local scene
   ResolvedIntegrator integrator;  // the entry and its parameters, read from the render object

@@ -2,12 +2,12 @@
 # The Slurm test of issue 17, end to end on a single-node cluster on 127.0.0.1: munge, slurmctld
 # and slurmd from Debian's packages (installed here if missing), a minimal slurm.conf written
 # here, every file in a temporary folder. It submits
-#   1. a batch of 4 entries (scripts/slurm/submit-batch.sh), first on 1 slot, then on 2, after
-#      clearing the outputs: the throughput of each;
+#   1. a batch of 4 entries (scripts/slurm/submit-batch.sh), on 1 slot and on 2, one entry per
+#      task and then 4 and 2 entries per task, after clearing the outputs: the throughput of each;
 #   2. a split still of 4 parts and their merge as a dependent job (scripts/slurm/submit-still.sh),
 # waits (bounded), checks the outputs (the merged still bit-identical to one render of the same
 # spp, each batch entry present with its report), prints the figures and stops its daemons.
-# Needs root (the daemons, apt-get). Not in CI (.ci/run): about 5 minutes on 2 cores.
+# Needs root (the daemons, apt-get). Not in CI (.ci/run): about 8 minutes on 2 cores.
 #   bash tests/slurm/local-cluster.sh [BUILD_DIR]
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/../.." && pwd)
@@ -89,7 +89,8 @@ wait_for() {  # job ids...; bounded at 15 minutes
   done
 }
 
-# The scene: the demo (640 × 480, path, 32 spp).
+# The scene: the demo (640 × 480, path, 32 spp for the split still); the batch's entries one object
+# each at 64 spp (the typical still of the overhead goal).
 cp -r "$repo/scenes/demo" "$work/room"
 rm -rf "$work/room/out"
 /usr/bin/python3 - "$work" <<'PY'
@@ -99,35 +100,38 @@ s = json.load(open(f"{work}/room/scene.json"))
 s["render"]["spp"] = 32
 s["output"] = {"image": "out/room.exr"}
 json.dump(s, open(f"{work}/room/scene.json", "w"), indent=2)
-entries = [{"objects": [s["objects"][i % len(s["objects"])]], "output": {"image": f"out/entry{i}.exr"}} for i in range(4)]
+entries = [{"objects": [s["objects"][i % len(s["objects"])]], "render": {"spp": 64}, "output": {"image": f"out/entry{i}.exr"}}
+           for i in range(4)]
 json.dump({"scene": "room/scene.json", "entries": entries}, open(f"{work}/batch.json", "w"), indent=2)
 PY
 export INSITU=$insitu
 cd "$work"
 
-run_batch() {  # $1: CPUs (2 per slot)
+run_batch() {  # $1: CPUs (2 per slot); $2: entries per task
   start_cluster "$1"
   rm -rf "$work/room/out/entry"*
-  mkdir -p "$work/slots$(( $1 / 2 ))" && cd "$work/slots$(( $1 / 2 ))"
+  mkdir -p "$work/slots$(( $1 / 2 ))-k$2" && cd "$work/slots$(( $1 / 2 ))-k$2"
   local t0=$(date +%s.%N)
-  local job=$(bash "$repo/scripts/slurm/submit-batch.sh" "$work/batch.json")
+  local job=$(bash "$repo/scripts/slurm/submit-batch.sh" "$work/batch.json" "$2")
   wait_for "$job"
   local t1=$(date +%s.%N)
   for i in 0 1 2 3; do
-    [ -f "$work/room/out/entry$i.exr.report.json" ] || { echo "slurm-test: entry $i has no output"; cat insitu-batch-*_"$i".log; exit 1; }
+    [ -f "$work/room/out/entry$i.exr.report.json" ] || { echo "slurm-test: entry $i has no output"; cat insitu-batch-*.log; exit 1; }
   done
-  echo "slurm-test: batch of 4 entries on $(( $1 / 2 )) slot(s): $(python3 -c "print(f'{$t1 - $t0:.1f}')") s"
+  echo "slurm-test: batch of 4 entries on $(( $1 / 2 )) slot(s), $2 per task: $(python3 -c "print(f'{$t1 - $t0:.1f}')") s"
   grep -h "insitu: entry" insitu-batch-*.log | sed 's/^/slurm-test:   /'
   # A rerun: every entry is done, each task exits at once (the per-task cost of Slurm and start-up).
   t0=$(date +%s.%N)
-  job=$(bash "$repo/scripts/slurm/submit-batch.sh" "$work/batch.json")
+  job=$(bash "$repo/scripts/slurm/submit-batch.sh" "$work/batch.json" "$2")
   wait_for "$job"
   t1=$(date +%s.%N)
   echo "slurm-test: the same batch again, all done already: $(python3 -c "print(f'{$t1 - $t0:.1f}')") s"
   cd "$work"
 }
-run_batch 2
-run_batch 4
+run_batch 2 1
+run_batch 4 1
+run_batch 2 4
+run_batch 4 2
 
 # The split still: 4 parts and the merge, against one render.
 t0=$(date +%s.%N)
