@@ -49,6 +49,13 @@ struct BatchFixture {
     return fx.dir.write("batch.json", nlohmann::json{{"scene", "scene.json"}, {"entries", entries}}.dump(2));
   }
   std::string out(int i) const { return fx.dir.file(fmt::format("out/e{}.exr", i)); }
+  // Entry i rendered on its own by `insitu render` from its merged scene file, into `image`.
+  test::CliRun render_alone(int i, const std::string& image) const {
+    auto j = nlohmann::json::parse(test::slurp(scene));
+    j.merge_patch(entries[std::size_t(i)]);
+    j["output"]["image"] = image;
+    return run_insitu(fx.dir, "render " + fx.dir.write(fmt::format("alone{}.json", i), j.dump()));
+  }
 };
 
 // A room box: the shared room light and grids give the pixels of grids built for the entry alone.
@@ -59,11 +66,7 @@ TEST(Batch, EntriesSharingARoomBoxAreTheirScenesRenders) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("(room shared)"), std::string::npos) << r.err;
   for (int i : {1, 2}) {
-    auto j = nlohmann::json::parse(test::slurp(b.scene));
-    j.merge_patch(b.entries[std::size_t(i)]);
-    j["output"]["image"] = fmt::format("alone{}.exr", i);
-    b.fx.dir.write(fmt::format("alone{}.json", i), j.dump());
-    r = run_insitu(b.fx.dir, fmt::format("render {}", b.fx.dir.file(fmt::format("alone{}.json", i))));
+    r = b.render_alone(i, fmt::format("alone{}.exr", i));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     ASSERT_FALSE(exr_pixels(b.out(i)).empty());
     EXPECT_TRUE(exr_pixels(b.out(i)) == exr_pixels(b.fx.dir.file(fmt::format("alone{}.exr", i)))) << i;
@@ -77,10 +80,7 @@ TEST(Batch, EachEntryIsTheRenderOfItsSceneAndReRunsSkipWhatIsDone) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("(room shared)"), std::string::npos) << r.err;
   // Entry 2, rendered on its own from its merged scene file: the same pixels.
-  auto j = nlohmann::json::parse(test::slurp(b.scene));
-  j.merge_patch(b.entries[2]);
-  j["output"]["image"] = "alone.exr";
-  ASSERT_EQ(run_insitu(b.fx.dir, "render " + b.fx.dir.write("alone.json", j.dump())).exit_code, 0);
+  ASSERT_EQ(b.render_alone(2, "alone.exr").exit_code, 0);
   ASSERT_FALSE(exr_pixels(b.out(2)).empty());
   EXPECT_TRUE(exr_pixels(b.out(2)) == exr_pixels(b.fx.dir.file("alone.exr")));
   EXPECT_FALSE(exr_pixels(b.out(1)) == exr_pixels(b.out(2)));

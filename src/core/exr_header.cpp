@@ -2,7 +2,6 @@
 
 #include <OpenEXR/openexr.h>
 
-#include <algorithm>
 #include <fstream>
 
 namespace insitu {

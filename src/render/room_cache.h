@@ -6,8 +6,8 @@
 // rendering at once, with bit for bit the same grids (each is a deterministic function of its key).
 //
 // A cache serves one room: it keeps its own copy of the cube and the box, and serves() tells
-// whether a render's cube and box are those (the integrator checks before it uses one). Thread-safe; what it hands out is immutable and lives as long as the
-// last holder.
+// whether a render's cube and box are those (the integrator checks before it uses one).
+// Thread-safe; what it hands out is immutable and lives as long as its last holder.
 #pragma once
 #include <map>
 #include <memory>
