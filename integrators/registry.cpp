@@ -71,7 +71,7 @@ void IntegratorParams::finish() const {
 
 namespace {
 
-constexpr const char* kLoopKeys[] = {"integrator", "spp", "seed"};
+constexpr const char* kLoopKeys[] = {"integrator", "spp", "seed", "noise_target"};
 
 std::string join(const std::vector<std::string>& names) {
   std::string s;

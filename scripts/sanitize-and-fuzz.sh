@@ -29,7 +29,7 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 ctest --test-dir "$build" --output-on-failure -j2
 
 status=0
-for target in fuzz_scene fuzz_obj fuzz_points fuzz_image; do
+for target in fuzz_scene fuzz_obj fuzz_points fuzz_image fuzz_checkpoint; do
   corpus=$(mktemp -d)
   cp tests/fuzz/corpus/$target/* "$corpus"/
   log=$(mktemp)

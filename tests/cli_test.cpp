@@ -218,10 +218,11 @@ TEST(Cli, TradeoffWritesTableCsvPlotAndAb) {
   auto j = fx.scene;
   j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
   j["objects"] = {{{"mesh", "good_quad.obj"}, {"translate", {0, 0.3, 0}}}};
-  const CliRun r = run_insitu(fx.dir, "tradeoff " + fx.write(j) + " -o " + fx.dir.file("t") + " --ladder 1,4 --reference-spp 64");
+  const CliRun r = run_insitu(fx.dir, "tradeoff " + fx.write(j) + " -o " + fx.dir.file("t") +
+                                          " --ladder 1,4,32 --reference-spp 64 --noise-targets 0.5");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* f : {"tradeoff.csv", "tradeoff.png", "ab.png"}) EXPECT_TRUE(std::filesystem::exists(fx.dir.file(std::string("t/") + f))) << f;
-  for (const char* mode : {"| realtime |", "| irradiance/sh9 |", "| path | 4 |"}) EXPECT_NE(r.out.find(mode), std::string::npos) << r.out;
+  for (const char* mode : {"| realtime |", "| irradiance/sh9 |", "| path | 4 |", "| path adaptive 0.5 |"}) EXPECT_NE(r.out.find(mode), std::string::npos) << r.out;
   // More samples, closer to the reference.
   std::ifstream csv(fx.dir.file("t/tradeoff.csv"));
   std::string line;

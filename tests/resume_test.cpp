@@ -140,6 +140,29 @@ TEST(Resume, CheckpointRoundTripAndRefusals) {
   EXPECT_THROW(read_checkpoint(fx.dir.file("none.checkpoint"), 42), InputError);
 }
 
+// The fuzz target's seeds (tests/fuzz/corpus/fuzz_checkpoint, written by hand to the layout of
+// render/checkpoint.h) are consistent states, so that fuzzing starts past the header's checks: a
+// finished part, and an adaptive render's checkpoint with a pixel stopped after its first pass.
+// A stopped pixel whose samples are not those of a pass's end, or a mask byte other than 0 or 1,
+// is refused.
+TEST(Resume, FuzzSeedsAreConsistentStates) {
+  const std::string dir = test::source_dir() + "/tests/fuzz/corpus/fuzz_checkpoint/";
+  const StateFile part = read_state_file(dir + "finished_part.bin");
+  EXPECT_EQ(part.state.spp_done, 4);
+  EXPECT_EQ(part.settings, "{\"args\":{}}");
+  const StateFile adaptive = read_state_file(dir + "adaptive_checkpoint.bin");
+  EXPECT_EQ(adaptive.state.noise_target, 0.05);
+  EXPECT_EQ(adaptive.state.stopped, (std::vector<std::uint8_t>{1, 0}));
+  test::TempDir tmp;
+  std::string bytes = test::slurp(dir + "adaptive_checkpoint.bin");
+  bytes.back() = 2;
+  tmp.write("mask.checkpoint", bytes);
+  EXPECT_THROW(read_state_file(tmp.file("mask.checkpoint")), InputError);
+  bytes.back() = 1;  // both pixels stopped: pixel 1 has 16 samples, a pass's end too
+  tmp.write("both.checkpoint", bytes);
+  EXPECT_NO_THROW(read_state_file(tmp.file("both.checkpoint")));
+}
+
 // The fingerprint follows what the sums depend on, and only that.
 TEST(Resume, FingerprintFollowsTheSettingsAndInputs) {
   SceneFixture fx;

@@ -40,7 +40,8 @@ std::vector<Part> read_parts(const std::vector<std::string>& paths) {
   std::vector<Part> parts;
   for (const std::string& p : paths) {
     StateFile file = read_state_file(p);
-    if (file.settings.empty()) throw InputError(p, "a checkpoint of an interrupted render, not a part (resume it)");
+    if (file.settings.empty() || file.state.noise_target > 0)
+      throw InputError(p, "a checkpoint of an interrupted render, not a part (resume it)");
     PartRecord record = part_record_from_json(file.settings, p);
     parts.push_back({p, std::move(file), std::move(record)});
   }

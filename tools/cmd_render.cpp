@@ -1,5 +1,9 @@
 // insitu render SCENE [-o OUT] [--layers PATH|none] [--spp N] [--integrator NAME] [--irradiance MODE]
-//                     [--seed N] [--tonemap OP] [--key K] [--resume] [--samples A:B [--part PATH]]
+//                     [--seed N] [--noise-target T] [--tonemap OP] [--key K] [--resume]
+//                     [--samples A:B [--part PATH]]
+//
+// --noise-target T (render.noise_target) samples adaptively: each pixel stops at relative standard
+// error T, spp the most it takes (render/adaptive.h); the report gives the histogram of spp.
 //
 // SIGINT or SIGTERM finishes the pass under way, writes the partial image, layers and report (its
 // spp the samples taken), and a checkpoint beside the image (OUT.checkpoint, render/checkpoint.h),
@@ -10,6 +14,7 @@
 // --samples A:B renders a part of a split render (issue 17): only those sample indices of the spp,
 // with the random numbers of a whole render, their sums written to a part file that `insitu
 // merge` adds to the others' (cmd_merge.cpp).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
@@ -64,6 +69,9 @@ std::pair<int, int> parse_sample_range(const std::string& text, int spp) {
 // part file (render/checkpoint.h) for `insitu merge`; interrupted, a checkpoint beside the part.
 int run_part(const RenderArgs& a, const SceneSpec& spec) {
   const auto [begin, end] = parse_sample_range(a.samples, spec.render.spp);
+  if (spec.render.noise_target > 0)
+    throw InputError("--samples " + a.samples, "a part of a split render cannot stop its pixels by their noise: render "
+                                                "it without render.noise_target (--noise-target 0)");
   const std::string part = a.part.empty() ? fmt::format("{}.samples-{}-{}.part", spec.output.image, begin, end) : a.part;
   const std::string checkpoint = checkpoint_path(part);
   const LoadedScene scene = load_scene(spec);
@@ -119,6 +127,13 @@ int run_render(const RenderArgs& a) {
   std::fprintf(stderr, "insitu: %s, %dx%d, %d spp, integrator %s: load %.2f s, prepare %.2f s, render %.2f s\n",
                spec.path.c_str(), scene.camera.width, scene.camera.height, spec.render.spp,
                spec.render.integrator.c_str(), scene.load_seconds, result.prepare_seconds, result.layers.seconds);
+  if (spec.render.noise_target > 0) {
+    double total = 0;
+    for (float n : result.layers.samples.data) total += n;
+    std::fprintf(stderr, "insitu: adaptive sampling to %.2f%%: %.1f spp on average, at most %d\n",
+                 100 * spec.render.noise_target, total / double(std::max<std::size_t>(1, result.layers.samples.data.size())),
+                 spec.render.spp);
+  }
   if (result.layers.mean_relative_noise > 0)
     std::fprintf(stderr, "insitu: noise estimate: %.2f%% relative standard error where the render changed the photo\n",
                  100 * result.layers.mean_relative_noise);
@@ -139,6 +154,10 @@ Command add_render_command(CLI::App& app) {
   cmd->add_option("--layers", a->layers, "the layered EXR (overrides output.layers and -o's), or none");
   cmd->add_option("--spp", a->spp, "samples per pixel [default: the scene's render.spp, else 16]")
       ->check(CLI::Range(1, kMaxSpp));
+  cmd->add_option("--noise-target", a->noise_target,
+                  "adaptive sampling: each pixel stops at this relative standard error (0.01: 1 %), spp the most it "
+                  "takes; 0: off [default: the scene's render.noise_target, else 0]")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--seed", a->seed, "random seed [default: the scene's render.seed, else 1]")->check(CLI::Range(0L, kMaxSeed));
   std::string help = "integrator:";
   for (const auto& e : integrator_registry()) help += fmt::format(" {} ({})", e.name, e.summary);

@@ -1,4 +1,5 @@
 // insitu tradeoff SCENE -o DIR [--ladder 1,4,16,64] [--reference-spp 1024] [--seed N]
+//                 [--noise-targets 0.04,0.02,0.01]
 //
 // The speed/accuracy trade of a scene: renders it with `realtime`, with `irradiance` in each mode
 // (16 spp, for anti-aliasing), and with `path` over a ladder of sample counts, and measures each
@@ -7,7 +8,9 @@
 // — the objects and their shadows. Writes DIR/tradeoff.csv (mode, spp, seconds,
 // relative RMSE), DIR/tradeoff.png (error against time, log–log), and DIR/ab.png (the `realtime`
 // and `path` composites side by side with their difference). Times are precomputation plus
-// rendering, on this machine's cores.
+// rendering, on this machine's cores. --noise-targets adds `path` with adaptive sampling
+// (render/adaptive.h) to each target, capped at the ladder's largest spp; its rows give the mean
+// spp the pixels took.
 #include <opencv2/imgproc.hpp>
 
 #include <chrono>
@@ -30,12 +33,15 @@ struct TradeoffArgs {
   std::vector<int> ladder = {1, 4, 16, 64};
   int reference_spp = 1024;
   long seed = 7;
+  std::vector<double> noise_targets;
 };
 
 struct Row {
   std::string mode;
-  int spp;
+  int spp;  // adaptive: the mean the pixels took
   double seconds, rel_rmse;
+  double noise_target = 0;
+  std::string label() const { return noise_target > 0 ? fmt::format("{} {:g}", mode, noise_target) : mode; }
 };
 
 // A log–log scatter of error against time, drawn with OpenCV.
@@ -74,7 +80,7 @@ Image plot(const std::vector<Row>& rows) {
       const cv::Point p(px(r.seconds), py(r.rel_rmse));
       cv::circle(m, p, 5, c, cv::FILLED);
       if (prev.x >= 0) cv::line(m, prev, p, c, 2);
-      if (r.mode == "path") cv::putText(m, fmt::format("{}", r.spp), {p.x + 6, p.y - 6}, cv::FONT_HERSHEY_SIMPLEX, 0.35, c);
+      if (r.mode.rfind("path", 0) == 0) cv::putText(m, fmt::format("{}", r.spp), {p.x + 6, p.y - 6}, cv::FONT_HERSHEY_SIMPLEX, 0.35, c);
       prev = p;
     }
     cv::circle(m, {W - right + 20, top + 20 + 20 * int(k)}, 5, c, cv::FILLED);
@@ -87,6 +93,28 @@ Image plot(const std::vector<Row>& rows) {
   return out;
 }
 
+// DIR/tradeoff.csv, DIR/tradeoff.png, DIR/ab.png, and the table on stdout.
+void write_outputs(const TradeoffArgs& a, const std::vector<Row>& rows, const RenderResult& realtime_result,
+                   const RenderResult& best_path) {
+  const std::filesystem::path dir(a.out);
+  std::string csv = "mode,spp,seconds,relative_rmse\n";
+  for (const Row& r : rows) csv += fmt::format("{},{},{:.4f},{:.6f}\n", r.label(), r.spp, r.seconds, r.rel_rmse);
+  write_text_file((dir / "tradeoff.csv").string(), csv);
+  write_image((dir / "tradeoff.png").string(), plot(rows));
+  const CompareResult ab = compare_images(realtime_result.composite_linear, best_path.composite_linear);
+  write_image((dir / "ab.png").string(), comparison_picture(realtime_result.composite_linear, best_path.composite_linear, ab,
+                                                            &realtime_result.composite_encoded, &best_path.composite_encoded));
+  std::printf("| mode | spp | seconds | relative RMSE |\n|---|---|---|---|\n");
+  for (const Row& r : rows) std::printf("| %s | %d | %.3f | %.4f |\n", r.label().c_str(), r.spp, r.seconds, r.rel_rmse);
+}
+
+// The mean over pixels of the samples each took.
+double mean_samples(const RenderLayers& l) {
+  double total = 0;
+  for (float n : l.samples.data) total += n;
+  return l.samples.data.empty() ? 0.0 : total / double(l.samples.data.size());
+}
+
 int run_tradeoff(const TradeoffArgs& a) {
   SceneSpec spec = parse_scene_file(a.scene);
   spec.output = {};
@@ -97,7 +125,8 @@ int run_tradeoff(const TradeoffArgs& a) {
   // Loaded once: the runs differ only in their render settings.
   LoadedScene scene = load_scene(spec);
   print_warnings(scene.warnings);
-  auto run = [&](const std::string& integrator, IrradianceMode mode, int spp, std::uint64_t seed, RenderResult* result) {
+  auto run = [&](const std::string& integrator, IrradianceMode mode, int spp, std::uint64_t seed, RenderResult* result,
+                 double noise_target = 0) {
     scene.spec.render.integrator = integrator;
     JsonBlock render = scene.spec.render.block;
     render.value["irradiance"] = irradiance_mode_name(mode);
@@ -105,6 +134,7 @@ int run_tradeoff(const TradeoffArgs& a) {
     scene.integrator = resolve_integrator(integrator, render, printed_once);
     scene.spec.render.spp = spp;
     scene.spec.render.seed = seed;
+    scene.spec.render.noise_target = noise_target;
     *result = render_scene(scene);
     return result->prepare_seconds + result->layers.seconds;
   };
@@ -114,12 +144,15 @@ int run_tradeoff(const TradeoffArgs& a) {
   const Image mask = changed_mask(scene.photo_linear, reference.composite_linear, reference.layers);
   std::vector<Row> rows;
   RenderResult realtime_result, best_path;
-  auto measure = [&](const std::string& name, const std::string& integrator, IrradianceMode mode, int spp, RenderResult* keep) {
+  auto measure = [&](const std::string& name, const std::string& integrator, IrradianceMode mode, int spp, RenderResult* keep,
+                     double noise_target = 0) {
     RenderResult r;
-    const double seconds = run(integrator, mode, spp, std::uint64_t(a.seed), &r);
+    const double seconds = run(integrator, mode, spp, std::uint64_t(a.seed), &r, noise_target);
     const CompareResult c = compare_images(r.composite_linear, reference.composite_linear, &mask);
-    rows.push_back({name, spp, seconds, c.masked->relative_rmse});
-    std::fprintf(stderr, "tradeoff: %-20s %5d spp %8.3f s  rel. RMSE %.4f\n", name.c_str(), spp, seconds, c.masked->relative_rmse);
+    if (noise_target > 0) spp = int(std::lround(mean_samples(r.layers)));
+    rows.push_back({name, spp, seconds, c.masked->relative_rmse, noise_target});
+    std::fprintf(stderr, "tradeoff: %-20s %5d spp %8.3f s  rel. RMSE %.4f\n", rows.back().label().c_str(), spp, seconds,
+                 c.masked->relative_rmse);
     if (keep) *keep = std::move(r);
   };
   // Every integrator of the registry: a Monte Carlo one over the ladder, the others at 16 spp
@@ -140,18 +173,9 @@ int run_tradeoff(const TradeoffArgs& a) {
       for (int spp : a.ladder) measure(label, name, mode, spp, name == "path" ? &best_path : nullptr);
     }
   }
-
-  namespace fs = std::filesystem;
-  const fs::path dir(a.out);
-  std::string csv = "mode,spp,seconds,relative_rmse\n";
-  for (const Row& r : rows) csv += fmt::format("{},{},{:.4f},{:.6f}\n", r.mode, r.spp, r.seconds, r.rel_rmse);
-  write_text_file((dir / "tradeoff.csv").string(), csv);
-  write_image((dir / "tradeoff.png").string(), plot(rows));
-  const CompareResult ab = compare_images(realtime_result.composite_linear, best_path.composite_linear);
-  write_image((dir / "ab.png").string(), comparison_picture(realtime_result.composite_linear, best_path.composite_linear, ab,
-                                                            &realtime_result.composite_encoded, &best_path.composite_encoded));
-  std::printf("| mode | spp | seconds | relative RMSE |\n|---|---|---|---|\n");
-  for (const Row& r : rows) std::printf("| %s | %d | %.3f | %.4f |\n", r.mode.c_str(), r.spp, r.seconds, r.rel_rmse);
+  const int cap = *std::max_element(a.ladder.begin(), a.ladder.end());
+  for (double target : a.noise_targets) measure("path adaptive", "path", IrradianceMode::kExact, cap, nullptr, target);
+  write_outputs(a, rows, realtime_result, best_path);
   std::printf("wrote tradeoff.csv, tradeoff.png and ab.png to %s (reference: path, %d spp, %ld pixels changed)\n",
               a.out.c_str(), a.reference_spp, long(std::count(mask.data.begin(), mask.data.end(), 1.0f)));
   return 0;
@@ -169,6 +193,11 @@ Command add_tradeoff_command(CLI::App& app) {
       ->check(CLI::Range(1, kMaxSpp))
       ->capture_default_str();
   cmd->add_option("--reference-spp", a->reference_spp, "samples of the reference")->check(CLI::Range(1, kMaxSpp))->capture_default_str();
+  cmd->add_option("--noise-targets", a->noise_targets,
+                  "also path with adaptive sampling to these relative standard errors, comma-separated, capped at the "
+                  "ladder's largest spp")
+      ->delimiter(',')
+      ->check(CLI::Range(1e-6, 1.0));
   cmd->add_option("--seed", a->seed, "seed of the measured renders (the reference uses seed + 1000)")
       ->check(CLI::Range(0L, kMaxSeed - 1000))
       ->capture_default_str();

@@ -13,6 +13,7 @@ struct RenderArgs {
   double key = 0;
   int spp = 0;
   long seed = -1;
+  double noise_target = -1;  // --noise-target (0: off); −1: the scene's
   bool resume = false;
   std::string samples, part;  // --samples A:B and --part PATH: a part of a split render
 };

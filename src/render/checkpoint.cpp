@@ -1,5 +1,6 @@
 #include "render/checkpoint.h"
 
+#include <algorithm>
 #include <cstring>
 #include <fmt/format.h>
 #include <fstream>
@@ -14,7 +15,7 @@ namespace insitu {
 namespace {
 
 constexpr char kMagic[8] = {'I', 'N', 'S', 'I', 'T', 'U', 'C', 'K'};
-constexpr std::uint32_t kVersion = 3;
+constexpr std::uint32_t kVersion = 4;
 
 template <class T>
 void put(std::string& out, T v) {
@@ -53,6 +54,13 @@ PixelSums get_sums(const std::string& in, std::size_t& at, const std::string& pa
   return p;
 }
 
+// A pixel that adaptive sampling stopped holds the samples of the first k ≥ 1 passes, k ≤ passes done.
+bool stopped_at_pass_end(int n, int begin, int end, int passes_done) {
+  for (int k = 1; k <= passes_done; ++k)
+    if (n == pass_start(begin, end, k) - begin) return true;
+  return false;
+}
+
 // Each pixel holds the canonical blocks of [begin, begin + n) with n the samples of the passes
 // done, plus the pass under way for the tiles before tiles_done.
 void check_pixels(const RenderState& st, const std::string& path) {
@@ -62,7 +70,9 @@ void check_pixels(const RenderState& st, const std::string& path) {
   if (st.spp_done != done) throw InputError(path, "inconsistent checkpoint (samples done)");
   for (std::size_t i = 0; i < st.pixels.size(); ++i) {
     const int n = block_samples(st.pixels[i]);
-    if ((n != done && n != next) || !canonical_blocks(st.pixels[i], begin))
+    const bool stopped = !st.stopped.empty() && st.stopped[i];
+    if ((stopped ? !stopped_at_pass_end(n, begin, end, st.passes_done) : n != done && n != next) ||
+        !canonical_blocks(st.pixels[i], begin))
       throw InputError(path, fmt::format("inconsistent checkpoint (pixel {})", i));
   }
 }
@@ -80,6 +90,8 @@ RenderState read_header(const std::string& in, std::size_t& at, const std::strin
   for (int* v : {&st.width, &st.height, &st.spp, &st.sample_begin, &st.sample_end, &st.passes_done, &st.tiles_done, &st.spp_done})
     *v = get<std::int32_t>(in, at, path);
   st.nonfinite = std::size_t(get<std::uint64_t>(in, at, path));
+  st.noise_target = get<double>(in, at, path);
+  if (!(st.noise_target >= 0 && st.noise_target <= 1)) throw InputError(path, "inconsistent checkpoint (noise target)");
   check_plan(st, path);
   return st;
 }
@@ -94,6 +106,13 @@ void read_pixels(RenderState& st, const std::string& in, std::size_t& at, const 
       throw InputError(path, "truncated checkpoint");
     blocks.reserve(std::size_t(count));
     for (int k = 0; k < count; ++k) blocks.push_back(get_sums(in, at, path));
+  }
+  if (st.noise_target > 0) {
+    if (in.size() - at < n) throw InputError(path, "truncated checkpoint");
+    st.stopped.assign(in.begin() + std::ptrdiff_t(at), in.begin() + std::ptrdiff_t(at + n));
+    at += n;
+    if (std::any_of(st.stopped.begin(), st.stopped.end(), [](std::uint8_t b) { return b > 1; }))
+      throw InputError(path, "inconsistent checkpoint (stopped pixels)");
   }
   if (at != in.size()) throw InputError(path, "inconsistent checkpoint (bytes after the last pixel)");
   check_pixels(st, path);
@@ -110,6 +129,7 @@ void write_checkpoint(const std::string& path, const RenderState& st, std::uint6
   for (int v : {st.width, st.height, st.spp, st.sample_begin, st.sample_end, st.passes_done, st.tiles_done, st.spp_done})
     put(out, std::int32_t(v));
   put(out, std::uint64_t(st.nonfinite));
+  put(out, st.noise_target);
   put(out, std::uint32_t(settings.size()));
   out += settings;
   out.reserve(out.size() + st.pixels.size() * (4 + 3 * kPixelBytes));
@@ -117,6 +137,7 @@ void write_checkpoint(const std::string& path, const RenderState& st, std::uint6
     put(out, std::int32_t(blocks.size()));
     for (const PixelSums& p : blocks) put_sums(out, p);
   }
+  if (st.noise_target > 0) out.append(st.stopped.begin(), st.stopped.end());
   write_binary_file(path, out);
 }
 

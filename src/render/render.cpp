@@ -1,5 +1,6 @@
 #include "render/render.h"
 
+#include "render/adaptive.h"
 #include "render/pixel_blocks.h"
 
 #include <tbb/parallel_for.h>
@@ -43,7 +44,7 @@ double mean_relative_noise(const std::vector<PixelSums>& sums) {
   long changed = 0;
   for (const PixelSums& p : sums) {
     const int n = p.samples;
-    if (n == 0 || (p.coverage == 0 && p.w == p.n)) continue;
+    if (n == 0 || !changed_pixel(p)) continue;
     const double v = variance_of_mean(p, n);
     const double value = (std::abs(luminance(Rgb(p.objects + p.with - p.without))) + luminance(p.without)) / double(n);
     if (value <= 0) continue;
@@ -146,6 +147,7 @@ struct PassContext {
   int spp, grid, first;  // first: the first sample of the range rendered
   Vec3f axis_world;
   std::vector<PixelBlocks>& pixels;
+  const std::vector<std::uint8_t>& stopped;  // by adaptive sampling (empty when it is off)
   std::atomic<std::size_t>& nonfinite;
   std::atomic<long>& area_done;
   std::mutex& progress_mutex;
@@ -161,6 +163,7 @@ void render_tile(const PassContext& c, int tile, int s0, int s1) {
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) {
       const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(w) + std::uint64_t(x);
+      if (!c.stopped.empty() && c.stopped[pixel]) continue;
       PixelBlocks& blocks = c.pixels[pixel];
       for (int s = s0; s < s1; ++s) {
         Sampler sampler(c.settings.seed, pixel, std::uint64_t(s));
@@ -202,11 +205,15 @@ bool run_pass(const PassContext& c, int s0, int s1, int& tiles_done) {
 }
 
 // The state to start from: a fresh one, or the caller's (checked against the plan).
-void start_state(RenderState& st, int w, int h, int spp, int begin, int end) {
+void start_state(RenderState& st, int w, int h, int spp, int begin, int end, double noise_target) {
+  const std::size_t n = std::size_t(w) * std::size_t(h);
   if (st.passes_done == 0 && st.pixels.empty()) {
-    st = RenderState{w, h, spp, begin, end, 0, 0, 0, 0, std::vector<PixelBlocks>(std::size_t(w) * h)};
+    st = RenderState{w, h, spp, begin, end, 0, 0, 0, 0, std::vector<PixelBlocks>(n), noise_target,
+                     std::vector<std::uint8_t>(noise_target > 0 ? n : 0, 0)};
     return;
   }
+  if (st.noise_target != noise_target || st.stopped.size() != (noise_target > 0 ? n : 0))
+    throw std::invalid_argument("render: the state to resume is of another noise target");
   if (st.width != w || st.height != h || st.spp != spp || st.sample_begin != begin || st.sample_end != end ||
       st.pixels.size() != std::size_t(w) * h || st.passes_done < 0 || st.passes_done > render_passes(end - begin) ||
       st.tiles_done < 0 || st.tiles_done >= tiles_across(w) * tiles_across(h))
@@ -240,9 +247,12 @@ void run_passes(const PassContext& c, RenderState& st) {
     const int s0 = pass_start(begin, end, st.passes_done), s1 = pass_start(begin, end, st.passes_done + 1);
     if (!run_pass(c, s0, s1, st.tiles_done)) break;  // stopped
     st.spp_done = s1 - begin;
+    if (st.noise_target <= 0 && !c.progress) continue;
+    const std::vector<PixelSums> totals = pixel_totals(st);
+    if (st.noise_target > 0) stop_converged(totals, st.width, st.height, st.noise_target, st.stopped);
     if (c.progress) {
       std::lock_guard<std::mutex> lock(c.progress_mutex);
-      c.progress({double(st.spp_done) / (end - begin), st.spp_done, mean_relative_noise(pixel_totals(st))});
+      c.progress({double(st.spp_done) / (end - begin), st.spp_done, mean_relative_noise(totals)});
     }
   }
 }
@@ -255,11 +265,13 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
   const int w = camera.width, h = camera.height, spp = std::max(1, settings.spp);
   const int begin = settings.sample_begin, end = settings.sample_end < 0 ? spp : settings.sample_end;
   if (begin < 0 || end <= begin || end > spp) throw std::invalid_argument("render: the sample range is not within [0, spp)");
+  if (!(settings.noise_target >= 0) || (settings.noise_target > 0 && (begin != 0 || end != spp)))
+    throw std::invalid_argument("render: adaptive sampling renders whole images, with a noise target >= 0");
   int grid = int(std::lround(std::sqrt(double(spp))));
   if (grid * grid != spp) grid = 0;  // not a perfect square: plain jitter
   RenderState local;
   RenderState& st = state ? *state : local;
-  start_state(st, w, h, spp, begin, end);
+  start_state(st, w, h, spp, begin, end, settings.noise_target);
   std::atomic<std::size_t> nonfinite{st.nonfinite};
   std::mutex progress_mutex;
   // Passes of samples over the whole image, so that progress can report samples per pixel done
@@ -269,7 +281,7 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
   std::atomic<long> area_done{long(w) * h * done};  // (a cancelled pass's tiles aside)
   const PassContext c{camera, integrator, settings, progress, spp, grid, begin,
                       camera.R_cam_from_world.row(2).transpose().cast<float>(),  // the optical axis
-                      st.pixels, nonfinite, area_done, progress_mutex, double(w) * h * (end - begin)};
+                      st.pixels, st.stopped, nonfinite, area_done, progress_mutex, double(w) * h * (end - begin)};
   if (progress) progress({double(done) / (end - begin), done, -1.0});
   run_passes(c, st);
   st.nonfinite = nonfinite;

@@ -3,7 +3,8 @@
 // 8 passes over the image so that progress can report the noise reached. Tiles run in parallel on
 // TBB; every sample's random numbers come from the counter-based hash and each pixel sums its
 // samples over a fixed tree of sample indices (render/pixel_blocks.h), so the image does not
-// depend on the number of threads or passes, or on how a split render was split.
+// depend on the number of threads or passes, or on how a split render was split. With a noise
+// target, pixels stop between passes as they converge (render/adaptive.h).
 #pragma once
 #include <atomic>
 #include <cstdint>
@@ -26,11 +27,14 @@ constexpr float kNoHitDepth = 1e10f;
 // the layers are then the means over the samples taken (RenderLayers::spp_done).
 // `sample_begin`, `sample_end`: render only the samples [begin, end) of the spp (a part of a split
 // render, issue 17; end −1: spp).
+// `noise_target` > 0: adaptive sampling (render/adaptive.h), each pixel stopping at that relative
+// standard error, spp the most it takes; a whole render only (not a part of a split one).
 struct RenderSettings {
   int spp = 16;
   std::uint64_t seed = 1;
   const std::atomic<bool>* stop = nullptr;
   int sample_begin = 0, sample_end = -1;
+  double noise_target = 0;
 };
 
 struct RenderLayers {
@@ -41,7 +45,7 @@ struct RenderLayers {
   Image depth;           // 1 channel: camera-space z (metres along the optical axis, as Cycles's and
                          // Nuke's Z) of what the samples met, averaged over those that met
                          // something; kNoHitDepth where none did
-  Image samples;         // 1 channel: samples taken in the pixel
+  Image samples;         // 1 channel: samples taken in the pixel (fewer where adaptive sampling stopped it)
   Image variance;        // 1 channel: variance of the pixel's mean, luminance of O + W − N, estimated
                          // as if the samples were independent (conservative: their positions are
                          // stratified)
@@ -49,7 +53,7 @@ struct RenderLayers {
   // of the ratio of means W̄/N̄ and of the difference W̄ − N̄ (luminance), and the number of samples
   // that saw the catcher.
   Image ratio_variance, difference_variance, catcher_samples;
-  int spp_done = 0;           // samples per pixel taken (spp unless stopped)
+  int spp_done = 0;           // samples per pixel taken (spp unless stopped; the most any pixel took)
   int sample_begin = 0;       // the first of them (a part of a split render, or parts merged)
   bool interrupted = false;   // stopped before spp
   double mean_relative_noise = 0;  // mean over changed pixels of √variance / value

@@ -6,6 +6,7 @@
 // (render/pixel_blocks.h).
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "core/math.h"
@@ -35,10 +36,18 @@ struct RenderState {
   int sample_begin = 0, sample_end = 0;
   int passes_done = 0;                 // of render_passes(sample_end − sample_begin)
   int tiles_done = 0;                  // of pass passes_done, in tile order (a cancelled pass)
-  int spp_done = 0;                    // samples every pixel has
+  int spp_done = 0;                    // samples every pixel still sampled has
   std::size_t nonfinite = 0;
   std::vector<PixelBlocks> pixels;
+  // Adaptive sampling (render/adaptive.h): the relative standard error a pixel stops at (0: off),
+  // and the pixels stopped (1), judged at the end of each pass; empty when off.
+  double noise_target = 0;
+  std::vector<std::uint8_t> stopped;
 };
+
+// Whether the render changed the pixel: an object covers part of it, or the catcher's estimates
+// with and without the objects differ in some sample (their sums differ).
+inline bool changed_pixel(const PixelSums& p) { return p.coverage != 0 || p.w != p.n || (p.with != p.without).any(); }
 
 // Tiles of kTilePixels² pixels, numbered row by row; a pass renders them in that order, however
 // many threads share it, so that a pass cancelled midway has done tiles [0, tiles_done).

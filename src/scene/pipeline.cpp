@@ -8,6 +8,7 @@
 #include <limits>
 #include <functional>
 #include <filesystem>
+#include <map>
 #include <fmt/format.h>
 
 #include "output/composite.h"
@@ -287,7 +288,7 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress, 
   auto integrator = scene.integrator.entry->create(inputs, scene.integrator.params);
   const double prepare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const RenderSettings settings{scene.spec.render.spp, scene.spec.render.seed, control.stop, control.sample_begin,
-                                control.sample_end};
+                                control.sample_end, scene.spec.render.noise_target};
   return finish_render(scene, render(scene.camera, *integrator, settings, progress, control.state), prepare_seconds);
 }
 
@@ -300,6 +301,23 @@ RenderResult finish_render(const LoadedScene& scene, RenderLayers layers, double
                                          scene.environment_info.response ? &*scene.environment_info.response : nullptr);
   return r;
 }
+
+namespace {
+
+// Adaptive sampling's outcome: the target, the mean spp, and how many pixels took each count.
+nlohmann::json adaptive_report(double noise_target, const Image& samples) {
+  if (!(noise_target > 0)) return nullptr;
+  std::map<int, long> histogram;
+  double total = 0;
+  for (float n : samples.data) ++histogram[int(n)], total += n;
+  nlohmann::json bins = nlohmann::json::array();
+  for (const auto& [spp, pixels] : histogram) bins.push_back({{"spp", spp}, {"pixels", pixels}});
+  return {{"noise_target", noise_target},
+          {"mean_spp", samples.data.empty() ? 0.0 : total / double(samples.data.size())},
+          {"spp_histogram", bins}};
+}
+
+}  // namespace
 
 std::string report_path(const std::string& image_path) { return image_path + ".report.json"; }
 
@@ -351,6 +369,7 @@ nlohmann::json render_report(const LoadedScene& s, const RenderResult& r, const 
         {"max_depth", s.integrator.params.value("max_depth", json(nullptr))},
         {"seed", s.spec.render.seed},
         {"noise_relative", r.layers.mean_relative_noise},
+        {"adaptive", adaptive_report(s.spec.render.noise_target, r.layers.samples)},
         {"nonfinite_samples", r.layers.nonfinite_samples}}},
       {"composite", name_of(kCompositeModes, s.spec.composite)},
       {"tonemap", effective_tonemap(tonemap_spec)},

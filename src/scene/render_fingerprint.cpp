@@ -43,7 +43,7 @@ std::uint64_t render_fingerprint(const LoadedScene& s) {
   Fnv1a h;
   h.text("insitu render state 1");
   add_camera(h, s.camera);
-  h.value(s.spec.render.spp), h.value(s.spec.render.seed);
+  h.value(s.spec.render.spp), h.value(s.spec.render.seed), h.value(s.spec.render.noise_target);
   h.text(s.spec.render.integrator), h.text(s.integrator.params.dump());
   h.array(s.photo_linear.data);
   for (int f = 0; f < 6; ++f) h.array(s.environment.face_image(f).data);

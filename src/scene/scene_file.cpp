@@ -378,6 +378,7 @@ void parse_render(const JsonValue& r, RenderSpec& render) {
   if (auto in = ro.find("integrator")) render.integrator = in->string();
   if (auto spp = ro.find("spp")) render.spp = int(spp->integer(1, kMaxSpp));
   if (auto seed = ro.find("seed")) render.seed = std::uint64_t(seed->integer(0, kMaxSeed));
+  if (auto t = ro.find("noise_target")) render.noise_target = t->number(0, 1);
   render.block = {r.raw(), r.file(), r.path()};
 }
 

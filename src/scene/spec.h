@@ -63,13 +63,15 @@ struct OutputSpec {
   ToneMapSettings tonemap;  // for PNG/JPEG; EXR and TIFF stay linear
 };
 
-// The render stage: the render loop's samples per pixel and seed, the integrator's name, and the
+// The render stage: the render loop's samples per pixel, seed and noise target (adaptive sampling,
+// render/adaptive.h; 0: off, spp then a fixed count rather than a cap), the integrator's name, and the
 // render object itself, whose other keys are the integrators' parameters (render.max_depth, or
 // render.path.max_depth): each integrator reads its own (integrators/registry.h).
 struct RenderSpec {
   std::string integrator = "realtime";
   int spp = 16;
   std::uint64_t seed = 1;
+  double noise_target = 0;
   JsonBlock block{json::object(), "", "$.render"};
 };
 

@@ -222,7 +222,7 @@ def systematic_cases():
              (("output", "image"), "out/c.bmp", "extension"), (("output", "layers"), "out/l.png", "extension"),
              (("output", "tonemap", "op"), "filmic", "photo"), (("output", "tonemap", "bias"), 2, "range"),
              (("output", "tonemap", "key"), 0, "range"), (("local_scene", 0, "mean_albedo"), "half", "number"),
-             (("environment", "inverse_lighting"), "yes", "boolean")]
+             (("environment", "inverse_lighting"), "yes", "boolean"), (("render", "noise_target"), "1%", "number")]
     for i, (path, value, word) in enumerate(typed):
         variant("wrong_type_%02d_%s" % (i, "_".join(str(k) for k in path).replace("+", "p")), path, value, r"WHERE: .*")
     # Numbers that are not finite or not sensible.
@@ -231,7 +231,8 @@ def systematic_cases():
                                        (("camera", "hfov_deg"), -30), (("objects", 0, "scale"), 0),
                                        (("objects", 0, "scale"), [1, 0, 1]), (("objects", 0, "rotate"), 1e400),
                                        (("local_scene", 0, "plane", "normal"), [0, 0, 0]),
-                                       (("render", "spp"), 0), (("render", "spp"), 1 << 40)]):
+                                       (("render", "spp"), 0), (("render", "spp"), 1 << 40),
+                                       (("render", "noise_target"), -0.01), (("render", "noise_target"), 2)]):
         variant("bad_number_%02d_%s" % (i, "_".join(str(k) for k in path)), path, value, r"scene.json.*")
     # Unknown keys, in every object of the file.
     for i, path in enumerate([("typo",), ("camera", "typo"), ("environment", "typo"), ("environment", "shots", "typo"),
@@ -283,6 +284,7 @@ def more_cases():
             ("tradeoff_ladder_zero", ["tradeoff", "scene.json", "-o", "t", "--ladder", "0"], "ladder"),
             ("spp_negative", ["render", "scene.json", "--spp", "-1"], "spp"), ("seed_negative", ["render", "scene.json", "--seed", "-5"], "seed"),
             ("tonemap_unknown", ["render", "scene.json", "--tonemap", "filmic"], "tonemap"),
+            ("noise_target_negative", ["render", "scene.json", "--noise-target", "-0.1"], "noise-target"),
             ("key_negative", ["render", "scene.json", "--key", "-1"], "key"),
             ("irradiance_unknown", ["render", "scene.json", "--irradiance", "sh4"], "irradiance"),
             ("volume_without_room_box", ["render", "scene.json", "--integrator", "irradiance", "--irradiance", "volume"], "room_box"),
