@@ -2,7 +2,7 @@
 # Regenerates the README's pictures and figures from the demo scene with the current build:
 # docs/images/demo-{photo,path,realtime,shadow-ratio,ab}.png and docs/tradeoff/ (the table in the
 # README's "Speed against accuracy" is printed by the last step). Run after the build:
-#   bash scripts/readme-images.sh            (about 4 minutes on 2 cores; --no-tradeoff: 30 s)
+#   bash scripts/readme-images.sh            (about 6 minutes on 2 cores; --no-tradeoff: 30 s)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 insitu=build/insitu
@@ -20,5 +20,5 @@ oiiotool scenes/demo/out/layers.exr --ch shadow_ratio.R,shadow_ratio.G,shadow_ra
   --clamp:min=0:max=1 --colorconvert linear sRGB -d uint8 -o docs/images/demo-shadow-ratio.png
 "$insitu" compare "$tmp/realtime.png" scenes/demo/out/composite.png -o docs/images/demo-ab.png
 if [ "${1:-}" != "--no-tradeoff" ]; then
-  "$insitu" tradeoff "$scene" -o docs/tradeoff --ladder 1,4,16,64,256 --reference-spp 1024
+  "$insitu" tradeoff "$scene" -o docs/tradeoff --ladder 1,4,16,64,256 --reference-spp 1024 --noise-targets 0.04,0.02,0.01
 fi

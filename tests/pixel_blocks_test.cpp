@@ -106,3 +106,24 @@ TEST(PixelBlocks, NonCanonicalBlocksAreRecognized) {
 
 }  // namespace
 }  // namespace insitu
+
+namespace insitu {
+namespace {
+
+// canonical_count against the blocks that pushing the samples one by one leaves.
+TEST(PixelBlocks, CanonicalCountIsWhatPushingLeaves) {
+  for (int first = 0; first < 40; ++first) {
+    PixelBlocks blocks;
+    for (int end = first + 1; end < first + 70; ++end) {
+      PixelSums leaf;
+      leaf.samples = 1;
+      push_block(blocks, first, leaf);
+      ASSERT_EQ(canonical_count(first, end), int(blocks.size())) << first << ":" << end;
+    }
+  }
+  EXPECT_EQ(canonical_count(0, 1 << 20), 1);
+  EXPECT_EQ(canonical_count(5, 5), 0);
+}
+
+}  // namespace
+}  // namespace insitu

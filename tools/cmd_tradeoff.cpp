@@ -68,12 +68,13 @@ Image plot(const std::vector<Row>& rows) {
   }
   cv::putText(m, "seconds", {W / 2 - 60, H - 12}, cv::FONT_HERSHEY_SIMPLEX, 0.5, black);
   cv::putText(m, "relative RMSE against the reference (objects and shadows)", {left, 18}, cv::FONT_HERSHEY_SIMPLEX, 0.45, black);
-  const cv::Scalar colours[] = {{40, 40, 200}, {200, 120, 40}, {40, 160, 40}, {160, 60, 160}, {0, 140, 220}};
+  const cv::Scalar colours[] = {{40, 40, 200}, {200, 120, 40}, {40, 160, 40}, {160, 60, 160},
+                                {0, 140, 220}, {20, 20, 20},    {150, 150, 0}, {120, 120, 120}};
   std::vector<std::string> modes;
   for (const Row& r : rows)
     if (std::find(modes.begin(), modes.end(), r.mode) == modes.end()) modes.push_back(r.mode);
   for (std::size_t k = 0; k < modes.size(); ++k) {
-    const cv::Scalar c = colours[k % 5];
+    const cv::Scalar c = colours[k % 8];
     cv::Point prev(-1, -1);
     for (const Row& r : rows) {
       if (r.mode != modes[k]) continue;

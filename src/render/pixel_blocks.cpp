@@ -46,6 +46,17 @@ int block_samples(const PixelBlocks& blocks) {
   return n;
 }
 
+// The largest aligned block that starts at `start` and fits before `end`, one after another.
+int canonical_count(int first, int end) {
+  int count = 0;
+  for (int start = first; start < end; ++count) {
+    int size = 1;
+    while ((start % (2 * size)) == 0 && start + 2 * size <= end && size < (1 << 29)) size *= 2;
+    start += size;
+  }
+  return count;
+}
+
 bool canonical_blocks(const PixelBlocks& blocks, int first) {
   int start = first;
   for (std::size_t i = 0; i < blocks.size(); ++i) {

@@ -37,6 +37,9 @@ PixelSums fold_blocks(const PixelBlocks& blocks);
 // The samples the blocks hold.
 int block_samples(const PixelBlocks& blocks);
 
+// How many blocks the canonical decomposition of the samples [first, end) has.
+int canonical_count(int first, int end);
+
 // Whether `blocks`, starting at sample `first`, is a canonical decomposition: each block an
 // aligned power of two, no two adjacent siblings (what a part file read from disk must be).
 bool canonical_blocks(const PixelBlocks& blocks, int first);

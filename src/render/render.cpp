@@ -38,20 +38,46 @@ double variance_of_mean(const PixelSums& p, int n) {
 
 // Mean over pixels the render changed (an object covers them or the catcher's estimates differ)
 // of √variance relative to the pixel's value. Changed pixels of variance 0 count as 0, so that the
-// set of pixels, and with it the figure, does not jump from pass to pass.
-double mean_relative_noise(const std::vector<PixelSums>& sums) {
+// set of pixels, and with it the figure, does not jump from pass to pass. A pixel adds its
+// relative error to `noise` and 1 to `changed` (render/render_state.h's changed_pixel).
+void add_relative_noise(const PixelSums& p, double& noise, long& changed) {
+  const int n = p.samples;
+  if (n == 0 || !changed_pixel(p)) return;
+  const double v = variance_of_mean(p, n);
+  const double value = (std::abs(luminance(Rgb(p.objects + p.with - p.without))) + luminance(p.without)) / double(n);
+  if (value <= 0) return;
+  noise += std::sqrt(v) / value;
+  ++changed;
+}
+
+// Summed row by row (each row in x order), then the rows in order: the same bits whether the rows
+// were summed in parallel or not. `pixel(i)` gives pixel i's sums.
+template <class PixelAt>
+double mean_relative_noise(int w, int h, const PixelAt& pixel, bool parallel) {
+  std::vector<double> row_noise(std::size_t(h), 0.0);
+  std::vector<long> row_changed(std::size_t(h), 0);
+  auto row = [&](int y) {
+    for (int x = 0; x < w; ++x)
+      add_relative_noise(pixel(std::size_t(y) * std::size_t(w) + std::size_t(x)), row_noise[std::size_t(y)],
+                         row_changed[std::size_t(y)]);
+  };
+  if (parallel) tbb::parallel_for(0, h, row);
+  else for (int y = 0; y < h; ++y) row(y);
   double noise = 0;
   long changed = 0;
-  for (const PixelSums& p : sums) {
-    const int n = p.samples;
-    if (n == 0 || !changed_pixel(p)) continue;
-    const double v = variance_of_mean(p, n);
-    const double value = (std::abs(luminance(Rgb(p.objects + p.with - p.without))) + luminance(p.without)) / double(n);
-    if (value <= 0) continue;
-    noise += std::sqrt(v) / value;
-    ++changed;
-  }
+  for (int y = 0; y < h; ++y) noise += row_noise[std::size_t(y)], changed += row_changed[std::size_t(y)];
   return changed > 0 ? noise / double(changed) : 0.0;
+}
+
+double mean_relative_noise(const std::vector<PixelSums>& sums, int w, int h) {
+  return mean_relative_noise(w, h, [&](std::size_t i) -> const PixelSums& { return sums[i]; }, false);
+}
+
+// The same figure from the state, each pixel's blocks folded where it is read. The progress report
+// after every pass used to fold the whole image into a new array first, 46 MB for the demo: 8
+// passes of a 16-spp `realtime` render spent more time there, in page faults, than in rendering.
+double mean_relative_noise(const RenderState& st) {
+  return mean_relative_noise(st.width, st.height, [&](std::size_t i) { return fold_blocks(st.pixels[i]); }, true);
 }
 
 // The key of a pixel's order of strata.
@@ -134,7 +160,7 @@ RenderLayers layers_from_sums(const std::vector<PixelSums>& sums, int w, int h) 
       *out.difference_variance.at(x, y) = float(difference_variance(p, spp));
       *out.catcher_samples.at(x, y) = float(p.catcher);
     }
-  out.mean_relative_noise = mean_relative_noise(sums);
+  out.mean_relative_noise = mean_relative_noise(sums, w, h);
   return out;
 }
 
@@ -160,20 +186,30 @@ void render_tile(const PassContext& c, int tile, int s0, int s1) {
   const int x0 = (tile % across) * kTilePixels, y0 = (tile / across) * kTilePixels;
   const int x1 = std::min(w, x0 + kTilePixels), y1 = std::min(h, y0 + kTilePixels);
   std::size_t local_nonfinite = 0;
+  // The pass's samples of a pixel are stacked here first (their canonical blocks of [s0, s1):
+  // alignment is by absolute sample index, so the same blocks, with the same bits, as pushed one
+  // by one), then pushed onto the pixel's, whose capacity start_state reserved: no allocation in
+  // a pass, where pushing the samples one by one reallocated as the stack grew and shrank (and
+  // malloc's lock, taken by both threads, made a 16-spp `realtime` render slower on 2 threads
+  // than on 1).
+  thread_local PixelBlocks pass_blocks, merged;
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) {
       const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(w) + std::uint64_t(x);
       if (!c.stopped.empty() && c.stopped[pixel]) continue;
-      PixelBlocks& blocks = c.pixels[pixel];
+      pass_blocks.clear();
       for (int s = s0; s < s1; ++s) {
         Sampler sampler(c.settings.seed, pixel, std::uint64_t(s));
         const Ray ray = jittered_ray(c.camera, x, y, pixel, s, c.spp, c.grid, sampler);
         PixelSums leaf;
         if (!accumulate(leaf, c.integrator.sample(ray, sampler), ray, c.axis_world)) ++local_nonfinite;
         leaf.samples = 1;
-        push_block(blocks, c.first, leaf);
+        push_block(pass_blocks, s0, leaf);
       }
-      blocks.shrink_to_fit();  // a few blocks stay of the log2(s1 − s0) the pass stacked
+      PixelBlocks& blocks = c.pixels[pixel];
+      merged.assign(blocks.begin(), blocks.end());
+      for (const PixelSums& b : pass_blocks) push_block(merged, c.first, b);
+      blocks.assign(merged.begin(), merged.end());  // within the capacity start_state reserved
     }
   c.nonfinite += local_nonfinite;
   if (c.progress) {
@@ -204,12 +240,22 @@ bool run_pass(const PassContext& c, int s0, int s1, int& tiles_done) {
   return true;
 }
 
+// Every pixel's room for the most blocks it holds at the end of any pass: the memory it reaches at
+// that pass anyway, taken once rather than reallocated pass after pass.
+void reserve_blocks(RenderState& st) {
+  int most = 1;
+  for (int k = 1; k <= render_passes(st.sample_end - st.sample_begin); ++k)
+    most = std::max(most, canonical_count(st.sample_begin, pass_start(st.sample_begin, st.sample_end, k)));
+  tbb::parallel_for(std::size_t(0), st.pixels.size(), [&](std::size_t i) { st.pixels[i].reserve(std::size_t(most)); });
+}
+
 // The state to start from: a fresh one, or the caller's (checked against the plan).
 void start_state(RenderState& st, int w, int h, int spp, int begin, int end, double noise_target) {
   const std::size_t n = std::size_t(w) * std::size_t(h);
   if (st.passes_done == 0 && st.pixels.empty()) {
     st = RenderState{w, h, spp, begin, end, 0, 0, 0, 0, std::vector<PixelBlocks>(n), noise_target,
                      std::vector<std::uint8_t>(noise_target > 0 ? n : 0, 0)};
+    reserve_blocks(st);
     return;
   }
   if (st.noise_target != noise_target || st.stopped.size() != (noise_target > 0 ? n : 0))
@@ -247,12 +293,10 @@ void run_passes(const PassContext& c, RenderState& st) {
     const int s0 = pass_start(begin, end, st.passes_done), s1 = pass_start(begin, end, st.passes_done + 1);
     if (!run_pass(c, s0, s1, st.tiles_done)) break;  // stopped
     st.spp_done = s1 - begin;
-    if (st.noise_target <= 0 && !c.progress) continue;
-    const std::vector<PixelSums> totals = pixel_totals(st);
-    if (st.noise_target > 0) stop_converged(totals, st.width, st.height, st.noise_target, st.stopped);
+    if (st.noise_target > 0) stop_converged(pixel_totals(st), st.width, st.height, st.noise_target, st.stopped);
     if (c.progress) {
       std::lock_guard<std::mutex> lock(c.progress_mutex);
-      c.progress({double(st.spp_done) / (end - begin), st.spp_done, mean_relative_noise(totals)});
+      c.progress({double(st.spp_done) / (end - begin), st.spp_done, mean_relative_noise(st)});
     }
   }
 }
