@@ -81,7 +81,7 @@ void check_pixels(const RenderState& st, const std::string& path) {
 void check_plan(const RenderState& st, const std::string& path) {
   const bool ok = st.width > 0 && st.height > 0 && st.spp > 0 && st.sample_begin >= 0 && st.sample_begin < st.sample_end &&
                   st.sample_end <= st.spp && st.passes_done >= 0 && st.passes_done <= render_passes(st.sample_end - st.sample_begin) &&
-                  st.tiles_done >= 0 && st.tiles_done < tiles_across(st.width) * tiles_across(st.height);
+                  st.tiles_done >= 0 && st.tiles_done < long(tiles_across(st.width)) * long(tiles_across(st.height));
   if (!ok) throw InputError(path, "inconsistent checkpoint (size, samples or passes)");
 }
 
