@@ -177,7 +177,9 @@ TEST(AdaptiveRender, UnchangedAndNoiselessPixelsStopAtTheFirstPass) {
   int background = 0, inside = 0;
   for (int y = 0; y < fx.height; ++y)
     for (int x = 0; x < fx.width; ++x) {
-      if (!near_an_edge(realtime.layers, x, y)) EXPECT_EQ(*realtime.layers.samples.at(x, y), 64.0f) << x << "," << y;
+      if (!near_an_edge(realtime.layers, x, y)) {
+        EXPECT_EQ(*realtime.layers.samples.at(x, y), 64.0f) << x << "," << y;
+      }
       inside += *realtime.layers.alpha.at(x, y) == 1 && !near_an_edge(realtime.layers, x, y);
       if (*path.layers.alpha.at(x, y) > 0) continue;
       EXPECT_EQ(*path.layers.samples.at(x, y), 64.0f) << x << "," << y;

@@ -14,7 +14,6 @@
 // --samples A:B renders a part of a split render (issue 17): only those sample indices of the spp,
 // with the random numbers of a whole render, their sums written to a part file that `insitu
 // merge` adds to the others' (cmd_merge.cpp).
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
@@ -127,13 +126,9 @@ int run_render(const RenderArgs& a) {
   std::fprintf(stderr, "insitu: %s, %dx%d, %d spp, integrator %s: load %.2f s, prepare %.2f s, render %.2f s\n",
                spec.path.c_str(), scene.camera.width, scene.camera.height, spec.render.spp,
                spec.render.integrator.c_str(), scene.load_seconds, result.prepare_seconds, result.layers.seconds);
-  if (spec.render.noise_target > 0) {
-    double total = 0;
-    for (float n : result.layers.samples.data) total += n;
+  if (spec.render.noise_target > 0)
     std::fprintf(stderr, "insitu: adaptive sampling to %.2f%%: %.1f spp on average, at most %d\n",
-                 100 * spec.render.noise_target, total / double(std::max<std::size_t>(1, result.layers.samples.data.size())),
-                 spec.render.spp);
-  }
+                 100 * spec.render.noise_target, mean_spp(result.layers), spec.render.spp);
   if (result.layers.mean_relative_noise > 0)
     std::fprintf(stderr, "insitu: noise estimate: %.2f%% relative standard error where the render changed the photo\n",
                  100 * result.layers.mean_relative_noise);

@@ -109,13 +109,6 @@ void write_outputs(const TradeoffArgs& a, const std::vector<Row>& rows, const Re
   for (const Row& r : rows) std::printf("| %s | %d | %.3f | %.4f |\n", r.label().c_str(), r.spp, r.seconds, r.rel_rmse);
 }
 
-// The mean over pixels of the samples each took.
-double mean_samples(const RenderLayers& l) {
-  double total = 0;
-  for (float n : l.samples.data) total += n;
-  return l.samples.data.empty() ? 0.0 : total / double(l.samples.data.size());
-}
-
 int run_tradeoff(const TradeoffArgs& a) {
   SceneSpec spec = parse_scene_file(a.scene);
   spec.output = {};
@@ -150,7 +143,7 @@ int run_tradeoff(const TradeoffArgs& a) {
     RenderResult r;
     const double seconds = run(integrator, mode, spp, std::uint64_t(a.seed), &r, noise_target);
     const CompareResult c = compare_images(r.composite_linear, reference.composite_linear, &mask);
-    if (noise_target > 0) spp = int(std::lround(mean_samples(r.layers)));
+    if (noise_target > 0) spp = int(std::lround(mean_spp(r.layers)));
     rows.push_back({name, spp, seconds, c.masked->relative_rmse, noise_target});
     std::fprintf(stderr, "tradeoff: %-20s %5d spp %8.3f s  rel. RMSE %.4f\n", rows.back().label().c_str(), spp, seconds,
                  c.masked->relative_rmse);

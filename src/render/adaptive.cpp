@@ -19,12 +19,6 @@ double bounded_variance(const PixelSums& p) {
   return s2 > 0 ? s2 * variance_upper_bound_factor(p.samples) : 0.0;
 }
 
-// |mean(O + W − N)| + mean(N): the scale the relative error is of (render.h's noise figure's).
-double pixel_value(const PixelSums& p) {
-  if (p.samples == 0) return 0;
-  return (std::abs(luminance(Rgb(p.objects + p.with - p.without))) + luminance(p.without)) / double(p.samples);
-}
-
 }  // namespace
 
 // s² (n − 1) / χ²_0.05(n − 1), χ²_p(k) ≈ k (1 − 2/(9k) + z_p √(2/(9k)))³ (Wilson & Hilferty

@@ -44,7 +44,7 @@ void add_relative_noise(const PixelSums& p, double& noise, long& changed) {
   const int n = p.samples;
   if (n == 0 || !changed_pixel(p)) return;
   const double v = variance_of_mean(p, n);
-  const double value = (std::abs(luminance(Rgb(p.objects + p.with - p.without))) + luminance(p.without)) / double(n);
+  const double value = pixel_value(p);
   if (value <= 0) return;
   noise += std::sqrt(v) / value;
   ++changed;
@@ -188,10 +188,11 @@ void render_tile(const PassContext& c, int tile, int s0, int s1) {
   std::size_t local_nonfinite = 0;
   // The pass's samples of a pixel are stacked here first (their canonical blocks of [s0, s1):
   // alignment is by absolute sample index, so the same blocks, with the same bits, as pushed one
-  // by one), then pushed onto the pixel's, whose capacity start_state reserved: no allocation in
-  // a pass, where pushing the samples one by one reallocated as the stack grew and shrank (and
-  // malloc's lock, taken by both threads, made a 16-spp `realtime` render slower on 2 threads
-  // than on 1).
+  // by one), merged onto a copy of the pixel's in `merged`, and copied back within the capacity
+  // start_state reserved: a pass allocates nothing, where pushing the samples one by one and
+  // shrinking reallocated every pass (malloc's lock, taken by both threads, made a 16-spp
+  // `realtime` render slower on 2 threads than on 1). Pushing onto the pixel's blocks directly
+  // overflows that capacity by one before the merge and reallocates: 0.9 s -> 1.65 s.
   thread_local PixelBlocks pass_blocks, merged;
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) {
@@ -209,7 +210,7 @@ void render_tile(const PassContext& c, int tile, int s0, int s1) {
       PixelBlocks& blocks = c.pixels[pixel];
       merged.assign(blocks.begin(), blocks.end());
       for (const PixelSums& b : pass_blocks) push_block(merged, c.first, b);
-      blocks.assign(merged.begin(), merged.end());  // within the capacity start_state reserved
+      blocks.assign(merged.begin(), merged.end());
     }
   c.nonfinite += local_nonfinite;
   if (c.progress) {
@@ -274,6 +275,12 @@ std::vector<PixelSums> pixel_totals(const RenderState& st) {
 }
 
 }  // namespace
+
+double mean_spp(const RenderLayers& layers) {
+  double total = 0;
+  for (float n : layers.samples.data) total += n;
+  return layers.samples.data.empty() ? 0.0 : total / double(layers.samples.data.size());
+}
 
 RenderLayers layers_from_state(const RenderState& st) {
   RenderLayers out = layers_from_sums(pixel_totals(st), st.width, st.height);

@@ -71,6 +71,9 @@ struct RenderProgress {
 };
 using ProgressFn = std::function<void(const RenderProgress&)>;
 
+// The mean over pixels of the samples each took (the samples layer's mean).
+double mean_spp(const RenderLayers& layers);
+
 // The layers of a render's state: the means over the samples each pixel has (a part of a split
 // render, or parts merged: render/checkpoint.h).
 RenderLayers layers_from_state(const RenderState& state);

@@ -49,6 +49,13 @@ struct RenderState {
 // with and without the objects differ in some sample (their sums differ).
 inline bool changed_pixel(const PixelSums& p) { return p.coverage != 0 || p.w != p.n || (p.with != p.without).any(); }
 
+// |mean(O + W − N)| + mean(N): the scale a pixel's relative noise is of (render.h's noise figure,
+// adaptive.h's stopping rule).
+inline double pixel_value(const PixelSums& p) {
+  if (p.samples == 0) return 0;
+  return (std::abs(luminance(Rgb(p.objects + p.with - p.without))) + luminance(p.without)) / double(p.samples);
+}
+
 // Tiles of kTilePixels² pixels, numbered row by row; a pass renders them in that order, however
 // many threads share it, so that a pass cancelled midway has done tiles [0, tiles_done).
 constexpr int kTilePixels = 16;

@@ -305,16 +305,13 @@ RenderResult finish_render(const LoadedScene& scene, RenderLayers layers, double
 namespace {
 
 // Adaptive sampling's outcome: the target, the mean spp, and how many pixels took each count.
-nlohmann::json adaptive_report(double noise_target, const Image& samples) {
+nlohmann::json adaptive_report(double noise_target, const RenderLayers& layers) {
   if (!(noise_target > 0)) return nullptr;
   std::map<int, long> histogram;
-  double total = 0;
-  for (float n : samples.data) ++histogram[int(n)], total += n;
+  for (float n : layers.samples.data) ++histogram[int(n)];
   nlohmann::json bins = nlohmann::json::array();
   for (const auto& [spp, pixels] : histogram) bins.push_back({{"spp", spp}, {"pixels", pixels}});
-  return {{"noise_target", noise_target},
-          {"mean_spp", samples.data.empty() ? 0.0 : total / double(samples.data.size())},
-          {"spp_histogram", bins}};
+  return {{"noise_target", noise_target}, {"mean_spp", mean_spp(layers)}, {"spp_histogram", bins}};
 }
 
 }  // namespace
@@ -369,7 +366,7 @@ nlohmann::json render_report(const LoadedScene& s, const RenderResult& r, const 
         {"max_depth", s.integrator.params.value("max_depth", json(nullptr))},
         {"seed", s.spec.render.seed},
         {"noise_relative", r.layers.mean_relative_noise},
-        {"adaptive", adaptive_report(s.spec.render.noise_target, r.layers.samples)},
+        {"adaptive", adaptive_report(s.spec.render.noise_target, r.layers)},
         {"nonfinite_samples", r.layers.nonfinite_samples}}},
       {"composite", name_of(kCompositeModes, s.spec.composite)},
       {"tonemap", effective_tonemap(tonemap_spec)},
