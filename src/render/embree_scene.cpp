@@ -6,6 +6,8 @@
 #include <string>
 #include <fmt/format.h>
 
+#include "render/ray_log.h"
+
 namespace insitu {
 
 struct EmbreeScene::Impl {
@@ -56,6 +58,14 @@ EmbreeScene::~EmbreeScene() {
   if (impl_->device) rtcReleaseDevice(impl_->device);
 }
 
+RTCSceneTy* EmbreeScene::rtc_scene() const { return impl_->scene; }
+
+namespace {
+LoggedRay logged(const Ray& ray, float t_near, float t_far, bool shadow) {
+  return {{ray.origin.x(), ray.origin.y(), ray.origin.z()}, {ray.dir.x(), ray.dir.y(), ray.dir.z()}, t_near, t_far, shadow};
+}
+}  // namespace
+
 Hit EmbreeScene::intersect(const Ray& ray, float t_near, float t_far) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -70,6 +80,7 @@ Hit EmbreeScene::intersect(const Ray& ray, float t_near, float t_far) const {
   rh.ray.flags = 0;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  if (log_) log_->record(logged(ray, t_near, t_far, false));
   rtcIntersect1(impl_->scene, &context, &rh);
   Hit hit;
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
@@ -93,6 +104,7 @@ bool EmbreeScene::occluded(const Ray& ray, float t_near, float t_far) const {
   r.mask = 0xFFFFFFFFu;
   r.id = 0;
   r.flags = 0;
+  if (log_) log_->record(logged(ray, t_near, t_far, true));
   rtcOccluded1(impl_->scene, &context, &r);
   return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }

@@ -6,7 +6,11 @@
 #include "core/camera.h"
 #include "render/mesh.h"
 
+struct RTCSceneTy;  // Embree's scene handle (RTCScene), for a bare loop over the same scene
+
 namespace insitu {
+
+class RayLog;  // render/ray_log.h
 
 struct Hit {
   float t = 0;
@@ -39,12 +43,17 @@ class EmbreeScene {
   SurfacePoint surface(const Ray& ray, const Hit& hit) const;
   const std::vector<Mesh>& meshes() const { return meshes_; }
   bool empty() const { return meshes_.empty(); }
+  // Every ray traced from now on is appended to `log` (null: none, the default). Not to be changed
+  // while a render runs.
+  void set_ray_log(RayLog* log) { log_ = log; }
+  RTCSceneTy* rtc_scene() const;
 
   struct Impl;  // Embree's device and scene (public for the error callback; defined in the .cpp)
 
  private:
   std::unique_ptr<Impl> impl_;
   std::vector<Mesh> meshes_;
+  RayLog* log_ = nullptr;
 };
 
 }  // namespace insitu
