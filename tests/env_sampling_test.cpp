@@ -1,6 +1,8 @@
 // Environment importance sampling (render/env_sampling.h): the sampler against its own pdf.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 
 #include "cube_fixture.h"
@@ -67,6 +69,49 @@ TEST(EnvSampling, PdfIntegratesToOne) {
   }
   const double mean = sum / count, se = std::sqrt((sum2 / count - mean * mean) / count);
   EXPECT_NEAR(mean, 1.0, 4 * se);
+}
+
+// The guide table's texel is the bisection's, bit for bit: at random u, on a fine grid, at every
+// guide boundary g/G (where rounding could put u in the guide entry after its own) and beside it,
+// at the ends, and for input outside [0, 1) or NaN. A cube with
+// a very bright texel and many dark ones makes the CDF steps as uneven as a sun's.
+TEST(EnvSampling, GuideTableFindsTheTexelBisectionFinds) {
+  CubeMap cube = random_cube(16, 5);
+  cube.set_texel(2, 3, 7, Rgb(1e5f, 9e4f, 8e4f));
+  for (int i = 0; i < 16; ++i) cube.set_texel(4, i, 2, Rgb::Zero());
+  cube.update_borders();
+  const EnvSampler s(cube);
+  auto same = [&](float u) {
+    const EnvSample a = s.sample(u, 0.3f, 0.6f), b = s.sample_by_bisection(u, 0.3f, 0.6f);
+    return a.dir == b.dir && a.pdf == b.pdf;
+  };
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<float> uniform(0, 1);
+  for (int k = 0; k < 200000; ++k) ASSERT_TRUE(same(uniform(rng))) << k;
+  // Every float from 0 to 1 in steps of 2⁻¹⁶, and their neighbours.
+  for (int k = 0; k <= 65536; ++k) {
+    const float u = float(k) / 65536.0f;
+    ASSERT_TRUE(same(u) && same(std::nextafter(u, 0.0f)) && same(std::nextafter(u, 2.0f))) << u;
+  }
+  const int texels = 6 * 16 * 16 / 8 + 1;  // G
+  for (int g = 0; g <= texels; ++g) {
+    const float u = float(double(g) / texels);
+    ASSERT_TRUE(same(u) && same(std::nextafter(u, 0.0f)) && same(std::nextafter(u, 2.0f))) << g;
+  }
+  for (float u : {0.0f, 1.0f, -0.5f, 7.0f, std::nextafter(1.0f, 0.0f), std::numeric_limits<float>::quiet_NaN()})
+    EXPECT_TRUE(same(u)) << u;
+}
+
+// radiance() is the cube's nearest texel, bit for bit, in every direction (record layout).
+TEST(EnvSampling, RadianceIsTheCubesNearestTexel) {
+  const CubeMap cube = random_cube(32, 7);
+  const EnvSampler s(cube);
+  std::mt19937 rng(8);
+  std::normal_distribution<float> g(0, 1);
+  for (int k = 0; k < 100000; ++k) {
+    const Vec3f d = Vec3f(g(rng), g(rng), g(rng)).normalized();
+    ASSERT_TRUE((s.radiance(d) == cube.lookup_nearest(d)).all()) << d.transpose();
+  }
 }
 
 }  // namespace

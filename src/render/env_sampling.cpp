@@ -1,13 +1,14 @@
 #include "render/env_sampling.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "light/texel_geometry.h"
 
 namespace insitu {
 
 EnvSampler::EnvSampler(const CubeMap& radiance, const TexelShare& share, bool mis_compensation)
-    : cube_(&radiance), n_(radiance.size()) {
+    : n_(radiance.size()) {
   const std::size_t count = std::size_t(6) * n_ * n_;
   const std::size_t face_count = std::size_t(n_) * std::size_t(n_);
   const std::vector<double> omega = face_solid_angles(n_);  // by j·n + i, the same on every face
@@ -29,35 +30,75 @@ EnvSampler::EnvSampler(const CubeMap& radiance, const TexelShare& share, bool mi
   // A floor so that every texel can be drawn (also keeps a black environment well defined).
   const double floor = total > 0 ? 1e-3 * total / double(count) : 1.0;
   cdf_.assign(count + 1, 0.0);
-  prob_.resize(count);
+  texels_.resize(count);
   double sum = 0;
   for (std::size_t k = 0; k < count; ++k) sum += w[k] + floor;
   for (std::size_t k = 0; k < count; ++k) {
-    prob_[k] = float((w[k] + floor) / sum);
+    const int f = int(k / face_count), j = int((k / std::size_t(n_)) % std::size_t(n_)), i = int(k % std::size_t(n_));
+    const Rgb L = radiance.texel(f, i, j);
+    texels_[k] = {{L[0], L[1], L[2]}, float((w[k] + floor) / sum)};
     cdf_[k + 1] = cdf_[k] + (w[k] + floor) / sum;
   }
   cdf_.back() = 1.0;
+  // guide_[g]: the first m ≥ 1 with cdf_[m] > g/G (what upper_bound gives for u = g/G).
+  guide_.resize(count / kGuideSpan + 1);
+  std::size_t m = 1;
+  for (std::size_t g = 0; g < guide_.size(); ++g) {
+    const double u = double(g) / double(guide_.size());
+    while (m < count && !(u < cdf_[m])) ++m;
+    guide_[g] = std::uint32_t(m);
+  }
 }
 
-EnvSample EnvSampler::sample(float u_texel, float u_s, float u_t) const {
-  const auto it = std::upper_bound(cdf_.begin() + 1, cdf_.end(), double(u_texel));
-  const std::size_t k = std::min<std::size_t>(std::size_t(it - cdf_.begin()) - 1, prob_.size() - 1);
+// The texel of face coordinates (s, t) ∈ [0, 1]²: the nearest one, as CubeMap::lookup_nearest.
+std::size_t EnvSampler::texel_of(int face, float s, float t) const {
+  const int i = std::clamp(int(std::floor(s * float(n_))), 0, n_ - 1);
+  const int j = std::clamp(int(std::floor(t * float(n_))), 0, n_ - 1);
+  return (std::size_t(face) * std::size_t(n_) + std::size_t(j)) * std::size_t(n_) + std::size_t(i);
+}
+
+// A point drawn uniformly on texel k's face square, and its density in solid angle.
+EnvSample EnvSampler::sample_in(std::size_t k, float u_s, float u_t) const {
   const int i = int(k % std::size_t(n_)), j = int((k / std::size_t(n_)) % std::size_t(n_)), f = int(k / (std::size_t(n_) * n_));
   const Vec3f p = face_to_direction(f, (float(i) + u_s) / float(n_), (float(j) + u_t) / float(n_));
   const float r = p.norm();
   const float area = 4.0f / float(n_ * n_);
   EnvSample s;
   s.dir = p / r;
-  s.pdf = prob_[k] * r * r * r / area;
+  s.pdf = texels_[k].prob * r * r * r / area;
   return s;
+}
+
+EnvSample EnvSampler::sample_by_bisection(float u_texel, float u_s, float u_t) const {
+  const auto it = std::upper_bound(cdf_.begin() + 1, cdf_.end(), double(u_texel));
+  const std::size_t k = std::min<std::size_t>(std::size_t(it - cdf_.begin()) - 1, texels_.size() - 1);
+  return sample_in(k, u_s, u_t);
+}
+
+// The first m ≥ 1 with cdf_[m] > u, as upper_bound finds it: from the guide's entry for u, forward
+// past entries ≤ u, then back while the one before is > u (the guide's g/G may round either side
+// of u·G's floor). Of the order of one entry either way: the CDF has as many entries as the guide.
+EnvSample EnvSampler::sample(float u_texel, float u_s, float u_t) const {
+  const double u = double(u_texel), x = u * double(guide_.size());
+  const std::size_t g = x >= 0 ? std::min(guide_.size() - 1, std::size_t(x)) : 0;
+  const std::size_t count = texels_.size();
+  std::size_t m = guide_[g];
+  while (m <= count && !(u < cdf_[m])) ++m;
+  while (m > 1 && u < cdf_[m - 1]) --m;
+  return sample_in(std::min(m - 1, count - 1), u_s, u_t);
 }
 
 float EnvSampler::pdf(const Vec3f& dir) const {
   const FaceCoord fc = direction_to_face(dir);
-  const int i = std::clamp(int(fc.s * float(n_)), 0, n_ - 1), j = std::clamp(int(fc.t * float(n_)), 0, n_ - 1);
   const Vec3f p = face_to_direction(fc.face, fc.s, fc.t);
   const float r = p.norm();
-  return prob_[(std::size_t(fc.face) * n_ + j) * n_ + i] * r * r * r / (4.0f / float(n_ * n_));
+  return texels_[texel_of(fc.face, fc.s, fc.t)].prob * r * r * r / (4.0f / float(n_ * n_));
+}
+
+Rgb EnvSampler::radiance(const Vec3f& dir) const {
+  const FaceCoord fc = direction_to_face(dir);
+  const float* L = texels_[texel_of(fc.face, fc.s, fc.t)].rgb;
+  return {L[0], L[1], L[2]};
 }
 
 }  // namespace insitu
