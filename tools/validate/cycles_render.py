@@ -5,6 +5,11 @@
 # that reproduces it (the true camera, the shots as the environment, the floor as local scene).
 #
 #   blender -b --factory-startup --python tools/validate/cycles_render.py -- SCENE.json OUT_DIR
+#   ... -- SCENE.json OUT_DIR --ladder 16,64,256,1024 --reference 4096
+# The second form (bench/cycles/run.sh, issue 16) renders only the truth, at each spp of the ladder
+# with the scene's seed and at the reference spp with the next seed, as cycles_SPP.exr and
+# cycles_reference.exr, and writes each render's wall-clock seconds (scene sync and BVH included,
+# Blender's start-up not) to cycles_times.json.
 #
 # SCENE.json describes the scene in insitu's world frame (DESIGN.md: right-handed, +Y up, metres):
 #   {"hdri": "...exr", "hdri_strength": 1, "ground": {"size": 40, "checker": [[r,g,b], [r,g,b]],
@@ -258,7 +263,8 @@ SHOTS = {
 }
 
 
-def main():
+def build_scene():
+    """The scene with its objects and the photo's camera: (scene, camera, ground, objects)."""
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     make_world(scene)
@@ -269,6 +275,32 @@ def main():
     c = desc["camera"]
     eye, look = Vector(c["eye"]), Vector(c["look"])
     camera = make_camera("photo", c["eye"], list(look - eye), [0, 1, 0], c["hfov_deg"])
+    scene.camera = camera
+    return scene, camera, ground, objects
+
+
+def option(name):
+    return argv[argv.index(name) + 1] if name in argv else None
+
+
+def ladder(spps, reference):
+    """The truth at each spp (the scene's seed) and at the reference spp (the next seed), timed."""
+    import time
+    scene, _, _, _ = build_scene()
+    c, seed = desc["camera"], desc.get("seed", 1)
+    times = {}
+    for name, spp, s in [(str(n), n, seed) for n in spps] + [("reference", reference, seed + 1)]:
+        setup_render(scene, spp, c["width"], c["height"], s)
+        start = time.perf_counter()
+        render_to(os.path.join(out_dir, "cycles_" + name + ".exr"))
+        times[name] = {"spp": spp, "seconds": time.perf_counter() - start}
+    with open(os.path.join(out_dir, "cycles_times.json"), "w") as f:
+        json.dump({"threads": scene.render.threads, "renders": times}, f, indent=2)
+
+
+def main():
+    scene, camera, ground, objects = build_scene()
+    c = desc["camera"]
     samples, seed = desc.get("samples", {}), desc.get("seed", 1)
 
     # The truth: the photo with the objects.
@@ -352,4 +384,7 @@ def write_insitu_scene(shots):
     print("validate: wrote", os.path.join(out_dir, "scene.json"), flush=True)
 
 
-main()
+if option("--ladder"):
+    ladder([int(v) for v in option("--ladder").split(",")], int(option("--reference") or 4096))
+else:
+    main()
