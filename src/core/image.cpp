@@ -125,31 +125,45 @@ Image decode_rgb(ImageInput& in, const std::string& path) {
   return img;
 }
 
-// The header's size is checked before anything is allocated: a 100000² header must not cost
-// memory or minutes.
-void check_declared_size(const std::string& path, std::int64_t width, std::int64_t height) {
+// The header's size is checked before anything is allocated: a 100000² header, or a header of a
+// thousand channels, must not cost memory or minutes.
+void check_declared_size(const std::string& path, std::int64_t width, std::int64_t height,
+                         std::int64_t bytes_per_pixel) {
   if (width <= 0 || height <= 0) return;
-  const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
-  if (pixels > kMaxImagePixels)
+  const double pixels = double(width) * double(height);
+  if (pixels > double(kMaxImagePixels))
     throw InputError(path, fmt::format("the header declares {}x{} pixels, more than the {} megapixels insitu reads",
                                        width, height, kMaxImagePixels / 1000000));
+  const double decoded_bytes = pixels * double(bytes_per_pixel);
   std::error_code ec;
-  const std::uint64_t bytes = std::filesystem::file_size(path, ec);
-  if (!ec && pixels > kBombFloorPixels && pixels > kMaxPixelsPerByte * bytes)
-    throw InputError(path, fmt::format("the header declares {}x{} pixels in a file of {} bytes: too compressed to be a photo "
-                                       "or an environment (a decompression bomb?)", width, height, bytes));
+  const double bytes = double(std::filesystem::file_size(path, ec));
+  if (!ec && decoded_bytes > double(kBombFloorBytes) && decoded_bytes > double(kMaxDecodedBytesPerByte) * bytes)
+    throw InputError(path, fmt::format("the header declares {}x{} pixels of {} bytes ({:.0f} MB) in a file of {} bytes: "
+                                       "too compressed to be a photo or an environment (a decompression bomb?)",
+                                       width, height, bytes_per_pixel, decoded_bytes / 1e6, bytes));
+}
+
+// An EXR's header is read before OpenEXR's reader allocates its line buffers (exr_header.h).
+void check_exr_header(const std::string& path) {
+  const auto exr = exr_declared_layout(path);
+  if (!exr) return;
+  check_declared_size(path, exr->width, exr->height, exr->bytes_per_pixel);
+  if (exr->chunk_bytes > kMaxChunkBytes)
+    throw InputError(path, fmt::format("the header declares chunks of {:.0f} MB ({} bytes per pixel), more than the {} MB "
+                                       "insitu reads (OpenEXR reserves several before the first pixel)",
+                                       exr->chunk_bytes / 1e6, exr->bytes_per_pixel,
+                                       std::uint64_t(kMaxChunkBytes) >> 20));
 }
 
 ImageFile read_image_file_quietly(const std::string& path) {
-  // An EXR's header is read before OpenEXR's reader allocates its line buffers (exr_header.h).
-  if (const auto exr = exr_declared_size(path)) check_declared_size(path, exr->first, exr->second);
+  check_exr_header(path);
   auto in = ImageInput::open(path);
   if (!in) throw InputError(path, "cannot read image: " + one_line(geterror()));
   const ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     throw InputError(path, "image has no pixels");
   if (spec.depth > 1) throw InputError(path, fmt::format("a volume image ({} slices); insitu reads flat images", spec.depth));
-  check_declared_size(path, spec.width, spec.height);
+  check_declared_size(path, spec.width, spec.height, std::int64_t(spec.pixel_bytes(true)));
   ImageFile file;
   file.path = path;
   file.format = in->format_name();
@@ -178,7 +192,7 @@ std::optional<double> Exposure::relative() const {
 
 std::pair<int, int> read_image_size(const std::string& path) {
   require_existing(path);
-  if (const auto exr = exr_declared_size(path)) check_declared_size(path, exr->first, exr->second);
+  check_exr_header(path);
   auto in = ImageInput::open(path);
   if (!in) throw InputError(path, "cannot read image: " + geterror());
   return {in->spec().width, in->spec().height};

@@ -47,11 +47,18 @@ struct ImageFile {
 // Images larger than this are refused from their header, before decoding (a 16384 × 8192 HDRI is
 // 134 megapixels; phone photos are 12–50).
 constexpr std::uint64_t kMaxImagePixels = std::uint64_t(1) << 27;
-// A decompression bomb: more than 16 megapixels, and more than 1024 pixels per byte of file (real
-// images, even 8-bit JPEGs of a plain wall, stay far below 100 pixels per byte; a constant EXR of
-// 64 megapixels fits in 678 bytes, found by the image fuzzer). Refused from the header too.
-constexpr std::uint64_t kBombFloorPixels = std::uint64_t(1) << 24;
-constexpr std::uint64_t kMaxPixelsPerByte = 1024;
+// A decompression bomb: more than 64 MiB decoded (all channels as stored), and more than 4096
+// decoded bytes per byte of file. Real images stay far below 1000 (an 8-bit JPEG of a plain wall
+// holds ~100 pixels per byte; zlib cannot pass 1032:1), while a constant EXR of 64 megapixels
+// fits in 678 bytes (found by the image fuzzer), and one of 16 megapixels × 64 float channels in
+// as little. Refused from the header too. (Counted in bytes, not pixels, since 2026-11-24: in
+// pixels, a header's thousand channels went unchecked.)
+constexpr std::uint64_t kBombFloorBytes = std::uint64_t(1) << 26;
+constexpr std::uint64_t kMaxDecodedBytesPerByte = 4096;
+// OpenEXR sizes its line buffers by the header's chunk (a row of all channels × up to 256 rows,
+// or a tile), several of them, before the first pixel: a chunk above 256 MiB is refused from the
+// header (a 16384-wide RGBA half image in 256-row DWAB chunks needs 32 MiB).
+constexpr double kMaxChunkBytes = double(std::uint64_t(1) << 28);
 
 // Refuses (InputError naming the file) a missing, unreadable, oversized, truncated or corrupt image.
 ImageFile read_image_file(const std::string& path);
