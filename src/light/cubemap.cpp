@@ -64,13 +64,9 @@ void CubeMap::set_texel(int face, int i, int j, const Rgb& c) {
   p[0] = c[0]; p[1] = c[1]; p[2] = c[2];
 }
 
-namespace {
-int texel_index(float s, int n) { return std::clamp(int(std::floor(s * float(n))), 0, n - 1); }
-}  // namespace
-
 Rgb CubeMap::lookup_nearest(const Vec3f& dir) const {
   const FaceCoord fc = direction_to_face(dir);
-  return texel(fc.face, texel_index(fc.s, size_), texel_index(fc.t, size_));
+  return texel(fc.face, nearest_texel_index(fc.s, size_), nearest_texel_index(fc.t, size_));
 }
 
 void CubeMap::update_borders() {
@@ -89,7 +85,7 @@ void CubeMap::update_borders() {
           for (int axis = 0; axis < 3; ++axis) {
             const int g = 2 * axis + (d[axis] > 0 ? 0 : 1);
             const FaceCoord fc = project_to_face(g, d);
-            sum += texel(g, texel_index(fc.s, n), texel_index(fc.t, n));
+            sum += texel(g, nearest_texel_index(fc.s, n), nearest_texel_index(fc.t, n));
           }
           set_texel(f, i, j, sum / 3.0f);
           continue;

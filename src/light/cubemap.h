@@ -13,7 +13,9 @@
 // is seamless across face edges: exactly on an edge both faces return the mean of their two
 // edge texels, and at a corner all three return the mean of their corner texels.
 #pragma once
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "core/image.h"
 #include "core/math.h"
@@ -27,6 +29,10 @@ struct FaceCoord {
   int face;
   float s, t;  // in [0,1]
 };
+
+// The texel holding face coordinate s ∈ [0, 1] on a face of n texels: floor(s·n), with s = 1 in
+// the last texel. The one nearest-texel rule (CubeMap::lookup_nearest, the environment sampler).
+inline int nearest_texel_index(float s, int n) { return std::clamp(int(std::floor(s * float(n))), 0, n - 1); }
 
 // Direction (any length, non-zero) -> face and (s, t) by the table above.
 FaceCoord direction_to_face(const Vec3f& dir);

@@ -52,8 +52,7 @@ EnvSampler::EnvSampler(const CubeMap& radiance, const TexelShare& share, bool mi
 
 // The texel of face coordinates (s, t) ∈ [0, 1]²: the nearest one, as CubeMap::lookup_nearest.
 std::size_t EnvSampler::texel_of(int face, float s, float t) const {
-  const int i = std::clamp(int(std::floor(s * float(n_))), 0, n_ - 1);
-  const int j = std::clamp(int(std::floor(t * float(n_))), 0, n_ - 1);
+  const int i = nearest_texel_index(s, n_), j = nearest_texel_index(t, n_);
   return (std::size_t(face) * std::size_t(n_) + std::size_t(j)) * std::size_t(n_) + std::size_t(i);
 }
 
@@ -77,7 +76,8 @@ EnvSample EnvSampler::sample_by_bisection(float u_texel, float u_s, float u_t) c
 
 // The first m ≥ 1 with cdf_[m] > u, as upper_bound finds it: from the guide's entry for u, forward
 // past entries ≤ u, then back while the one before is > u (the guide's g/G may round either side
-// of u·G's floor). Of the order of one entry either way: the CDF has as many entries as the guide.
+// of u·G's floor). About kGuideSpan = 8 entries on average, one cache line of the CDF: the guide
+// has one entry per 8 texels.
 EnvSample EnvSampler::sample(float u_texel, float u_s, float u_t) const {
   const double u = double(u_texel), x = u * double(guide_.size());
   const std::size_t g = x >= 0 ? std::min(guide_.size() - 1, std::size_t(x)) : 0;
