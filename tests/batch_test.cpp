@@ -8,6 +8,7 @@
 #include <signal.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fmt/format.h>
@@ -71,6 +72,29 @@ TEST(Batch, EntriesSharingARoomBoxAreTheirScenesRenders) {
     ASSERT_FALSE(exr_pixels(b.out(i)).empty());
     EXPECT_TRUE(exr_pixels(b.out(i)) == exr_pixels(b.fx.dir.file(fmt::format("alone{}.exr", i)))) << i;
   }
+}
+
+// The MTL file that an entry's OBJ names is an input too: editing it renders the entries again
+// (all three read it), and the report lists it.
+TEST(Batch, AnEditedMtlFileIsRenderedAgain) {
+  BatchFixture b(2);
+  const std::string batch = b.write_batch();
+  auto r = run_insitu(b.fx.dir, "batch " + batch);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = nlohmann::json::parse(test::slurp(b.out(0) + ".report.json"));
+  const auto files = report.at("batch").at("mesh_files").get<std::vector<std::string>>();
+  EXPECT_TRUE(std::any_of(files.begin(), files.end(), [](const std::string& f) { return f.find("good_quad.mtl") != std::string::npos; }))
+      << report["batch"].dump();
+  r = run_insitu(b.fx.dir, "batch " + batch);
+  EXPECT_NE(r.err.find("0 rendered, 3 done already"), std::string::npos) << r.err;
+  // A different diffuse colour, same length of file or not: the bytes differ.
+  std::string mtl = test::slurp(b.fx.dir.file("good_quad.mtl"));
+  const auto kd = mtl.find("Kd");
+  ASSERT_NE(kd, std::string::npos);
+  mtl.replace(kd, mtl.find('\n', kd) - kd, "Kd 0.2 0.7 0.3");
+  b.fx.dir.write("good_quad.mtl", mtl);
+  r = run_insitu(b.fx.dir, "batch " + batch);
+  EXPECT_NE(r.err.find("3 rendered, 0 done already"), std::string::npos) << r.err;
 }
 
 TEST(Batch, EachEntryIsTheRenderOfItsSceneAndReRunsSkipWhatIsDone) {

@@ -15,8 +15,10 @@
 // pays the room's start-up once. An entry's outputs are written atomically, the
 // report last (scene/pipeline.h, write_outputs); a killed task leaves none of its files under a
 // final name. A rerun skips an entry whose report exists and records the same inputs hash: the
-// entry's scene as merged, the insitu version and the bytes of the files it names (MTL files and
-// textures that an OBJ names are not hashed: --force renders again).
+// entry's scene as merged, the insitu version, the bytes of the files it names, and the bytes of
+// every file its meshes were read from (MTL files and textures that an OBJ names). The report
+// lists those mesh files: a rerun hashes the ones the last render read, so an edited MTL file or
+// texture is rendered again (and an OBJ that names other files has changed bytes itself).
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
@@ -77,26 +79,33 @@ std::vector<Entry> read_batch(const std::string& path) {
   return entries;
 }
 
-// The entry's inputs hash (see the top of the file), in hex.
-std::string inputs_hash(const Entry& e) {
+// A file's path and bytes into h (a missing file hashes unlike an empty one).
+void hash_file(Fnv1a& h, const std::string& path) {
+  h.text(path);
+  std::ifstream f(path, std::ios::binary);
+  h.text(f ? "present" : "absent");
+  std::vector<char> buffer(1 << 16);
+  while (f.read(buffer.data(), std::streamsize(buffer.size())) || f.gcount() > 0) h.bytes(buffer.data(), std::size_t(f.gcount()));
+}
+
+// The entry's inputs hash (see the top of the file), in hex; `mesh_files`: what its meshes read.
+std::string inputs_hash(const Entry& e, const std::vector<std::string>& mesh_files) {
   Fnv1a h;
-  h.text("insitu batch entry 1"), h.text(INSITU_VERSION), h.text(e.scene.dump());
-  for (const NamedPath& in : scene_input_files(e.spec)) {
-    h.text(in.path);
-    std::ifstream f(in.path, std::ios::binary);
-    std::vector<char> buffer(1 << 16);
-    while (f.read(buffer.data(), std::streamsize(buffer.size())) || f.gcount() > 0) h.bytes(buffer.data(), std::size_t(f.gcount()));
-  }
+  h.text("insitu batch entry 2"), h.text(INSITU_VERSION), h.text(e.scene.dump());
+  for (const NamedPath& in : scene_input_files(e.spec)) hash_file(h, in.path);
+  h.text("mesh files");
+  for (const std::string& path : mesh_files) hash_file(h, path);
   return fmt::format("{:016x}", h.digest());
 }
 
-// Whether the entry's outputs are there, of these inputs.
-bool done_already(const Entry& e, const std::string& hash) {
+// Whether the entry's outputs are there, of these inputs (the mesh files its report lists).
+bool done_already(const Entry& e) {
   const std::string report = report_path(e.spec.output.image);
   if (!std::filesystem::exists(report) || !std::filesystem::exists(e.spec.output.image)) return false;
   if (!e.spec.output.layers.empty() && !std::filesystem::exists(e.spec.output.layers)) return false;
   try {
-    return read_json_file(report).at("batch").at("inputs_hash") == hash;
+    const json batch = read_json_file(report).at("batch");
+    return batch.at("inputs_hash") == inputs_hash(e, batch.at("mesh_files").get<std::vector<std::string>>());
   } catch (const std::exception&) {
     return false;  // not a batch's report, or unreadable: render again
   }
@@ -116,9 +125,11 @@ struct SharedRoom {
   std::unique_ptr<LoadedScene> scene;
 };
 
-void render_entry(const BatchArgs& a, const Entry& e, int index, const std::string& hash, SharedRoom& room) {
+void render_entry(const BatchArgs& a, const Entry& e, int index, SharedRoom& room) {
   const bool share = room.scene && room_keys(e.scene) == room.keys;
   auto scene = std::make_unique<LoadedScene>(load_scene(e.spec, {}, share ? room.scene.get() : nullptr));
+  // Hashed as loaded, before the render: a file edited meanwhile makes the next run render again.
+  const json batch = {{"file", a.batch}, {"index", index}, {"inputs_hash", inputs_hash(e, scene->mesh_files)}, {"mesh_files", scene->mesh_files}};
   print_warnings(scene->warnings);
   Progress progress(fmt::format("entry {}", index));
   std::string detail;
@@ -126,7 +137,7 @@ void render_entry(const BatchArgs& a, const Entry& e, int index, const std::stri
     if (p.noise >= 0) detail = fmt::format("{}/{} spp, noise {:.1f}%", p.spp_done, e.spec.render.spp, 100 * p.noise);
     progress.update(p.fraction, detail, p.noise >= 0);
   });
-  write_outputs(*scene, result, nullptr, {{"batch", {{"file", a.batch}, {"index", index}, {"inputs_hash", hash}}}});
+  write_outputs(*scene, result, nullptr, {{"batch", batch}});
   std::printf("%s\n", e.spec.output.image.c_str());
   std::fprintf(stderr, "insitu: entry %d: %s: load %.2f s%s, prepare %.2f s, render %.2f s\n", index,
                e.spec.output.image.c_str(), scene->load_seconds, share ? " (room shared)" : "", result.prepare_seconds,
@@ -151,14 +162,13 @@ int run_batch(const BatchArgs& a) {
   SharedRoom room;
   int rendered = 0, skipped = 0;
   for (int i = first; i < last; ++i) {
-    const std::string hash = inputs_hash(entries[std::size_t(i)]);
-    if (!a.force && done_already(entries[std::size_t(i)], hash)) {
+    if (!a.force && done_already(entries[std::size_t(i)])) {
       std::fprintf(stderr, "insitu: entry %d: %s is done, of the same inputs (--force renders it again)\n", i,
                    entries[std::size_t(i)].spec.output.image.c_str());
       ++skipped;
       continue;
     }
-    render_entry(a, entries[std::size_t(i)], i, hash, room);
+    render_entry(a, entries[std::size_t(i)], i, room);
     ++rendered;
   }
   std::fprintf(stderr, "insitu: %s: %d rendered, %d done already\n", a.batch.c_str(), rendered, skipped);
