@@ -12,32 +12,32 @@ EnvSampler::EnvSampler(const CubeMap& radiance, const TexelShare& share, bool mi
   const std::size_t count = std::size_t(6) * n_ * n_;
   const std::size_t face_count = std::size_t(n_) * std::size_t(n_);
   const std::vector<double> omega = face_solid_angles(n_);  // by j·n + i, the same on every face
-  std::vector<double> w(count), y(count);
+  // Texel k's luminance y_k is kept in texels_[k].prob and its weight w_k in cdf_[k + 1] until the
+  // last pass: no temporary arrays (a sampler of a 256² cube is 10 MB, built several times a load).
+  texels_.resize(count);
+  cdf_.assign(count + 1, 0.0);
   double mean_y = 0;
-  for (int f = 0; f < 6; ++f)
-    for (int j = 0; j < n_; ++j)
-      for (int i = 0; i < n_; ++i) {
-        const std::size_t k = (std::size_t(f) * n_ + j) * n_ + i;
-        y[k] = std::max(0.0f, luminance(radiance.texel(f, i, j)));
-        mean_y += y[k] * omega[k % face_count] / (4 * kPi);
-      }
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t f = k / face_count, j = (k / std::size_t(n_)) % std::size_t(n_), i = k % std::size_t(n_);
+    const Rgb L = radiance.texel(int(f), int(i), int(j));
+    texels_[k] = {{L[0], L[1], L[2]}, std::max(0.0f, luminance(L))};
+    mean_y += double(texels_[k].prob) * omega[k % face_count] / (4 * kPi);
+  }
   double total = 0;
   for (std::size_t k = 0; k < count; ++k) {
     const int f = int(k / face_count), j = int((k / std::size_t(n_)) % std::size_t(n_)), i = int(k % std::size_t(n_));
-    w[k] = std::max(0.0, y[k] - (mis_compensation ? mean_y : 0.0)) * omega[k % face_count] * (share ? share(f, i, j) : 1.0);
-    total += w[k];
+    const double y = texels_[k].prob;
+    cdf_[k + 1] = std::max(0.0, y - (mis_compensation ? mean_y : 0.0)) * omega[k % face_count] * (share ? share(f, i, j) : 1.0);
+    total += cdf_[k + 1];
   }
   // A floor so that every texel can be drawn (also keeps a black environment well defined).
   const double floor = total > 0 ? 1e-3 * total / double(count) : 1.0;
-  cdf_.assign(count + 1, 0.0);
-  texels_.resize(count);
   double sum = 0;
-  for (std::size_t k = 0; k < count; ++k) sum += w[k] + floor;
+  for (std::size_t k = 0; k < count; ++k) sum += cdf_[k + 1] + floor;
   for (std::size_t k = 0; k < count; ++k) {
-    const int f = int(k / face_count), j = int((k / std::size_t(n_)) % std::size_t(n_)), i = int(k % std::size_t(n_));
-    const Rgb L = radiance.texel(f, i, j);
-    texels_[k] = {{L[0], L[1], L[2]}, float((w[k] + floor) / sum)};
-    cdf_[k + 1] = cdf_[k] + (w[k] + floor) / sum;
+    const double p = (cdf_[k + 1] + floor) / sum;
+    texels_[k].prob = float(p);
+    cdf_[k + 1] = cdf_[k] + p;
   }
   cdf_.back() = 1.0;
   // guide_[g]: the first m ≥ 1 with cdf_[m] > g/G (what upper_bound gives for u = g/G).

@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <map>
 #include <memory>
 
@@ -464,12 +463,14 @@ InverseLightingResult recover_clipped_sources(const InverseLightingInput& in) {
     for (ClippedSource& part : split_into_parts(sources[k], *in.radiance, block)) res.parts.push_back({std::move(part), int(k)});
   const CubeMap rest = with_scaled_sources(*in.radiance, sources, std::vector<double>(sources.size(), 0.0));
   RoomLight room0(rest, in.room);
-  std::deque<CubeMap> cubes;  // each part's RoomLight refers to its cube
-  std::vector<std::unique_ptr<RoomLight>> lights;
-  for (const PartFit& part : res.parts) {
-    cubes.push_back(source_only(*in.radiance, part.texels));
-    lights.push_back(std::make_unique<RoomLight>(cubes.back(), in.room));
-  }
+  // Each part's cube (its texels alone) and the RoomLight that refers to it: full-size samplers,
+  // the recovery's largest serial cost before they were built in parallel.
+  std::vector<CubeMap> cubes(res.parts.size());
+  std::vector<std::unique_ptr<RoomLight>> lights(res.parts.size());
+  tbb::parallel_for(std::size_t(0), res.parts.size(), [&](std::size_t k) {
+    cubes[k] = source_only(*in.radiance, res.parts[k].texels);
+    lights[k] = std::make_unique<RoomLight>(cubes[k], in.room);
+  });
   std::vector<FitPixel> pixels = gather_pixels(in, room0);
   estimate_irradiance(pixels, room0, lights, in);
   res.pixels = int(pixels.size());
