@@ -32,6 +32,7 @@
 #include "core/json_reader.h"
 #include "core/output_paths.h"
 #include "progress.h"
+#include "scene/output_layers.h"
 #include "scene/pipeline.h"
 
 namespace insitu {
@@ -129,7 +130,9 @@ void render_entry(const BatchArgs& a, const Entry& e, int index, SharedRoom& roo
   const bool share = room.scene && room_keys(e.scene) == room.keys;
   auto scene = std::make_unique<LoadedScene>(load_scene(e.spec, {}, share ? room.scene.get() : nullptr));
   // Hashed as loaded, before the render: a file edited meanwhile makes the next run render again.
-  const json batch = {{"file", a.batch}, {"index", index}, {"inputs_hash", inputs_hash(e, scene->mesh_files)}, {"mesh_files", scene->mesh_files}};
+  std::vector<std::string> mesh_files;
+  for (const NamedPath& f : loaded_mesh_files(*scene)) mesh_files.push_back(f.path);
+  const json batch = {{"file", a.batch}, {"index", index}, {"inputs_hash", inputs_hash(e, mesh_files)}, {"mesh_files", mesh_files}};
   print_warnings(scene->warnings);
   Progress progress(fmt::format("entry {}", index));
   std::string detail;

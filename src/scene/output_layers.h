@@ -23,6 +23,8 @@ struct OutputLayer {
 // by default), in [0, 1] before the 8-bit rounding.
 // Every file the loaded scene read: scene_input_files and the meshes' MTL files and textures.
 std::vector<NamedPath> loaded_scene_inputs(const LoadedScene& scene);
+// Every file its meshes (objects and local scene) were read from: OBJ, MTL files, textures.
+std::vector<NamedPath> loaded_mesh_files(const LoadedScene& scene);
 
 std::vector<OutputLayer> output_layers(const LoadedScene& scene, const RenderResult& result, const OutputSpec* output = nullptr);
 

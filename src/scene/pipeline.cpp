@@ -162,11 +162,10 @@ Mesh load_placed_mesh(const ObjectSpec& obj, Warnings& warnings) {
 }
 
 // The files the meshes named (MTL, textures) are inputs too.
-// Records them in `files`.
-void check_mesh_files(const std::vector<Mesh>& meshes, const SceneSpec& spec, std::vector<std::string>& files) {
+void check_mesh_files(const std::vector<Mesh>& meshes, const SceneSpec& spec) {
   std::vector<NamedPath> mesh_files;
   for (const Mesh& m : meshes)
-    for (const auto& f : m.files) mesh_files.push_back({f, "read by " + m.source}), files.push_back(f);
+    for (const auto& f : m.files) mesh_files.push_back({f, "read by " + m.source});
   check_outputs(mesh_files, scene_output_files(spec));
 }
 
@@ -213,7 +212,7 @@ void load_objects(const SceneSpec& spec, std::vector<Mesh> memory_objects, Loade
     if (outside_view(s.camera, mesh_bounds(meshes.back())))
       s.warnings.add(obj.where, "the object lies entirely outside the camera's view (it covers no pixel): check translate and the camera");
   }
-  check_mesh_files(meshes, spec, s.mesh_files);
+  check_mesh_files(meshes, spec);
   for (Mesh& m : memory_objects) {
     warn_if_collapsed(m, m.source, s.warnings);
     if (outside_view(s.camera, mesh_bounds(m)))
@@ -225,7 +224,7 @@ void load_objects(const SceneSpec& spec, std::vector<Mesh> memory_objects, Loade
   std::vector<Mesh> catcher_meshes;
   for (const PlaneSpec& p : spec.local_scene)
     if (p.mesh) catcher_meshes.push_back(load_placed_mesh(*p.mesh, s.warnings));
-  check_mesh_files(catcher_meshes, spec, s.mesh_files);
+  check_mesh_files(catcher_meshes, spec);
   s.catcher_meshes = std::make_unique<EmbreeScene>(std::move(catcher_meshes));
 }
 

@@ -36,7 +36,6 @@ struct LoadedScene {
   std::shared_ptr<RoomCache> room_cache;  // the room's prepared light and grids (room_cache.h), shared
   std::unique_ptr<EmbreeScene> objects;
   std::unique_ptr<EmbreeScene> catcher_meshes;  // meshes of the local scene
-  std::vector<std::string> mesh_files;  // every file the spec's meshes were read from: OBJ, MTL, textures
   ResolvedIntegrator integrator;  // the entry and its parameters, read from the render object
   Warnings warnings;
   Warnings room_warnings;  // those of loading the room (what a scene sharing it repeats)
