@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <cstdlib>
 #include <filesystem>
 #include <fmt/format.h>
@@ -252,15 +253,16 @@ TypeDesc storage_type(const std::string& ext_lower) {
 
 // Writes `pixels` (float, interleaved) with `spec` under a temporary name, then renames it to
 // `path`; on any failure the temporary file is removed and an InputError names `path`.
+// `write_pixels` writes the pixels through the open output (false: failed, with its error).
 void write_atomically(const std::string& path, const std::string& format, const ImageSpec& spec,
-                      const float* pixels) {
+                      const std::function<bool(ImageOutput&)>& write_pixels) {
   const fs::path p(path);
   make_parent(p);
   const std::string tmp = temporary_name(p);
   const TempFileGuard guard(tmp);  // removed if the process is interrupted meanwhile
   auto out = ImageOutput::create(format.empty() ? tmp : format);
   if (!out) throw InputError(path, "no image format for '" + p.extension().string() + "'");
-  if (!out->open(tmp, spec) || !out->write_image(TypeDesc::FLOAT, pixels) || !out->close()) {
+  if (!out->open(tmp, spec) || !write_pixels(*out) || !out->close()) {
     const std::string err = out->geterror();
     out.reset();
     std::error_code ec;
@@ -283,7 +285,7 @@ void write_image(const std::string& path, const Image& img, const Exposure* expo
     if (exposure->iso) spec.attribute("Exif:PhotographicSensitivity", int(*exposure->iso));
     if (exposure->focal_35mm_mm) spec.attribute("Exif:FocalLengthIn35mmFilm", int(*exposure->focal_35mm_mm));
   }
-  write_atomically(path, "", spec, img.data.data());
+  write_atomically(path, "", spec, [&](ImageOutput& out) { return out.write_image(TypeDesc::FLOAT, img.data.data()); });
 }
 
 void write_exr_channels(const std::string& path, int width, int height,
@@ -296,13 +298,23 @@ void write_exr_channels(const std::string& path, int width, int height,
   for (int i = 0; i < nc; ++i)
     if (channels[i].name == "A") spec.alpha_channel = i;
   spec.attribute("compression", "zip");
-  std::vector<float> interleaved(std::size_t(width) * height * nc);
-  for (int i = 0; i < nc; ++i) {
-    const Image& src = *channels[i].image;
-    for (std::size_t k = 0; k < std::size_t(width) * height; ++k)
-      interleaved[k * nc + i] = src.data[k * src.channels + channels[i].channel];
-  }
-  write_atomically(path, "openexr", spec, interleaved.data());
+  // Interleaved and written 256 rows at a time (16 of zip's 16-row chunks, compressed in parallel
+  // by OpenEXR): the whole image interleaved at once was another copy of every channel.
+  constexpr int kRows = 256;
+  std::vector<float> block(std::size_t(width) * std::size_t(std::min(height, kRows)) * std::size_t(nc));
+  write_atomically(path, "openexr", spec, [&](ImageOutput& out) {
+    for (int y0 = 0; y0 < height; y0 += kRows) {
+      const int y1 = std::min(height, y0 + kRows);
+      const std::size_t first = std::size_t(y0) * std::size_t(width), count = std::size_t(y1 - y0) * std::size_t(width);
+      for (int i = 0; i < nc; ++i) {
+        const Image& src = *channels[i].image;
+        for (std::size_t k = 0; k < count; ++k)
+          block[k * std::size_t(nc) + std::size_t(i)] = src.data[(first + k) * std::size_t(src.channels) + std::size_t(channels[i].channel)];
+      }
+      if (!out.write_scanlines(y0, y1, 0, TypeDesc::FLOAT, block.data())) return false;
+    }
+    return true;
+  });
 }
 
 Image resize(const Image& img, int width, int height, const std::string& filter) {
