@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_util.h"
+#include "exr_pixels.h"
 #include "render/render.h"
 #include "scene/spec.h"
 #include "scene_fixture.h"
@@ -54,6 +55,12 @@ TEST(CliRender, LayersOptionNamesOrDisablesTheLayers) {
   j["output"] = {{"image", "out/c.png"}, {"layers", "none"}};
   ASSERT_EQ(run_insitu(fx.dir, "render " + fx.write(j)).exit_code, 0);
   EXPECT_FALSE(fs::exists(fx.dir.file("out/layers.exr")));
+  // Without layers only the image is made, from the same floats: the same file, PNG or EXR.
+  EXPECT_EQ(slurp(fx.dir.file("a.png")), slurp(fx.dir.file("b.png")));
+  ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("d.exr") + " --layers none").exit_code, 0);
+  ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("e.exr")).exit_code, 0);
+  ASSERT_FALSE(test::exr_pixels(fx.dir.file("d.exr")).empty());
+  EXPECT_TRUE(test::exr_pixels(fx.dir.file("d.exr")) == test::exr_pixels(fx.dir.file("e.exr")));
 }
 
 // Options that the output or the integrator does not use: a warning naming them, and the report

@@ -86,15 +86,17 @@ void write_outputs(const LoadedScene& scene, const RenderResult& r, const Output
     spec.output = out;
     check_outputs(loaded_scene_inputs(scene), scene_output_files(spec));
   }
-  const std::vector<OutputLayer> layers = output_layers(scene, r, &out);
-  if (!out.layers.empty()) {
+  if (out.layers.empty()) {  // "layers": "none": only the display layer is made (a batch's stills)
+    write_image(out.image, finite(display_image(r, out)));
+  } else {
+    const std::vector<OutputLayer> layers = output_layers(scene, r, &out);
     std::vector<ExrChannel> channels;
     for (const OutputLayer& layer : layers)
       if (layer.in_exr)
         for (std::size_t c = 0; c < layer.channels.size(); ++c) channels.push_back({layer.exr_channel(c), &layer.image, int(c)});
     write_exr_channels(out.layers, r.composite_linear.width, r.composite_linear.height, channels);
+    write_image(out.image, layers.back().image);
   }
-  write_image(out.image, layers.back().image);
   nlohmann::json report = render_report(scene, r, &out);
   if (report_extra.is_object()) report.update(report_extra);
   write_text_file(report_path(out.image), report.dump(2) + "\n");
