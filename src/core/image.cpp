@@ -251,9 +251,9 @@ TypeDesc storage_type(const std::string& ext_lower) {
   return TypeDesc::UINT8;
 }
 
-// Writes `pixels` (float, interleaved) with `spec` under a temporary name, then renames it to
-// `path`; on any failure the temporary file is removed and an InputError names `path`.
-// `write_pixels` writes the pixels through the open output (false: failed, with its error).
+// Writes an image with `spec` under a temporary name, then renames it to `path`; `write_pixels`
+// writes the pixels through the open output (false: failed, with its error). On any failure the
+// temporary file is removed and an InputError names `path`.
 void write_atomically(const std::string& path, const std::string& format, const ImageSpec& spec,
                       const std::function<bool(ImageOutput&)>& write_pixels) {
   const fs::path p(path);
