@@ -28,6 +28,7 @@ const std::map<std::string, std::set<std::string>> kAllowed = {
     {"output", {"core", "light", "render", "output"}},
     {"scene", {"core", "calib", "light", "render", "integrators", "output", "scene"}},
     {"api", {"core", "calib", "light", "render", "integrators", "output", "scene", "api"}},
+    {"studio", {"core", "calib", "light", "render", "integrators", "output", "scene", "studio"}},
 };
 
 // The quoted includes of a file, as written ("core/math.h").

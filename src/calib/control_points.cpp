@@ -35,13 +35,7 @@ std::vector<ControlPoint> read_json_list(const JsonValue& list) {
 }
 
 std::vector<ControlPoint> read_json_points(const std::string& path) {
-  const json doc = read_json_file(path);
-  const JsonValue root(doc, path, "$");
-  if (!root.is_object()) return read_json_list(root);
-  JsonObject wrapper(root);
-  const JsonValue list = wrapper.get("points");
-  wrapper.finish();
-  return read_json_list(list);
+  return control_points_from_json(read_json_file(path), path);
 }
 
 std::vector<ControlPoint> read_csv_points(const std::string& path) {
@@ -83,6 +77,15 @@ std::vector<ControlPoint> read_csv_points(const std::string& path) {
 }
 
 }  // namespace
+
+std::vector<ControlPoint> control_points_from_json(const json& doc, const std::string& file) {
+  const JsonValue root(doc, file, "$");
+  if (!root.is_object()) return read_json_list(root);
+  JsonObject wrapper(root);
+  const JsonValue list = wrapper.get("points");
+  wrapper.finish();
+  return read_json_list(list);
+}
 
 std::optional<bool> parse_bottom_left_origin(const std::string& name) {
   if (name == "top_left" || name == "top-left") return false;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/json_reader.h"
 #include "core/math.h"
 
 namespace insitu {
@@ -25,6 +26,10 @@ struct ControlPoint {
 // the command line ("top-left", "bottom-left"): true for bottom-left, nullopt if neither.
 std::optional<bool> parse_bottom_left_origin(const std::string& name);
 constexpr const char* kOriginNames = "\"top_left\" or \"bottom_left\" (top-left, bottom-left also accepted)";
+
+// The points of a points.json document already parsed; `file` names it in messages
+// ("points.json:$[2].xyz: ..."). Top-left origin.
+std::vector<ControlPoint> control_points_from_json(const json& doc, const std::string& file);
 
 std::vector<ControlPoint> read_control_points(const std::string& path, bool bottom_left_origin, int image_height);
 

@@ -1,0 +1,102 @@
+// The studio's /api/ routes (studio_server.h lists them).
+#include <filesystem>
+
+#include "calib/control_points.h"
+#include "studio/calibration_view.h"
+#include "studio/corner_snap.h"
+#include "studio/studio_impl.h"
+
+namespace insitu {
+namespace fs = std::filesystem;
+
+namespace {
+
+// The request's body as JSON; its name in messages is the route's.
+json body_json(const httplib::Request& req) { return parse_json_text(req.body, req.path); }
+
+json state_json(const StudioServer::Impl& s) {
+  const PointsVersion p = s.points.read();
+  json points;
+  try {
+    points = parse_json_text(p.text, s.points.path());
+  } catch (const InputError&) {
+    points = nullptr;  // the page shows the file's own error from /api/calibrate's read
+  }
+  return {{"scene", fs::path(s.scene.path).filename().string()},
+          {"photo", {{"url", "/api/photo.png"}, {"width", s.width}, {"height", s.height}}},
+          {"points_file", fs::relative(s.points.path(), s.folder).string()},
+          {"points", points},
+          {"points_text", p.text},
+          {"version", p.version},
+          {"model", s.scene.camera.model.value_or("auto")}};
+}
+
+// Runs `handler`, turning bad input into a 400 with the CLI's message.
+template <class F>
+void guarded(httplib::Response& res, F&& handler) {
+  try {
+    handler();
+  } catch (const InputError& e) {
+    reply_error(res, 400, e.where(), e.message());
+  }
+}
+
+void put_points(StudioServer::Impl& s, const httplib::Request& req, httplib::Response& res) {
+  const json body = body_json(req);
+  if (!body.is_object() || !body.contains("points") || !body.contains("version") || !body["version"].is_string())
+    throw InputError(req.path, "expected {\"version\": \"...\", \"points\": [...]}");
+  const PointsStore::SaveResult r = s.points.save(body["points"], body["version"].get<std::string>());
+  if (!r.saved) {
+    reply_error(res, 409, s.points.path(), "changed since this page read it (another tab or program saved it); reload to see it");
+    return;
+  }
+  res.set_content(json{{"version", r.now.version}}.dump(), "application/json");
+}
+
+void post_calibrate(StudioServer::Impl& s, const httplib::Request& req, httplib::Response& res) {
+  const json body = body_json(req);
+  if (!body.is_object() || !body.contains("points")) throw InputError(req.path, "expected {\"points\": [...], \"model\": \"auto\"}");
+  std::optional<CameraModel> model;
+  if (body.contains("model") && body["model"] != "auto") {
+    model = body["model"].is_string() ? parse_model(body["model"].get<std::string>()) : std::nullopt;
+    if (!model) throw InputError(req.path + ":$.model", "expected \"auto\", \"f\", \"f+c\" or \"f+c+a\"");
+  }
+  const auto points = control_points_from_json(body["points"], s.points.path());
+  try {
+    res.set_content(calibration_view(points, s.width, s.height, model, s.scene).dump(), "application/json");
+  } catch (const InputError& e) {
+    if (!e.where().empty()) throw;  // a point's own place names the file already
+    throw e.with_context(fs::path(s.points.path()).filename().string());
+  }
+}
+
+void post_snap(StudioServer::Impl& s, const httplib::Request& req, httplib::Response& res) {
+  const json body = body_json(req);
+  static const json kMissing;
+  const JsonValue uv(body.is_object() && body.contains("uv") ? body["uv"] : kMissing, req.path, "$.uv");
+  if (!uv.is_array() || uv.size() != 2) uv.fail("expected [u, v]");
+  const CornerSnap snap = snap_to_corner(s.gray, {uv.element(0).number(), uv.element(1).number()});
+  res.set_content(json{{"snapped", snap.snapped},
+                       {"uv", {snap.uv_px.x(), snap.uv_px.y()}},
+                       {"offset", {snap.offset_px.x(), snap.offset_px.y()}}}.dump(),
+                  "application/json");
+}
+
+}  // namespace
+
+void StudioServer::Impl::add_api_routes() {
+  http.Get("/api/state", [this](const httplib::Request&, httplib::Response& res) {
+    guarded(res, [&] { res.set_content(state_json(*this).dump(), "application/json"); });
+  });
+  http.Put("/api/points", [this](const httplib::Request& req, httplib::Response& res) {
+    guarded(res, [&] { put_points(*this, req, res); });
+  });
+  http.Post("/api/calibrate", [this](const httplib::Request& req, httplib::Response& res) {
+    guarded(res, [&] { post_calibrate(*this, req, res); });
+  });
+  http.Post("/api/snap", [this](const httplib::Request& req, httplib::Response& res) {
+    guarded(res, [&] { post_snap(*this, req, res); });
+  });
+}
+
+}  // namespace insitu

@@ -1,0 +1,37 @@
+// StudioServer's state, shared by its two files: studio_server.cpp (loading, the page, serving)
+// and studio_api.cpp (the /api/ routes).
+#pragma once
+#include <atomic>
+#include <opencv2/core.hpp>
+#include <string>
+
+#include "scene/spec.h"
+#include "studio/points_store.h"
+#include "studio/studio_server.h"
+// Last: glibc's <resolv.h>, which httplib.h includes, defines _res as a macro that breaks Eigen.
+#include <httplib.h>
+
+namespace insitu {
+
+struct StudioServer::Impl {
+  StudioOptions options;
+  SceneSpec scene;
+  std::string folder;      // the scene file's folder: the only one /files/ serves from
+  int width = 0, height = 0;
+  std::string photo_png;   // the photo, encoded once
+  cv::Mat gray;            // its luminance, sRGB-encoded, CV_32F: for corner snapping
+  PointsStore points;
+  httplib::Server http;
+  int port = 0;
+  // httplib's stop() does nothing before listening has begun; these let stop() and run() meet
+  // in any order (studio_server.cpp).
+  std::atomic<bool> stopping{false}, run_called{false}, run_returned{false};
+
+  explicit Impl(const StudioOptions& o);
+  void add_api_routes();
+};
+
+// A 400 (or other) reply with the CLI's message: {"error", "where", "what"}.
+void reply_error(httplib::Response& res, int status, const std::string& where, const std::string& what);
+
+}  // namespace insitu

@@ -1,0 +1,43 @@
+// insitu studio (issue 18): a local web page over one scene, served on 127.0.0.1 only, to click
+// the control points, see the calibration after every change, and save points.json.
+//
+// The server (cpp-httplib, Debian's libcpp-httplib-dev) answers:
+//   GET  /, /studio.js, /studio.css   the page (src/studio/page/, compiled in)
+//   GET  /api/state                   the scene's photo size, points.json's text and version
+//   GET  /api/photo.png               the photo, sRGB 8-bit (any photo format the CLI reads)
+//   GET  /files/PATH                  a file under the scene's folder (file_under.h), else 404
+//   PUT  /api/points                  {"version", "points"}: saved atomically, or 409 on conflict
+//   POST /api/calibrate               {"points", "model"}: calibration_view.h
+//   POST /api/snap                    {"uv"}: corner_snap.h
+// Errors are 400 with {"error": "<where>: <what>", "where", "what"}: the CLI's message. Request
+// bodies over 1 MiB are refused (413) before they are read.
+#pragma once
+#include <memory>
+#include <string>
+
+namespace insitu {
+
+struct StudioOptions {
+  std::string scene;                          // the scene file
+  int port = 8080;                            // 0: any free port
+  std::size_t max_body_bytes = std::size_t(1) << 20;
+};
+
+class StudioServer {
+ public:
+  // Reads the scene and its photo; throws InputError as the CLI's other verbs do.
+  explicit StudioServer(const StudioOptions& options);
+  ~StudioServer();
+  // Binds 127.0.0.1 (never another address) and returns the port; throws InputError if it cannot.
+  int bind();
+  // Serves until stop() (from another thread).
+  void run();
+  void stop();
+
+  struct Impl;  // studio_impl.h: the state its two source files share
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace insitu

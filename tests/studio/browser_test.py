@@ -1,0 +1,138 @@
+#!/usr/bin/env python3
+"""insitu studio in a real browser (issue 18): Debian's chromium, driven by python3-selenium.
+
+    python3 tests/studio/browser_test.py INSITU_BINARY [SCREENSHOT_DIR]
+
+Starts `insitu studio` on a copy of the demo scene whose points.json is empty, clicks seven of the
+demo's landmarks on the photo (on two walls: not coplanar), types their names and 3D positions, and checks that points.json holds them
+(the file the CLI reads), that the calibration panel shows the demo's model ("f": the generator's
+camera has square pixels and a centred principal point) and that a removed point leaves the file.
+A screenshot of the panel goes to SCREENSHOT_DIR (default: a temporary folder) for a person to
+look at. Exits 77 (ctest's skip) with a message when chromium, chromedriver or selenium is absent
+or chromium cannot start.
+"""
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+SKIP = 77
+
+
+def skip(why):
+    print(f"browser_test: SKIPPED: {why}")
+    sys.exit(SKIP)
+
+
+try:
+    from selenium import webdriver
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.chrome.service import Service
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.support.ui import WebDriverWait
+except ImportError:
+    skip("python3-selenium is not installed (apt-get install chromium chromium-driver python3-selenium)")
+
+
+def start_browser():
+    if not shutil.which("chromium") or not shutil.which("chromedriver"):
+        skip("chromium or chromium-driver is not installed (apt-get install chromium chromium-driver python3-selenium)")
+    options = webdriver.ChromeOptions()
+    for arg in ("--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--window-size=1500,900",
+                "--force-device-scale-factor=1"):
+        options.add_argument(arg)
+    options.binary_location = shutil.which("chromium")
+    try:
+        return webdriver.Chrome(service=Service(shutil.which("chromedriver")), options=options)
+    except Exception as e:  # chromium present but unable to start here (no /dev/shm, no sandbox...)
+        skip(f"chromium cannot start: {str(e).splitlines()[0]}")
+
+
+def start_studio(insitu, scene):
+    proc = subprocess.Popen([insitu, "studio", scene, "--port", "0"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                            text=True)
+    line = proc.stdout.readline()
+    m = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
+    if not m:
+        proc.kill()
+        sys.exit(f"browser_test: insitu studio did not start: {line}{proc.stdout.read()}")
+    return proc, f"http://127.0.0.1:{m.group(1)}/"
+
+
+def click_image_point(browser, canvas, uv):
+    """Clicks the canvas where the page draws image point uv (its own view transform)."""
+    x, y = browser.execute_script("return to_screen(arguments[0], arguments[1]);", uv[0], uv[1])
+    w, h = canvas.size["width"], canvas.size["height"]
+    ActionChains(browser).move_to_element_with_offset(canvas, x - w / 2, y - h / 2).click().perform()
+
+
+def type_point(browser, index, name, xyz):
+    box = browser.find_element(By.CSS_SELECTOR, f'#points tbody tr:nth-child({index + 1}) input.name')
+    box.clear()
+    box.send_keys(name + "\t")
+    for axis, value in enumerate(xyz):
+        box = browser.find_element(By.CSS_SELECTOR, f'input[data-point="{index}"][data-axis="{axis}"]')
+        box.clear()
+        box.send_keys(str(value))
+        box.send_keys("\t")  # change event: the page saves and calibrates
+        time.sleep(0.3)
+
+
+def main():
+    if len(sys.argv) < 2:
+        sys.exit(__doc__)
+    insitu = os.path.abspath(sys.argv[1])
+    source = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scenes", "demo")
+    work = tempfile.mkdtemp(prefix="insitu-studio-browser-")
+    shots = sys.argv[2] if len(sys.argv) > 2 else work
+    os.makedirs(shots, exist_ok=True)
+    scene_dir = os.path.join(work, "demo")
+    shutil.copytree(source, scene_dir)
+    truth = json.load(open(os.path.join(scene_dir, "points.json")))
+    points_file = os.path.join(scene_dir, "points.json")
+    with open(points_file, "w") as f:
+        f.write("[]\n")
+    browser = start_browser()
+    studio, url = start_studio(insitu, os.path.join(scene_dir, "scene.json"))
+    try:
+        run(browser, url, truth, points_file, shots)
+    finally:
+        browser.quit()
+        studio.terminate()
+        studio.wait()
+        shutil.rmtree(work, ignore_errors=True)
+    print("browser_test: passed")
+
+
+def run(browser, url, truth, points_file, shots):
+    browser.get(url)
+    WebDriverWait(browser, 30).until(lambda b: b.execute_script("return S.width > 0 && S.photo.complete"))
+    canvas = browser.find_element(By.ID, "photo")
+    chosen = [truth[i] for i in (0, 1, 2, 3, 8, 10, 11)]
+    for i, p in enumerate(chosen):
+        click_image_point(browser, canvas, p["uv"])
+        WebDriverWait(browser, 20).until(lambda b: b.execute_script("return S.points.length") == i + 1)
+        type_point(browser, i, p["name"], p["xyz"])
+    WebDriverWait(browser, 30).until(lambda b: "model f," in b.find_element(By.ID, "summary").text)
+    saved = json.load(open(points_file))
+    assert len(saved) == len(chosen), saved
+    scale = browser.execute_script("return S.view.scale")
+    for s, p in zip(saved, chosen):
+        assert s["xyz"] == p["xyz"] and s["name"] == p["name"], (s, p)
+        # A click lands within a screen pixel of its target, a snap within the window (5 px).
+        off = max(abs(s["uv"][0] - p["uv"][0]), abs(s["uv"][1] - p["uv"][1]))
+        assert off <= 1.0 / scale + 5.5, (s, p, scale)
+    summary = browser.find_element(By.ID, "summary").text
+    print(f"browser_test: {len(saved)} points saved; calibration panel: {summary}")
+    browser.save_screenshot(os.path.join(shots, "studio_points.png"))
+    # Removing a point rewrites the file without it.
+    browser.find_elements(By.CSS_SELECTOR, "#points tbody button")[-1].click()
+    WebDriverWait(browser, 20).until(lambda b: len(json.load(open(points_file))) == len(chosen) - 1)
+
+
+if __name__ == "__main__":
+    main()
