@@ -49,7 +49,9 @@ std::string merge_of_parts(SceneFixture& fx, const std::string& scene, const std
 
 TEST(SplitRender, MergedPartsAreBitIdenticalToOneRender) {
   SceneFixture fx;
-  for (int spp : {24, 16}) {
+  // Under the sanitizers one sample count: the merge's code is the same at both, and each count
+  // starts 13 CLI processes (38 s sanitized in CI).
+  for (int spp : test::kUnderAsan ? std::vector<int>{16} : std::vector<int>{24, 16}) {
     const std::string scene = split_scene(fx, spp);
     const std::string whole = fx.dir.file(fmt::format("whole{}.exr", spp));
     ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " -o " + whole).exit_code, 0);
