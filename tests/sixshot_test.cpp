@@ -238,5 +238,75 @@ TEST(SixShot, AShotThatCoversNothingIsAnErrorNamingIt) {
   }
 }
 
+// A phone turned on its side stores the shot turned: here each landscape shot is stored turned a
+// quarter counter-clockwise (pixel (x, y) of a w-wide image goes to (y, w − 1 − x)) k times, and
+// "rotate_deg": 90·k turns it back. "hfov_deg" is across the stored width, so the file turned a
+// quarter gives the field across its 120 pixels: 2·atan(tan 50° · 120/160). The cube must equal
+// the one from the unturned shots: the turn is a permutation of pixels.
+Image turned_counter_clockwise(const Image& img, int quarters) {
+  Image out = img;
+  for (int q = 0; q < quarters; ++q) {
+    Image next(out.height, out.width, out.channels);
+    for (int y = 0; y < out.height; ++y)
+      for (int x = 0; x < out.width; ++x) next.set_rgb(y, out.width - 1 - x, out.rgb(x, y));
+    out = next;
+  }
+  return out;
+}
+
+TEST(SixShot, TurnedShotsAreTurnedBackWithTheirFieldOfView) {
+  test::TempDir dir;
+  auto radiance = [](const Vec3f& d) { return Rgb(1.5f + d.x(), 1.2f + 0.8f * d.y(), 1.1f + d.z() * d.x()); };
+  const double hfov_deg = 100;
+  const char* keys[6] = {"+x", "-x", "up", "down", "+z", "-z"};
+  nlohmann::json plain = {{"faced", "-z"}}, turned = {{"faced", "-z"}};
+  for (int f = 0; f < 6; ++f) {
+    const Image shot = render_shot(radiance, f, kNegZ, hfov_deg, 160, 120);
+    const int k = f % 4;  // every turn, and one of each twice
+    const std::string a = std::string("plain") + std::to_string(f) + ".exr", b = std::string("turned") + std::to_string(f) + ".exr";
+    write_image(dir.file(a), shot);
+    write_image(dir.file(b), turned_counter_clockwise(shot, k));
+    plain[keys[f]] = {{"file", a}, {"hfov_deg", hfov_deg}};
+    const double stored_hfov_deg = k % 2 ? rad_to_deg(2 * std::atan(std::tan(deg_to_rad(0.5 * hfov_deg)) * 120 / 160)) : hfov_deg;
+    turned[keys[f]] = {{"file", b}, {"hfov_deg", stored_hfov_deg}, {"rotate_deg", 90 * k}};
+  }
+  write_image(dir.file("photo.png"), Image(8, 8, 3, 0.5f));
+  auto cube_of = [&](const nlohmann::json& shots) {
+    const nlohmann::json scene = {{"photo", "photo.png"},
+                                  {"camera", {{"eye", {0, 1, 0}}, {"look", {0, 1, -1}}, {"hfov_deg", 60}}},
+                                  {"environment", {{"shots", shots}, {"face_size", 32}}}};
+    Warnings w;
+    return load_environment(parse_scene_file(dir.write("scene.json", scene.dump())).environment, w);
+  };
+  const CubeMap want = cube_of(plain), got = cube_of(turned);
+  EXPECT_LT(max_relative_error(got, want), 1e-5);
+  // And the unturned shots are the radiance, filtered onto the face (coverage is full at 100°).
+  CubeMap truth(32);
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < 32; ++j)
+      for (int i = 0; i < 32; ++i) truth.set_texel(f, i, j, radiance(texel_direction(f, i, j, 32)));
+  EXPECT_LT(max_relative_error(want, truth), 0.02);
+}
+
+TEST(SixShot, ARotationOtherThanAQuarterTurnIsAnErrorNamingIt) {
+  test::TempDir dir;
+  write_image(dir.file("s.exr"), Image(8, 8, 3, 1.0f));
+  write_image(dir.file("photo.png"), Image(8, 8, 3, 0.5f));
+  nlohmann::json shots = {{"faced", "-z"}};
+  for (const char* k : {"+x", "-x", "up", "down", "+z", "-z"}) shots[k] = "s.exr";
+  shots["+z"] = {{"file", "s.exr"}, {"rotate_deg", 45}};
+  const nlohmann::json scene = {{"photo", "photo.png"},
+                                {"camera", {{"eye", {0, 1, 0}}, {"look", {0, 1, -1}}, {"hfov_deg", 60}}},
+                                {"environment", {{"shots", shots}}}};
+  const std::string path = dir.write("scene.json", scene.dump());
+  try {
+    parse_scene_file(path);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), path + ":$.environment.shots.+z.rotate_deg");
+    EXPECT_NE(std::string(e.what()).find("90"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace insitu

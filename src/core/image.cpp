@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cassert>
 #include <cmath>
 #include <functional>
 #include <cstdlib>
@@ -324,6 +325,21 @@ Image resize(const Image& img, int width, int height, const std::string& filter)
   ImageBuf dst(dst_spec);
   if (!ImageBufAlgo::resize(dst, src, filter)) throw std::runtime_error("resize: " + dst.geterror());
   Image out(width, height, img.channels);
+  dst.get_pixels(ROI::All(), TypeDesc::FLOAT, out.data.data());
+  return out;
+}
+
+Image rotated_clockwise(const Image& img, int deg) {
+  assert(deg == 0 || deg == 90 || deg == 180 || deg == 270);
+  if (deg == 0) return img;
+  ImageSpec spec(img.width, img.height, img.channels, TypeDesc::FLOAT);
+  ImageBuf src(spec, const_cast<float*>(img.data.data()));
+  ImageBuf dst;
+  const bool ok = deg == 90 ? ImageBufAlgo::rotate90(dst, src)
+                : deg == 180 ? ImageBufAlgo::rotate180(dst, src) : ImageBufAlgo::rotate270(dst, src);
+  if (!ok) throw std::runtime_error("rotate: " + dst.geterror());
+  const bool swap = deg != 180;
+  Image out(swap ? img.height : img.width, swap ? img.width : img.height, img.channels);
   dst.get_pixels(ROI::All(), TypeDesc::FLOAT, out.data.data());
   return out;
 }

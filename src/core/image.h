@@ -90,5 +90,8 @@ void write_exr_channels(const std::string& path, int width, int height,
 // Resampling with a proper filter (OpenImageIO's ImageBufAlgo::resize); filter "" is OpenImageIO's
 // default (Blackman-Harris), "box" the area average (keeps a radiance map's integral).
 Image resize(const Image& img, int width, int height, const std::string& filter = "");
+// The image turned clockwise (as displayed) by 0, 90, 180 or 270 degrees (OpenImageIO's
+// ImageBufAlgo::rotate90/180/270); other angles are a programming error.
+Image rotated_clockwise(const Image& img, int deg);
 
 }  // namespace insitu

@@ -29,9 +29,18 @@ float median_luminance(std::vector<float> y) {
 
 // The field of view of a shot: its own, the set's, EXIF's 35 mm-equivalent focal length (which
 // describes the diagonal: 2·atan(43.27 mm / 2f)), or 90°.
+// The field of view across the shot's width as used (after its rotation; read_shot_files has
+// turned `file` already). A given hfov is across the file's stored width W0; turned a quarter,
+// the width is the stored height H0, and with the focal length f = W0 / (2 tan(hfov0/2)) in
+// pixels, hfov = 2 atan(H0 / (2 f)) = 2 atan(tan(hfov0/2) · H0/W0).
 double shot_hfov(const ShotSpec& shot, const EnvironmentSpec& spec, const ImageFile& file) {
-  if (shot.hfov_deg) return *shot.hfov_deg;
-  if (spec.hfov_deg) return *spec.hfov_deg;
+  const std::optional<double> given = shot.hfov_deg ? shot.hfov_deg : spec.hfov_deg;
+  if (given) {
+    if (shot.rotate_deg % 180 == 0) return *given;
+    const double h0_over_w0 = double(file.stored.width) / file.stored.height;
+    return rad_to_deg(2 * std::atan(std::tan(0.5 * deg_to_rad(*given)) * h0_over_w0));
+  }
+  // The 35 mm equivalent focal length gives the diagonal field, which turning does not change.
   if (file.exposure.focal_35mm_mm) {
     const double w = file.stored.width, h = file.stored.height;
     const double tan_half_diag = 43.2666 / (2 * *file.exposure.focal_35mm_mm);
@@ -85,6 +94,8 @@ ShotFiles read_shot_files(const EnvironmentSpec& spec) {
     for (const std::string& path : spec.shots[std::size_t(f)].files) {
       try {
         files[std::size_t(f)].push_back(read_image_file(path));
+        ImageFile& file = files[std::size_t(f)].back();
+        file.stored = rotated_clockwise(file.stored, spec.shots[std::size_t(f)].rotate_deg);
       } catch (const InputError& e) {
         throw e.with_context(spec.shots[std::size_t(f)].where);
       }
@@ -134,7 +145,7 @@ LinearShots linearize_shots(const EnvironmentSpec& spec, const ShotFiles& files,
     const auto& fl = files[std::size_t(f)];
     const ShotSpec& s = spec.shots[std::size_t(f)];
     out.set.names[std::size_t(f)] = s.files.front();
-    out.set.hfov_deg[std::size_t(f)] = shot_hfov(s, spec, fl.front());
+    out.set.hfov_deg[std::size_t(f)] = info.hfov_deg[std::size_t(f)] = shot_hfov(s, spec, fl.front());
     out.clipped.hfov_deg[std::size_t(f)] = out.set.hfov_deg[std::size_t(f)];
     out.clipped.names[std::size_t(f)] = s.files.front();
     try {

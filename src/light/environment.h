@@ -22,6 +22,7 @@ struct EnvironmentInfo {
   std::size_t clamped_values = 0;                        // negative or non-finite inputs set to 0
   std::array<double, 6> coverage = {1, 1, 1, 1, 1, 1};   // per face, from six shots
   std::array<double, 6> clipped = {0, 0, 0, 0, 0, 0};    // fraction of clipped pixels per shot
+  std::array<double, 6> hfov_deg = {90, 90, 90, 90, 90, 90};  // per shot, as used (after turning)
   std::optional<ResponseCurve> response;                 // recovered from brackets
   double exposure_factor = 1;                            // applied to shots without EXIF
   std::string exposure_source = "none";                  // "exif", "factor", "estimate", "none"

@@ -333,6 +333,7 @@ nlohmann::json render_report(const LoadedScene& s, const RenderResult& r, const 
     for (int f = 0; f < 6; ++f)
       shots.push_back({{"face", face_name(f)},
                        {"files", s.spec.environment.shots[std::size_t(f)].files},
+                       {"rotate_deg", s.spec.environment.shots[std::size_t(f)].rotate_deg},
                        {"coverage_percent", 100 * info.coverage[std::size_t(f)]},
                        {"clipped_percent", 100 * info.clipped[std::size_t(f)]}});
   json calibration = nullptr;

@@ -134,7 +134,8 @@ CameraSpec parse_camera(JsonObject o, const fs::path& dir, Warnings& warnings) {
   return c;
 }
 
-// A shot: "file", ["bracket", "bracket", ...], or {"file" | "files", "times", "hfov_deg"}.
+// A shot: "file", ["bracket", "bracket", ...], or {"file" | "files", "times", "hfov_deg",
+// "rotate_deg"}.
 ShotSpec parse_shot(const JsonValue& v, const fs::path& dir) {
   ShotSpec shot;
   shot.where = v.where();
@@ -157,6 +158,10 @@ ShotSpec parse_shot(const JsonValue& v, const fs::path& dir) {
     if (auto t = o.find("times"))
       for (std::size_t i = 0; i < t->size(); ++i) shot.times_s.push_back(t->element(i).number(1e-9, 1e6));
     if (auto h = o.find("hfov_deg")) shot.hfov_deg = h->number(1.0, 170.0);
+    if (auto r = o.find("rotate_deg")) {
+      shot.rotate_deg = int(r->integer(0, 270));
+      if (shot.rotate_deg % 90 != 0) r->fail("expected 0, 90, 180 or 270 (clockwise)");
+    }
     o.finish();
   }
   if (!shot.times_s.empty() && shot.times_s.size() != shot.files.size())
@@ -212,6 +217,27 @@ EnvironmentSpec::RoomBox parse_room_box(const JsonValue& v) {
   return box;
 }
 
+// The walls as "front", "right", "back", "left" plus which world axis "front" faces (right =
+// front × up); `shot(face, key)` reads each. Returns the faced wall ("front", ... or an axis).
+template <class ReadShot>
+int parse_walls_by_turn(JsonObject& s, const ReadShot& shot) {
+  const JsonValue fa = s.get("front_axis");
+  const int front = parse_axis(fa);
+  if (front == kPosY || front == kNegY) fa.fail("front_axis must be horizontal (+x, -x, +z, -z)");
+  // Turning right (clockwise seen from above) about +Y: -z -> +x -> +z -> -x -> -z.
+  static const int ring[4] = {kNegZ, kPosX, kPosZ, kNegX};
+  int k = 0;
+  while (ring[k] != front) ++k;
+  const int walls[4] = {ring[k], ring[(k + 1) % 4], ring[(k + 2) % 4], ring[(k + 3) % 4]};
+  const char* names[4] = {"front", "right", "back", "left"};
+  for (int i = 0; i < 4; ++i) shot(walls[i], names[i]);
+  const JsonValue faced = s.get("faced");
+  const std::string name = faced.string();
+  for (int i = 0; i < 4; ++i)
+    if (name == names[i]) return walls[i];
+  return parse_axis(faced);
+}
+
 EnvironmentSpec parse_environment(const JsonValue& v, const fs::path& dir) {
   EnvironmentSpec e;
   e.where = v.where();
@@ -242,25 +268,12 @@ EnvironmentSpec parse_environment(const JsonValue& v, const fs::path& dir) {
   }
   JsonObject s(o.get("shots"));
   if (auto h = s.find("hfov_deg")) e.hfov_deg = h->number(1.0, 170.0);
-  auto shot = [&](int face, const char* key) { e.shots[std::size_t(face)] = parse_shot(s.get(key), dir); };
+  auto shot = [&](int face, const char* key) {
+    e.shots[std::size_t(face)] = parse_shot(s.get(key), dir);
+    e.shots[std::size_t(face)].key = key;
+  };
   if (s.has("front") || s.has("right") || s.has("back") || s.has("left") || s.has("front_axis")) {
-    // front/right/back/left plus which world axis "front" faces; right = front × up.
-    const JsonValue fa = s.get("front_axis");
-    const int front = parse_axis(fa);
-    if (front == kPosY || front == kNegY) fa.fail("front_axis must be horizontal (+x, -x, +z, -z)");
-    // Turning right (clockwise seen from above) about +Y: -z -> +x -> +z -> -x -> -z.
-    static const int ring[4] = {kNegZ, kPosX, kPosZ, kNegX};
-    int k = 0;
-    while (ring[k] != front) ++k;
-    const int walls[4] = {ring[k], ring[(k + 1) % 4], ring[(k + 2) % 4], ring[(k + 3) % 4]};
-    const char* names[4] = {"front", "right", "back", "left"};
-    for (int i = 0; i < 4; ++i) shot(walls[i], names[i]);
-    const JsonValue faced = s.get("faced");
-    const std::string fs_ = faced.string();
-    e.faced_face = -1;
-    for (int i = 0; i < 4; ++i)
-      if (fs_ == names[i]) e.faced_face = walls[i];
-    if (e.faced_face < 0) e.faced_face = parse_axis(faced);
+    e.faced_face = parse_walls_by_turn(s, shot);
   } else {
     shot(kPosX, "+x");
     shot(kNegX, "-x");
