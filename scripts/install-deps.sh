@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Installs insitu's build and test dependencies from Debian 12 packages. Idempotent; run as root.
+# The last line is the studio's browser test (tests/studio/browser_test.py): headless chromium
+# driven by selenium.
 set -euo pipefail
 packages=(
   cmake g++ make pkg-config
@@ -7,6 +9,7 @@ packages=(
   libtinyobjloader-dev libtbb-dev libeigen3-dev libcpp-httplib-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev libgtest-dev libbenchmark-dev zlib1g-dev
   pybind11-dev python3-dev python3-numpy python3-openimageio
+  chromium chromium-driver python3-selenium
 )
 missing=()
 for p in "${packages[@]}"; do

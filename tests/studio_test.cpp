@@ -18,51 +18,15 @@
 #include "studio/overlay_lines.h"
 #include "studio/studio_server.h"
 #include "test_util.h"
-// Last: glibc's <resolv.h>, which httplib.h includes, defines _res as a macro that breaks Eigen.
-#include <httplib.h>
+#include "studio_fixture.h"
 
 namespace insitu {
 namespace {
 
+using test::StudioFixture;
 using test::TempDir;
+using test::get_json;
 namespace fs = std::filesystem;
-
-// The demo scene copied into dir/demo, and a server over it on a free port.
-class StudioFixture {
- public:
-  explicit StudioFixture(const TempDir& dir, const std::string& points_text = "") : folder_(dir.path() / "demo") {
-    fs::copy(fs::path(test::source_dir()) / "scenes/demo", folder_, fs::copy_options::recursive);
-    if (!points_text.empty()) std::ofstream(folder_ / "points.json") << points_text;
-    server_ = std::make_unique<StudioServer>(StudioOptions{(folder_ / "scene.json").string(), 0});
-    port_ = server_->bind();
-    thread_ = std::thread([this] { server_->run(); });
-  }
-  ~StudioFixture() {
-    server_->stop();
-    thread_.join();
-  }
-  httplib::Client client() const {
-    httplib::Client c("127.0.0.1", port_);
-    c.set_url_encode(false);  // paths go out exactly as written, "%2e%2e" included
-    return c;
-  }
-  const fs::path& folder() const { return folder_; }
-  int port() const { return port_; }
-
- private:
-  fs::path folder_;
-  std::unique_ptr<StudioServer> server_;
-  int port_ = 0;
-  std::thread thread_;
-};
-
-json get_json(const httplib::Client& c_in, const std::string& path) {
-  httplib::Client& c = const_cast<httplib::Client&>(c_in);
-  const auto r = c.Get(path.c_str());
-  EXPECT_TRUE(r) << path;
-  EXPECT_EQ(r->status, 200) << path << ": " << r->body;
-  return json::parse(r->body);
-}
 
 json five_points() {
   return json::parse(R"([
@@ -81,7 +45,9 @@ TEST(Studio, ServesThePageThePhotoAndTheState) {
   ASSERT_TRUE(page);
   EXPECT_EQ(page->status, 200);
   EXPECT_NE(page->body.find("<title>insitu studio</title>"), std::string::npos);
-  EXPECT_NE(c.Get("/studio.js")->body.find("/api/calibrate"), std::string::npos);
+  for (const char* script : {"/studio.js", "/points.js", "/shots.js", "/studio.css"})
+    EXPECT_EQ(c.Get(script)->status, 200) << script;
+  EXPECT_NE(c.Get("/points.js")->body.find("/api/calibrate"), std::string::npos);
   const json state = get_json(c, "/api/state");
   EXPECT_EQ(state["photo"]["width"], 640);
   EXPECT_EQ(state["photo"]["height"], 480);

@@ -1,9 +1,12 @@
 // The studio's /api/ routes (studio_server.h lists them).
 #include <filesystem>
+#include <fmt/format.h>
 
 #include "calib/control_points.h"
 #include "studio/calibration_view.h"
 #include "studio/corner_snap.h"
+#include "studio/scene_edit.h"
+#include "studio/shots_view.h"
 #include "studio/studio_impl.h"
 
 namespace insitu {
@@ -15,7 +18,7 @@ namespace {
 json body_json(const httplib::Request& req) { return parse_json_text(req.body, req.path); }
 
 json state_json(const StudioServer::Impl& s) {
-  const PointsVersion p = s.points.read();
+  const FileVersion p = s.points.read();
   json points;
   try {
     points = parse_json_text(p.text, s.points.path());
@@ -45,7 +48,7 @@ void put_points(StudioServer::Impl& s, const httplib::Request& req, httplib::Res
   const json body = body_json(req);
   if (!body.is_object() || !body.contains("points") || !body.contains("version") || !body["version"].is_string())
     throw InputError(req.path, "expected {\"version\": \"...\", \"points\": [...]}");
-  const PointsStore::SaveResult r = s.points.save(body["points"], body["version"].get<std::string>());
+  const VersionedFile::UpdateResult r = s.points.save(body["points"], body["version"].get<std::string>());
   if (!r.saved) {
     reply_error(res, 409, s.points.path(), "changed since this page read it (another tab or program saved it); reload to see it");
     return;
@@ -82,9 +85,47 @@ void post_snap(StudioServer::Impl& s, const httplib::Request& req, httplib::Resp
                   "application/json");
 }
 
+// {"version", "op": "swap", "a", "b"} | {"version", "op": "turn", "key", "by_deg"} |
+// {"version", "op": "faced", "wall"}: the scene file edited (scene_edit.h), or 409.
+void post_shots(StudioServer::Impl& s, const httplib::Request& req, httplib::Response& res) {
+  const json body = body_json(req);
+  const auto text = [&](const char* k) {
+    if (!body.is_object() || !body.contains(k) || !body[k].is_string())
+      throw InputError(req.path, fmt::format("expected a string \"{}\"", k));
+    return body[k].get<std::string>();
+  };
+  const std::string op = text("op"), name = fs::path(s.scene_file.path()).filename().string();
+  if (op != "swap" && op != "turn" && op != "faced") throw InputError(req.path + ":$.op", "expected swap, turn or faced");
+  const int by_deg = op == "turn" && body.contains("by_deg") && body["by_deg"].is_number_integer() ? body["by_deg"].get<int>() : 90;
+  const VersionedFile::UpdateResult r = s.scene_file.update(text("version"), [&](const std::string& scene) {
+    if (op == "swap") return swap_shots(scene, name, text("a"), text("b"));
+    if (op == "turn") return turn_shot(scene, name, text("key"), by_deg);
+    return set_faced_wall(scene, name, text("wall"));
+  });
+  if (!r.saved) return reply_error(res, 409, name, "changed since this page read it (another tab or program saved it); reload to see it");
+  res.set_content(json{{"version", r.now.version}}.dump(), "application/json");
+}
+
+json shots_state(const StudioServer::Impl& s) {
+  const FileVersion v = s.scene_file.read();
+  json out = shots_view(s.scene_file.path());
+  out["version"] = v.version;
+  out["scene"] = fs::path(s.scene_file.path()).filename().string();
+  return out;
+}
+
 }  // namespace
 
 void StudioServer::Impl::add_api_routes() {
+  http.Get("/api/shots", [this](const httplib::Request&, httplib::Response& res) {
+    guarded(res, [&] { res.set_content(shots_state(*this).dump(), "application/json"); });
+  });
+  http.Get(R"(/api/shot/([0-5])\.png)", [this](const httplib::Request& req, httplib::Response& res) {
+    guarded(res, [&] { res.set_content(shot_preview_png(scene_file.path(), std::stoi(req.matches[1]), 320), "image/png"); });
+  });
+  http.Post("/api/shots", [this](const httplib::Request& req, httplib::Response& res) {
+    guarded(res, [&] { post_shots(*this, req, res); });
+  });
   http.Get("/api/state", [this](const httplib::Request&, httplib::Response& res) {
     guarded(res, [&] { res.set_content(state_json(*this).dump(), "application/json"); });
   });

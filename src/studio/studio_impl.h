@@ -8,6 +8,7 @@
 #include "scene/spec.h"
 #include "studio/points_store.h"
 #include "studio/studio_server.h"
+#include "studio/versioned_file.h"
 // Last: glibc's <resolv.h>, which httplib.h includes, defines _res as a macro that breaks Eigen.
 #include <httplib.h>
 
@@ -21,6 +22,7 @@ struct StudioServer::Impl {
   std::string photo_png;   // the photo, encoded once
   cv::Mat gray;            // its luminance, sRGB-encoded, CV_32F: for corner snapping
   PointsStore points;
+  VersionedFile scene_file;  // the scene file, which the shots panel edits
   httplib::Server http;
   int port = 0;
   // httplib's stop() does nothing before listening has begun; these let stop() and run() meet

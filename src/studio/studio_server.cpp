@@ -4,12 +4,12 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <thread>
-#include <opencv2/imgcodecs.hpp>
 
 #include "core/colour.h"
 #include "core/image.h"
 #include "scene/scene_file.h"
 #include "studio/file_under.h"
+#include "studio/preview_png.h"
 #include "studio/studio_assets.h"
 #include "studio/studio_impl.h"
 
@@ -43,19 +43,13 @@ std::string points_path(const SceneSpec& scene) {
 void load_photo(StudioServer::Impl& s) {
   const Image linear = linearize(read_image_file(s.scene.photo));
   s.width = linear.width, s.height = linear.height;
-  cv::Mat bgr(linear.height, linear.width, CV_8UC3);
   s.gray.create(linear.height, linear.width, CV_32F);
   for (int y = 0; y < linear.height; ++y)
     for (int x = 0; x < linear.width; ++x) {
       const Rgb c = linear.rgb(x, y);
-      const float r = linear_to_srgb(c[0]), g = linear_to_srgb(c[1]), b = linear_to_srgb(c[2]);
-      bgr.at<cv::Vec3b>(y, x) = cv::Vec3b(cv::saturate_cast<uchar>(255 * b + 0.5f), cv::saturate_cast<uchar>(255 * g + 0.5f),
-                                          cv::saturate_cast<uchar>(255 * r + 0.5f));
-      s.gray.at<float>(y, x) = 0.2126f * r + 0.7152f * g + 0.0722f * b;
+      s.gray.at<float>(y, x) = 0.2126f * linear_to_srgb(c[0]) + 0.7152f * linear_to_srgb(c[1]) + 0.0722f * linear_to_srgb(c[2]);
     }
-  std::vector<uchar> png;
-  cv::imencode(".png", bgr, png);
-  s.photo_png.assign(png.begin(), png.end());
+  s.photo_png = srgb_png(linear);
 }
 
 }  // namespace
@@ -68,13 +62,12 @@ void reply_error(httplib::Response& res, int status, const std::string& where, c
 
 StudioServer::Impl::Impl(const StudioOptions& o)
     : options(o), scene(parse_scene_file(o.scene)), folder(fs::absolute(o.scene).parent_path().string()),
-      points(points_path(scene)) {
+      points(points_path(scene)), scene_file(o.scene, "") {
   load_photo(*this);
   http.set_payload_max_length(options.max_body_bytes);
-  for (const char* page : {"index.html", "studio.js", "studio.css"})
-    http.Get(std::string("/") + (std::string(page) == "index.html" ? "" : page), [page](const httplib::Request&, httplib::Response& res) {
-      const StudioAsset* a = studio_asset(page);
-      res.set_content(reinterpret_cast<const char*>(a->data), a->size, content_type(page).c_str());
+  for (const StudioAsset* a = kStudioAssets; a->name; ++a)
+    http.Get(std::string("/") + (std::string(a->name) == "index.html" ? "" : a->name), [a](const httplib::Request&, httplib::Response& res) {
+      res.set_content(reinterpret_cast<const char*>(a->data), a->size, content_type(a->name).c_str());
     });
   http.Get("/api/photo.png", [this](const httplib::Request&, httplib::Response& res) {
     res.set_content(photo_png, "image/png");

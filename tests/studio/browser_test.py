@@ -7,7 +7,8 @@ Starts `insitu studio` on a copy of the demo scene whose points.json is empty, c
 demo's landmarks on the photo (on two walls: not coplanar), types their names and 3D positions, and checks that points.json holds them
 (the file the CLI reads), that the calibration panel shows the demo's model ("f": the generator's
 camera has square pixels and a centred principal point) and that a removed point leaves the file.
-A screenshot of the panel goes to SCREENSHOT_DIR (default: a temporary folder) for a person to
+Then the shots panel: six shots laid out with the faced wall marked, and a click on "turn" that
+writes the turn into scene.json. A screenshot of each panel goes to SCREENSHOT_DIR (default: a temporary folder) for a person to
 look at. Exits 77 (ctest's skip) with a message when chromium, chromedriver or selenium is absent
 or chromium cannot start.
 """
@@ -100,6 +101,7 @@ def main():
     studio, url = start_studio(insitu, os.path.join(scene_dir, "scene.json"))
     try:
         run(browser, url, truth, points_file, shots)
+        run_shots(browser, os.path.join(scene_dir, "scene.json"), shots)
     finally:
         browser.quit()
         studio.terminate()
@@ -132,6 +134,33 @@ def run(browser, url, truth, points_file, shots):
     # Removing a point rewrites the file without it.
     browser.find_elements(By.CSS_SELECTOR, "#points tbody button")[-1].click()
     WebDriverWait(browser, 20).until(lambda b: len(json.load(open(points_file))) == len(chosen) - 1)
+
+
+
+def shot_of(scene_file, key):
+    return json.load(open(scene_file))["environment"]["shots"][key]
+
+
+def run_shots(browser, scene_file, shots):
+    browser.set_window_size(1500, 1050)  # the unfolded cube is three shots tall
+    browser.find_element(By.ID, "tab-shots").click()
+    all_shown = "const i = [...document.querySelectorAll('#cube .cell img')];" \
+                "return i.length === 6 && i.every((x) => x.complete && x.naturalWidth > 0);"
+    WebDriverWait(browser, 30).until(lambda b: b.execute_script(all_shown))
+    faced = browser.find_element(By.CSS_SELECTOR, "#cube .cell.faced")
+    assert faced.get_attribute("data-face") == "-z", faced.get_attribute("data-face")
+    # The unfolded cube: the ceiling above and the floor below the faced wall, in its column.
+    column = lambda face: browser.find_element(By.CSS_SELECTOR, f'#cube .cell[data-face="{face}"]').location["x"]
+    assert column("up") == column("-z") == column("down"), (column("up"), column("-z"), column("down"))
+    assert column("-x") < column("-z") < column("+x") < column("+z")
+    browser.save_screenshot(os.path.join(shots, "studio_shots.png"))
+    assert not isinstance(shot_of(scene_file, "+x"), dict)
+    browser.find_element(By.CSS_SELECTOR, '#cube .cell[data-face="+x"] button.turn').click()
+    WebDriverWait(browser, 20).until(lambda b: isinstance(shot_of(scene_file, "+x"), dict)
+                                     and shot_of(scene_file, "+x").get("rotate_deg") == 90)
+    WebDriverWait(browser, 20).until(
+        lambda b: "turned 90°" in b.find_element(By.CSS_SELECTOR, '#cube .cell[data-face="+x"]').text)
+    print(f"browser_test: shots panel: turned +x, scene file holds {shot_of(scene_file, '+x')}")
 
 
 if __name__ == "__main__":

@@ -1,0 +1,55 @@
+// A copy of the demo scene with the studio serving it on a free port, for the studio's tests.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <thread>
+
+#include "core/json_reader.h"
+#include "studio/studio_server.h"
+#include "test_util.h"
+// Last: glibc's <resolv.h>, which httplib.h includes, defines _res as a macro that breaks Eigen.
+#include <httplib.h>
+
+namespace insitu::test {
+
+// The demo scene copied into dir/demo, and a server over it on a free port.
+class StudioFixture {
+ public:
+  explicit StudioFixture(const TempDir& dir, const std::string& points_text = "") : folder_(dir.path() / "demo") {
+    std::filesystem::copy(std::filesystem::path(test::source_dir()) / "scenes/demo", folder_, std::filesystem::copy_options::recursive);
+    if (!points_text.empty()) std::ofstream(folder_ / "points.json") << points_text;
+    server_ = std::make_unique<StudioServer>(StudioOptions{(folder_ / "scene.json").string(), 0});
+    port_ = server_->bind();
+    thread_ = std::thread([this] { server_->run(); });
+  }
+  ~StudioFixture() {
+    server_->stop();
+    thread_.join();
+  }
+  httplib::Client client() const {
+    httplib::Client c("127.0.0.1", port_);
+    c.set_url_encode(false);  // paths go out exactly as written, "%2e%2e" included
+    return c;
+  }
+  const std::filesystem::path& folder() const { return folder_; }
+  int port() const { return port_; }
+
+ private:
+  std::filesystem::path folder_;
+  std::unique_ptr<StudioServer> server_;
+  int port_ = 0;
+  std::thread thread_;
+};
+
+inline json get_json(const httplib::Client& c_in, const std::string& path) {
+  httplib::Client& c = const_cast<httplib::Client&>(c_in);
+  const auto r = c.Get(path.c_str());
+  EXPECT_TRUE(r) << path;
+  EXPECT_EQ(r->status, 200) << path << ": " << r->body;
+  return json::parse(r->body);
+}
+
+}  // namespace insitu::test

@@ -1,0 +1,174 @@
+// insitu studio's shots panel (issue 18, "Shots"): the six shots as the library uses them, and
+// the edits of the scene file (turn, swap, faced wall) read back by the library's own parser.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "core/error.h"
+#include "light/cubemap.h"
+#include "scene/scene_file.h"
+#include "studio/scene_edit.h"
+#include "studio_fixture.h"
+
+namespace insitu {
+namespace {
+
+using test::StudioFixture;
+using test::TempDir;
+using test::get_json;
+namespace fs = std::filesystem;
+
+std::string text_of(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// A POST of `body` as JSON; the reply's status and body.
+std::pair<int, json> post(httplib::Client c, const std::string& path, const json& body) {
+  const auto r = c.Post(path.c_str(), body.dump(), "application/json");
+  EXPECT_TRUE(r) << path;
+  return {r->status, json::parse(r->body)};
+}
+
+TEST(StudioShots, ShowsEachShotAsTheLibraryAssemblesIt) {
+  TempDir dir;
+  StudioFixture studio(dir);
+  const json v = get_json(studio.client(), "/api/shots");
+  ASSERT_TRUE(v["error"].is_null()) << v.dump();
+  EXPECT_EQ(v["faced"], "-z");
+  ASSERT_EQ(v["shots"].size(), 6u);
+  for (int f = 0; f < 6; ++f) {
+    const json& s = v["shots"][std::size_t(f)];
+    EXPECT_EQ(s["face"], face_name(f));
+    EXPECT_EQ(s["key"], face_name(f));  // the demo names its shots by face
+    EXPECT_EQ(s["files"].size(), 3u);   // brackets
+    EXPECT_EQ(s["rotate_deg"], 0);
+    // The demo's generator shoots square 90° shots (tools/make_demo.cpp): full coverage.
+    EXPECT_EQ(s["width"], s["height"]);
+    EXPECT_NEAR(s["hfov_deg"].get<double>(), 90.0, 1e-9);
+    EXPECT_NEAR(s["coverage_percent"].get<double>(), 100.0, 1e-9);
+    EXPECT_GE(s["clipped_percent"].get<double>(), 0.0);
+  }
+  // The preview: a PNG no larger than 320 px a side, of the shot's shape.
+  auto c = studio.client();
+  const auto r = c.Get("/api/shot/0.png");
+  ASSERT_TRUE(r);
+  ASSERT_EQ(r->status, 200);
+  const cv::Mat png = cv::imdecode(cv::Mat(1, int(r->body.size()), CV_8U, const_cast<char*>(r->body.data())), cv::IMREAD_COLOR);
+  ASSERT_FALSE(png.empty());
+  EXPECT_LE(std::max(png.cols, png.rows), 320);
+  EXPECT_EQ(png.cols, png.rows);
+  EXPECT_EQ(c.Get("/api/shot/6.png")->status, 404);
+}
+
+// Turning a shot writes rotate_deg into the scene file (a bracket list becomes an object), the
+// library reads the turn, and a page holding the old version is refused without a write.
+TEST(StudioShots, TurningAShotRewritesTheSceneFileAndAStalePageIsRefused) {
+  TempDir dir;
+  StudioFixture studio(dir);
+  const fs::path scene = studio.folder() / "scene.json";
+  const json before = get_json(studio.client(), "/api/shots");
+  const auto [code, reply] = post(studio.client(), "/api/shots", {{"version", before["version"]}, {"op", "turn"}, {"key", "+x"}, {"by_deg", 90}});
+  ASSERT_EQ(code, 200) << reply.dump();
+  const json file = json::parse(text_of(scene));
+  EXPECT_EQ(file["environment"]["shots"]["+x"]["rotate_deg"], 90);
+  EXPECT_EQ(file["environment"]["shots"]["+x"]["files"].size(), 3u);
+  EXPECT_EQ(parse_scene_file(scene.string()).environment.shots[kPosX].rotate_deg, 90);
+  EXPECT_NE(reply["version"], before["version"]);
+  // The page's view of it.
+  const json after = get_json(studio.client(), "/api/shots");
+  EXPECT_EQ(after["shots"][0]["rotate_deg"], 90);
+  // A second tab, still at the first version: refused, and the file is as the first left it.
+  const std::string text = text_of(scene);
+  const auto [stale, stale_reply] = post(studio.client(), "/api/shots", {{"version", before["version"]}, {"op", "turn"}, {"key", "-x"}});
+  EXPECT_EQ(stale, 409) << stale_reply.dump();
+  EXPECT_EQ(text_of(scene), text);
+  // Three more quarters bring it back, and the key goes away.
+  std::string version = after["version"];
+  for (int k = 0; k < 3; ++k) {
+    const auto [c2, r2] = post(studio.client(), "/api/shots", {{"version", version}, {"op", "turn"}, {"key", "+x"}});
+    ASSERT_EQ(c2, 200) << r2.dump();
+    version = r2["version"];
+  }
+  EXPECT_FALSE(json::parse(text_of(scene))["environment"]["shots"]["+x"].contains("rotate_deg"));
+}
+
+TEST(StudioShots, SwappingTwoShotsTradesTheirFilesAndTheFacedWallIsSet) {
+  TempDir dir;
+  StudioFixture studio(dir);
+  const fs::path scene = studio.folder() / "scene.json";
+  const json old_file = json::parse(text_of(scene));
+  json v = get_json(studio.client(), "/api/shots");
+  auto [code, reply] = post(studio.client(), "/api/shots", {{"version", v["version"]}, {"op", "swap"}, {"a", "+x"}, {"b", "-z"}});
+  ASSERT_EQ(code, 200) << reply.dump();
+  const SceneSpec spec = parse_scene_file(scene.string());
+  EXPECT_EQ(fs::path(spec.environment.shots[kPosX].files[1]).filename(), "north.jpg");
+  EXPECT_EQ(fs::path(spec.environment.shots[kNegZ].files[1]).filename(), "east.jpg");
+  // Nothing else changed.
+  json expect = old_file;
+  std::swap(expect["environment"]["shots"]["+x"], expect["environment"]["shots"]["-z"]);
+  EXPECT_EQ(json::parse(text_of(scene)), expect);
+  std::tie(code, reply) = post(studio.client(), "/api/shots", {{"version", reply["version"]}, {"op", "faced"}, {"wall", "+x"}});
+  ASSERT_EQ(code, 200) << reply.dump();
+  EXPECT_EQ(parse_scene_file(scene.string()).environment.faced_face, kPosX);
+  // Refused with the reason, and nothing written: a floor as the faced wall, an unknown shot.
+  const std::string text = text_of(scene);
+  for (const json& bad : {json{{"op", "faced"}, {"wall", "down"}}, json{{"op", "swap"}, {"a", "+x"}, {"b", "sideways"}},
+                          json{{"op", "spin"}}, json{{"op", "turn"}, {"key", "faced"}}}) {
+    json body = bad;
+    body["version"] = reply["version"];
+    const auto [c2, r2] = post(studio.client(), "/api/shots", body);
+    EXPECT_EQ(c2, 400) << bad.dump();
+    EXPECT_FALSE(r2["what"].get<std::string>().empty());
+  }
+  EXPECT_EQ(text_of(scene), text);
+}
+
+// A shot that cannot be read is named in its own cell; a scene that does not parse is the view's
+// error, with the key that caused it.
+TEST(StudioShots, ErrorsAreNextToTheShotOrTheKeyThatCausedThem) {
+  TempDir dir;
+  StudioFixture studio(dir);
+  std::ofstream(studio.folder() / "shots/west.jpg", std::ios::trunc) << "not a jpeg";
+  const json v = get_json(studio.client(), "/api/shots");
+  ASSERT_TRUE(v["error"].is_null()) << v.dump();
+  const json& west = v["shots"][std::size_t(kNegX)];
+  ASSERT_FALSE(west["error"].is_null()) << v.dump();
+  EXPECT_NE(west["error"]["where"].get<std::string>().find("west.jpg"), std::string::npos) << west.dump();
+  EXPECT_TRUE(v["shots"][std::size_t(kPosX)]["error"].is_null());
+  fs::remove(studio.folder() / "shots/floor.jpg");
+  const json v2 = get_json(studio.client(), "/api/shots");
+  ASSERT_FALSE(v2["error"].is_null());
+  EXPECT_NE(v2["error"]["where"].get<std::string>().find("$.environment.shots.down"), std::string::npos) << v2.dump();
+}
+
+// The edits on their own, on text: every form of a shot turns, order and other keys are kept.
+TEST(StudioShots, SceneEditsKeepEverythingElse) {
+  const std::string text = R"({"photo": "p.jpg", "environment": {"shots": {"+x": "a.jpg", "-x": ["b1.jpg", "b2.jpg"],
+    "+z": {"file": "c.jpg", "hfov_deg": 70}, "-z": "d.jpg", "up": "e.jpg", "down": "f.jpg", "faced": "-z"}}, "render": {"spp": 4}})";
+  const json turned = json::parse(turn_shot(turn_shot(turn_shot(text, "s.json", "+x", 90), "s.json", "-x", 270), "s.json", "+z", -90));
+  EXPECT_EQ(turned["environment"]["shots"]["+x"], json({{"file", "a.jpg"}, {"rotate_deg", 90}}));
+  EXPECT_EQ(turned["environment"]["shots"]["-x"], json({{"files", {"b1.jpg", "b2.jpg"}}, {"rotate_deg", 270}}));
+  EXPECT_EQ(turned["environment"]["shots"]["+z"], json({{"file", "c.jpg"}, {"hfov_deg", 70}, {"rotate_deg", 270}}));
+  // Keys stay in the file's order (the reader's json sorts them; the text must not).
+  const std::string swapped = swap_shots(text, "s.json", "up", "down");
+  EXPECT_LT(swapped.find("\"photo\""), swapped.find("\"environment\""));
+  EXPECT_LT(swapped.find("\"environment\""), swapped.find("\"render\""));
+  EXPECT_EQ(json::parse(swapped)["environment"]["shots"]["up"], "f.jpg");
+  try {
+    swap_shots(R"({"environment": "sky.exr"})", "s.json", "up", "down");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "s.json:$.environment");
+  }
+  EXPECT_THROW(turn_shot(text, "s.json", "+x", 45), InputError);
+  EXPECT_THROW(turn_shot("{\"a\": 1, \"a\": 2}", "s.json", "+x", 90), InputError);  // the reader's own check
+}
+
+}  // namespace
+}  // namespace insitu
