@@ -58,6 +58,8 @@ TEST(Studio, ServesThePageThePhotoAndTheState) {
   const cv::Mat photo = cv::imdecode(std::vector<uchar>(png->body.begin(), png->body.end()), cv::IMREAD_COLOR);
   EXPECT_EQ(photo.cols, 640);
   EXPECT_EQ(photo.rows, 480);
+  // The photo as it is: its 8-bit values through sRGB decoding and encoding come back unchanged.
+  EXPECT_EQ(cv::norm(photo, cv::imread((studio.folder() / "photo.jpg").string()), cv::NORM_INF), 0.0);
 }
 
 TEST(Studio, ServesOnlyFilesUnderTheScenesFolder) {

@@ -82,16 +82,7 @@ int run_cubemap(const CubemapArgs& a) {
   write_image(out("equirect.exr"), cube_to_equirect(cube));
   for (IrradianceMode mode : {IrradianceMode::kGaussian, IrradianceMode::kSh9, IrradianceMode::kExact}) {
     const auto field = make_irradiance(mode, cube, a.irradiance_size);
-    const int n = a.irradiance_size;
-    CubeMap e(n), e_over_pi(n);
-    for (int f = 0; f < 6; ++f)
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-          const Rgb E = field->irradiance(texel_direction(f, i, j, n));
-          e.set_texel(f, i, j, E);
-          e_over_pi.set_texel(f, i, j, E / kPiF);
-        }
-    e_over_pi.update_borders();
+    const CubeMap e = irradiance_cube(*field, a.irradiance_size), e_over_pi = irradiance_cube(*field, a.irradiance_size, 1 / kPiF);
     const std::string name = std::string("irradiance_") + irradiance_mode_name(mode);
     write_image(out(name + ".exr"), cube_to_strip(e));
     write_image(out(name + ".png"), cube_cross_preview(e_over_pi, exposure));

@@ -207,6 +207,15 @@ CubeMap exact_irradiance_cube(const CubeMap& radiance, int size) {
   return out;
 }
 
+CubeMap irradiance_cube(const IrradianceField& field, int n, float scale) {
+  CubeMap e(n);
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) e.set_texel(f, i, j, field.irradiance(texel_direction(f, i, j, n)) * scale);
+  e.update_borders();
+  return e;
+}
+
 std::unique_ptr<IrradianceField> make_irradiance(IrradianceMode mode, const CubeMap& radiance, int exact_size) {
   switch (mode) {
     case IrradianceMode::kGaussian: return std::make_unique<GaussianField>(radiance);

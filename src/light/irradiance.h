@@ -48,6 +48,10 @@ class IrradianceField {
 // A directional mode's field (kVolume is a logic error here).
 std::unique_ptr<IrradianceField> make_irradiance(IrradianceMode mode, const CubeMap& radiance, int exact_size = 32);
 
+// The field as a cube of `n`² texels a face: E(texel direction) · scale (scale 1/π: the radiance of
+// a white Lambertian surface facing that way, for previews). Borders updated.
+CubeMap irradiance_cube(const IrradianceField& field, int n, float scale = 1);
+
 // The slow, obviously correct reference.
 Rgb irradiance_reference(const CubeMap& radiance, const Vec3d& normal_unit);
 

@@ -9,5 +9,7 @@
 namespace insitu {
 
 std::string srgb_png(const Image& linear, const Image* red_where_positive = nullptr, int max_side_px = 0);
+// An image already display-encoded (values in [0, 1], clipped) as 8-bit PNG.
+std::string display_png(const Image& encoded);
 
 }  // namespace insitu

@@ -3,8 +3,11 @@
 #include <fmt/format.h>
 
 #include "calib/control_points.h"
+#include "integrators/registry.h"
+#include "output/settings.h"
 #include "studio/calibration_view.h"
 #include "studio/corner_snap.h"
+#include "studio/render_job.h"
 #include "studio/scene_edit.h"
 #include "studio/shots_view.h"
 #include "studio/studio_impl.h"
@@ -114,9 +117,78 @@ json shots_state(const StudioServer::Impl& s) {
   return out;
 }
 
+// A number from the query (`name`), within [lo, hi]; `fallback` when absent.
+double query_number(const httplib::Request& req, const char* name, double lo, double hi, double fallback) {
+  if (!req.has_param(name)) return fallback;
+  const std::string text = req.get_param_value(name);
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !(v >= lo && v <= hi))
+    throw InputError(req.path + "?" + name, fmt::format("expected a number in [{}, {}]", lo, hi));
+  return v;
+}
+
+// The tone map the page asks for: ?tonemap=photo|adaptive_log|reinhard|linear&key=&bias= (the
+// ranges the scene file accepts).
+ToneMapSettings query_tonemap(const httplib::Request& req) {
+  ToneMapSettings t;
+  const std::string op = req.has_param("tonemap") ? req.get_param_value("tonemap") : "photo";
+  const auto parsed = parse_name(kToneMaps, op);
+  if (!parsed) throw InputError(req.path + "?tonemap", "expected photo, adaptive_log, reinhard or linear");
+  t.op = *parsed;
+  if (req.has_param("key")) t.key = query_number(req, "key", 1e-6, 1e6, 1);
+  t.bias = query_number(req, "bias", 0.01, 0.99, t.bias);
+  return t;
+}
+
+// {"integrator": "" | name, "spp": 0 | n}: a render started (render_job.h).
+void post_render(StudioServer::Impl& s, const httplib::Request& req, httplib::Response& res) {
+  const json body = req.body.empty() ? json::object() : body_json(req);
+  static const json kNone;
+  const JsonValue integrator(body.is_object() && body.contains("integrator") ? body["integrator"] : kNone, req.path, "$.integrator");
+  const JsonValue spp(body.is_object() && body.contains("spp") ? body["spp"] : kNone, req.path, "$.spp");
+  const std::string name = integrator.raw().is_null() ? "" : integrator.string();
+  if (!name.empty() && !find_integrator(name)) integrator.fail(unknown_integrator_message(name));
+  s.render.start(name, spp.raw().is_null() ? 0 : int(spp.integer(1, 1 << 20)));
+  res.set_content(s.render.status().dump(), "application/json");
+}
+
 }  // namespace
 
+void StudioServer::Impl::add_render_routes() {
+  http.Post("/api/render", [this](const httplib::Request& req, httplib::Response& res) {
+    guarded(res, [&] { post_render(*this, req, res); });
+  });
+  http.Post("/api/render/stop", [this](const httplib::Request&, httplib::Response& res) {
+    render.stop();
+    res.set_content(render.status().dump(), "application/json");
+  });
+  http.Post("/api/render/save", [this](const httplib::Request&, httplib::Response& res) {
+    guarded(res, [&] {
+      json written = json::array();
+      for (const std::string& p : render.save_outputs()) written.push_back(fs::relative(p, folder).string());
+      res.set_content(json{{"written", written}}.dump(), "application/json");
+    });
+  });
+  http.Get("/api/render", [this](const httplib::Request&, httplib::Response& res) {
+    res.set_content(render.status().dump(), "application/json");
+  });
+  http.Get(R"(/api/render/(\w+)\.png)", [this](const httplib::Request& req, httplib::Response& res) {
+    guarded(res, [&] {
+      const auto png = render.png(req.matches[1], query_tonemap(req));
+      if (!png) return reply_error(res, 404, req.path, "no image of that render yet");
+      res.set_content(*png, "image/png");
+    });
+  });
+  http.Get(R"(/api/light/(cube|irradiance)\.png)", [this](const httplib::Request& req, httplib::Response& res) {
+    const auto png = render.light_png(req.matches[1] == "irradiance");
+    if (!png) return reply_error(res, 404, req.path, "no scene loaded yet: start a render");
+    res.set_content(*png, "image/png");
+  });
+}
+
 void StudioServer::Impl::add_api_routes() {
+  add_render_routes();
   http.Get("/api/shots", [this](const httplib::Request&, httplib::Response& res) {
     guarded(res, [&] { res.set_content(shots_state(*this).dump(), "application/json"); });
   });

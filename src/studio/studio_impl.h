@@ -7,6 +7,7 @@
 
 #include "scene/spec.h"
 #include "studio/points_store.h"
+#include "studio/render_job.h"
 #include "studio/studio_server.h"
 #include "studio/versioned_file.h"
 // Last: glibc's <resolv.h>, which httplib.h includes, defines _res as a macro that breaks Eigen.
@@ -23,6 +24,7 @@ struct StudioServer::Impl {
   cv::Mat gray;            // its luminance, sRGB-encoded, CV_32F: for corner snapping
   PointsStore points;
   VersionedFile scene_file;  // the scene file, which the shots panel edits
+  RenderJob render;          // the light and render panel's render (stopped before the server goes)
   httplib::Server http;
   int port = 0;
   // httplib's stop() does nothing before listening has begun; these let stop() and run() meet
@@ -31,6 +33,7 @@ struct StudioServer::Impl {
 
   explicit Impl(const StudioOptions& o);
   void add_api_routes();
+  void add_render_routes();
 };
 
 // A 400 (or other) reply with the CLI's message: {"error", "where", "what"}.

@@ -62,7 +62,7 @@ void reply_error(httplib::Response& res, int status, const std::string& where, c
 
 StudioServer::Impl::Impl(const StudioOptions& o)
     : options(o), scene(parse_scene_file(o.scene)), folder(fs::absolute(o.scene).parent_path().string()),
-      points(points_path(scene)), scene_file(o.scene, "") {
+      points(points_path(scene)), scene_file(o.scene, ""), render(o.scene) {
   load_photo(*this);
   http.set_payload_max_length(options.max_body_bytes);
   for (const StudioAsset* a = kStudioAssets; a->name; ++a)

@@ -1,14 +1,16 @@
 #!/usr/bin/env python3
 """insitu studio in a real browser (issue 18): Debian's chromium, driven by python3-selenium.
 
-    python3 tests/studio/browser_test.py INSITU_BINARY [SCREENSHOT_DIR]
+    python3 tests/studio/browser_test.py INSITU_BINARY [SCREENSHOT_DIR [RENDER_SPP]]
 
 Starts `insitu studio` on a copy of the demo scene whose points.json is empty, clicks seven of the
 demo's landmarks on the photo (on two walls: not coplanar), types their names and 3D positions, and checks that points.json holds them
 (the file the CLI reads), that the calibration panel shows the demo's model ("f": the generator's
 camera has square pixels and a centred principal point) and that a removed point leaves the file.
 Then the shots panel: six shots laid out with the faced wall marked, and a click on "turn" that
-writes the turn into scene.json. A screenshot of each panel goes to SCREENSHOT_DIR (default: a temporary folder) for a person to
+writes the turn into scene.json. Then the light and render panel: a render that reaches 100 %,
+the key slider re-mapping it, and the A/B flip to a realtime render. A screenshot of each panel
+goes to SCREENSHOT_DIR (default: a temporary folder) for a person to
 look at. Exits 77 (ctest's skip) with a message when chromium, chromedriver or selenium is absent
 or chromium cannot start.
 """
@@ -102,6 +104,7 @@ def main():
     try:
         run(browser, url, truth, points_file, shots)
         run_shots(browser, os.path.join(scene_dir, "scene.json"), shots)
+        run_render(browser, shots, scene_dir, sys.argv[3] if len(sys.argv) > 3 else "16")
     finally:
         browser.quit()
         studio.terminate()
@@ -161,6 +164,48 @@ def run_shots(browser, scene_file, shots):
     WebDriverWait(browser, 20).until(
         lambda b: "turned 90°" in b.find_element(By.CSS_SELECTOR, '#cube .cell[data-face="+x"]').text)
     print(f"browser_test: shots panel: turned +x, scene file holds {shot_of(scene_file, '+x')}")
+
+
+
+def image_loaded(browser, element_id, src_part):
+    return browser.execute_script(
+        "const i = document.getElementById(arguments[0]);"
+        "return i.src.includes(arguments[1]) && i.complete && i.naturalWidth > 0;", element_id, src_part)
+
+
+def run_render(browser, shots, scene_dir, spp_text):
+    browser.set_window_size(1500, 900)
+    browser.find_element(By.ID, "tab-render").click()
+    spp = browser.find_element(By.ID, "spp")
+    spp.clear()
+    spp.send_keys(spp_text)
+    browser.find_element(By.ID, "render-scene").click()
+    WebDriverWait(browser, 240).until(lambda b: "done, 100 %" in b.find_element(By.ID, "render-state").text)
+    WebDriverWait(browser, 30).until(lambda b: image_loaded(b, "render-image", "/api/render/path.png")
+                                     and image_loaded(b, "light-irradiance", "irradiance.png"))
+    # The key slider re-maps the image without a render: a new query, the same pass.
+    before = browser.find_element(By.ID, "render-image").get_attribute("src")
+    browser.execute_script("const k = document.getElementById('key'); k.value = '0.7';"
+                           "k.dispatchEvent(new Event('input'));")
+    WebDriverWait(browser, 30).until(lambda b: "key=2.0138" in b.find_element(By.ID, "render-image").get_attribute("src"))
+    assert before.split("pass=")[1] == browser.find_element(By.ID, "render-image").get_attribute("src").split("pass=")[1]
+    WebDriverWait(browser, 30).until(lambda b: image_loaded(b, "render-image", "key=2.0138"))
+    browser.execute_script("const k = document.getElementById('key'); k.value = '0';"
+                           "k.dispatchEvent(new Event('input'));")
+    WebDriverWait(browser, 30).until(lambda b: image_loaded(b, "render-image", "key=1.0000"))
+    print(f"browser_test: render panel: {browser.find_element(By.ID, 'render-caption').text}")
+    # Saved as `insitu render` writes it: the demo's outputs.
+    browser.find_element(By.ID, "render-save").click()
+    WebDriverWait(browser, 60).until(lambda b: "wrote" in b.find_element(By.ID, "saved").text)
+    assert os.path.getsize(os.path.join(scene_dir, "out", "composite.png")) > 0
+    browser.save_screenshot(os.path.join(shots, "studio_render.png"))
+    # A/B: a realtime render, then the flip back to path.
+    browser.find_element(By.ID, "render-realtime").click()
+    WebDriverWait(browser, 240).until(lambda b: "realtime: done, 100 %" in b.find_element(By.ID, "render-state").text)
+    WebDriverWait(browser, 30).until(lambda b: image_loaded(b, "render-image", "/api/render/realtime.png"))
+    browser.find_element(By.CSS_SELECTOR, '#ab button[data-slot="path"]').click()
+    WebDriverWait(browser, 30).until(lambda b: image_loaded(b, "render-image", "/api/render/path.png"))
+    print("browser_test: render panel: A/B between path and realtime")
 
 
 if __name__ == "__main__":

@@ -1,0 +1,83 @@
+// insitu studio's light and render panel (issue 18, "Light and render"): a render of the scene
+// streamed pass by pass with its noise figure, the tone map's key and bias re-mapping the current
+// image without rendering again (the legacy brightness slider), an A/B flip between the scene's
+// integrator and `realtime` (the legacy real-time path), and the light the render uses: the
+// radiance cube and its irradiance. The server renders (render_job.h); this page polls it.
+"use strict";
+
+const R = { status: null, shown: null, timer: null, seen: {} };
+
+function tonemap_query() {
+  const op = $("tonemap").value;
+  if (op === "photo") return "tonemap=photo";
+  const key = Math.exp(Number($("key").value));  // the slider is log(key)
+  return `tonemap=${op}&key=${key.toFixed(4)}&bias=${Number($("bias").value).toFixed(2)}`;
+}
+
+function show_image() {
+  const slots = R.status ? R.status.slots : {};
+  if (!R.shown || !slots[R.shown] || !slots[R.shown].image) return;
+  const s = slots[R.shown];
+  $("render-image").src = `/api/render/${R.shown}.png?${tonemap_query()}&pass=${s.passes}&t=${s.seconds}`;
+  $("render-caption").textContent = `${R.shown}: ${s.spp_done} of ${s.spp} spp in ${s.seconds.toFixed(1)} s, ` +
+    `noise ${s.noise >= 0 ? (100 * s.noise).toFixed(2) + " %" : "–"}${s.done ? "" : " (rendering)"}`;
+}
+
+function ab_buttons() {
+  const row = $("ab");
+  row.replaceChildren();
+  for (const name of Object.keys(R.status.slots)) {
+    const b = Object.assign(document.createElement("button"), { textContent: name, className: name === R.shown ? "active" : "" });
+    b.dataset.slot = name;
+    b.onclick = () => { R.shown = name; ab_buttons(); show_image(); };
+    row.append(b);
+  }
+}
+
+async function poll() {
+  const { status: code, data } = await api("GET", "/api/render");
+  if (code !== 200) return;
+  R.status = data;
+  const busy = data.state === "loading" || data.state === "rendering";
+  const slot = data.slots[data.integrator];
+  const percent = Math.round(100 * (data.state === "done" ? 1 : data.fraction));
+  $("render-progress").value = percent;
+  $("render-state").textContent = data.state === "loading" ? "loading the scene…" :
+    `${data.integrator}: ${data.state}, ${percent} %` + (slot && slot.noise >= 0 ? `, noise ${(100 * slot.noise).toFixed(2)} %` : "");
+  $("render-error").replaceChildren(...(data.error ? [error_span(`${data.error.where ? data.error.where + ": " : ""}${data.error.what}`)] : []));
+  if (data.light && !R.seen.light) {
+    R.seen.light = true;
+    $("light-cube").src = `/api/light/cube.png?t=${Date.now()}`;
+    $("light-irradiance").src = `/api/light/irradiance.png?t=${Date.now()}`;
+  }
+  if (busy || !R.shown) R.shown = data.integrator || R.shown;
+  ab_buttons();
+  const key = R.shown && data.slots[R.shown] ? `${R.shown}:${data.slots[R.shown].passes}:${data.slots[R.shown].done}` : "";
+  if (key !== R.seen.image) { R.seen.image = key; show_image(); }
+  if (!busy && R.timer) { clearInterval(R.timer); R.timer = null; }
+}
+
+async function start_render(integrator) {
+  const spp = $("spp").value === "" ? 0 : Number($("spp").value);
+  const { status: code, data } = await api("POST", "/api/render", { integrator, spp });
+  if (code !== 200) { $("render-error").replaceChildren(error_span(data.error)); return; }
+  R.seen.light = false;
+  R.shown = null;
+  if (!R.timer) R.timer = setInterval(poll, 300);
+  poll();
+}
+
+$("render-scene").onclick = () => start_render("");
+$("render-realtime").onclick = () => start_render("realtime");
+$("render-stop").onclick = async () => { await api("POST", "/api/render/stop"); poll(); };
+for (const id of ["tonemap", "key", "bias"]) $(id).oninput = () => {
+  $("key-value").textContent = Math.exp(Number($("key").value)).toFixed(2);
+  $("bias-value").textContent = Number($("bias").value).toFixed(2);
+  show_image();
+};
+$("render-save").onclick = async () => {
+  const { status: code, data } = await api("POST", "/api/render/save");
+  if (code === 200) $("saved").replaceChildren(Object.assign(document.createElement("span"), { className: "ok", textContent: `wrote ${data.written.join(", ")}` }));
+  else $("saved").replaceChildren(error_span(data.error));
+};
+PANELS.render = poll;

@@ -1,0 +1,141 @@
+#include "studio/render_job.h"
+
+#include <chrono>
+
+#include "light/irradiance.h"
+#include "light/preview.h"
+#include "output/tonemap.h"
+#include "scene/pipeline.h"
+#include "studio/preview_png.h"
+
+namespace insitu {
+
+struct RenderJob::Finished {
+  std::shared_ptr<const LoadedScene> scene;
+  RenderResult result;
+};
+
+namespace {
+
+json error_json(const std::string& where, const std::string& what) { return {{"where", where}, {"what", what}}; }
+
+}  // namespace
+
+void RenderJob::start(const std::string& integrator, int spp) {
+  const std::lock_guard<std::mutex> control(control_);
+  stop_worker();
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    state_ = "loading", integrator_ = integrator, fraction_ = 0, error_.reset();
+  }
+  stop_ = false;
+  worker_ = std::thread([this, integrator, spp] { run(integrator, spp); });
+}
+
+void RenderJob::stop() {
+  const std::lock_guard<std::mutex> control(control_);
+  stop_worker();
+}
+
+void RenderJob::stop_worker() {
+  stop_ = true;
+  if (worker_.joinable()) worker_.join();
+}
+
+void RenderJob::publish(const std::string& name, Slot slot) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  slots_[name] = std::move(slot);
+}
+
+// The worker: load, preview the light, render pass by pass. Bad input ends it with the library's
+// message (`error`); nothing escapes the thread.
+void RenderJob::run(const std::string& integrator, int spp) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+  try {
+    SceneSpec spec = parse_scene_file(scene_path_);
+    if (!integrator.empty()) spec.render.integrator = integrator;
+    if (spp > 0) spec.render.spp = spp;
+    const auto loaded = std::make_shared<const LoadedScene>(load_scene(spec));
+    const LoadedScene& scene = *loaded;
+    const std::string name = scene.integrator.entry->name;
+    {  // The light as this render uses it: the cube, and its exact irradiance over π.
+      const double exposure = preview_exposure(scene.environment);
+      const auto field = make_irradiance(IrradianceMode::kExact, scene.environment);
+      std::string cube = display_png(cube_cross_preview(scene.environment, exposure));
+      std::string irradiance = display_png(cube_cross_preview(irradiance_cube(*field, 32, 1 / kPiF), exposure));
+      const std::lock_guard<std::mutex> lock(mutex_);
+      cube_png_ = std::move(cube), irradiance_png_ = std::move(irradiance);
+      state_ = "rendering", integrator_ = name;
+      slots_[name] = Slot{};  // this integrator's image is the new render's from its first pass on
+    }
+    RenderState state;
+    const RenderControl control{&stop_, &state};
+    int passes = 0;
+    const auto progress = [&](const RenderProgress& p) {
+      { const std::lock_guard<std::mutex> lock(mutex_); fraction_ = p.fraction; }
+      if (p.noise < 0) return;  // within a pass, from the rendering threads
+      // Between passes: the threads are idle and the state holds the samples so far.
+      RenderResult r = finish_render(scene, layers_from_state(state));
+      publish(name, {std::move(r.composite_linear), std::move(r.composite_encoded), p.spp_done, spec.render.spp, ++passes, p.noise,
+                     seconds(), false});
+    };
+    const RenderResult last = render_scene(scene, progress, control);
+    Slot final_slot{last.composite_linear, last.composite_encoded, last.layers.spp_done, spec.render.spp, passes,
+                    last.layers.mean_relative_noise, seconds(), !last.layers.interrupted};
+    if (passes > 0 || !last.layers.interrupted) publish(name, std::move(final_slot));  // stopped before a pass: nothing
+    auto finished = last.layers.interrupted || !integrator.empty() ? nullptr : std::make_shared<const Finished>(Finished{loaded, last});
+    const std::lock_guard<std::mutex> lock(mutex_);
+    state_ = last.layers.interrupted ? "stopped" : "done";
+    if (finished) finished_ = std::move(finished);
+  } catch (const InputError& e) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    state_ = "error", error_ = error_json(e.where(), e.message());
+  } catch (const std::exception& e) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    state_ = "error", error_ = error_json("", std::string("internal error: ") + e.what());
+  }
+}
+
+json RenderJob::status() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  json slots = json::object();
+  for (const auto& [name, s] : slots_)
+    slots[name] = {{"spp_done", s.spp_done}, {"spp", s.spp}, {"noise", s.noise}, {"seconds", s.seconds},
+                   {"done", s.done}, {"passes", s.passes}, {"image", !s.linear.data.empty()}};
+  return {{"state", state_}, {"integrator", integrator_}, {"fraction", fraction_}, {"slots", slots},
+          {"error", error_ ? *error_ : json(nullptr)}, {"light", cube_png_.has_value()}};
+}
+
+std::optional<std::string> RenderJob::png(const std::string& name, const ToneMapSettings& tonemap) const {
+  Image image;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const auto it = slots_.find(name);
+    if (it == slots_.end() || it->second.linear.data.empty()) return std::nullopt;
+    image = tonemap.op == ToneMap::kPhoto ? it->second.encoded : it->second.linear;
+  }
+  return display_png(tonemap.op == ToneMap::kPhoto ? image : insitu::tonemap(image, tonemap));
+}
+
+std::optional<std::string> RenderJob::light_png(bool irradiance) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return irradiance ? irradiance_png_ : cube_png_;
+}
+
+std::vector<std::string> RenderJob::save_outputs() const {
+  std::shared_ptr<const Finished> f;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    f = finished_;
+  }
+  if (!f) throw InputError("", "no finished render of the scene's own integrator to save yet");
+  write_outputs(*f->scene, f->result);
+  const OutputSpec& out = f->scene->spec.output;
+  std::vector<std::string> paths = {out.image};
+  if (!out.layers.empty()) paths.push_back(out.layers);
+  paths.push_back(report_path(out.image));
+  return paths;
+}
+
+}  // namespace insitu

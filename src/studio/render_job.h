@@ -1,0 +1,82 @@
+// The light and render panel's work (issue 18, "Light and render"): one render at a time, on its
+// own thread, of the scene file as it is when the render starts.
+//
+// A render loads the scene with the library (load_scene: the light recovered as the CLI recovers
+// it), makes the light's previews (the radiance cube and its exact irradiance E/π, unfolded, at
+// one exposure), then renders with render_scene. After each pass of samples the render loop calls
+// back between passes, its threads idle; the composite of the samples so far
+// (layers_from_state + finish_render) is published then, with the noise figure the loop reports
+// (mean relative standard error over the pixels the render changes). So the page sees the render
+// converge pass by pass, and the last image is the one `insitu render` would write.
+//
+// Each integrator's latest image is kept in its own slot ("path", "realtime", ...), linear and
+// photo-encoded, so the page can tone map either again (adaptive_log's key and bias) without
+// rendering, and flip between the scene's integrator and `realtime` (the legacy path, A/B).
+#pragma once
+#include <atomic>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/image.h"
+#include "core/json_reader.h"
+#include "output/settings.h"
+
+namespace insitu {
+
+class RenderJob {
+ public:
+  explicit RenderJob(std::string scene_path) : scene_path_(std::move(scene_path)) {}
+  ~RenderJob() { stop(); }
+  RenderJob(const RenderJob&) = delete;
+  RenderJob& operator=(const RenderJob&) = delete;
+
+  // Starts a render with `integrator` ("": the scene's) and `spp` (0: the scene's), stopping one
+  // under way first.
+  void start(const std::string& integrator, int spp);
+  // Stops the render under way after its current pass, and waits for it.
+  void stop();
+  // {"state": "idle" | "loading" | "rendering" | "done" | "stopped" | "error", "integrator",
+  //  "fraction", "spp_done", "spp", "noise", "passes", "seconds", "error": {"where", "what"},
+  //  "slots": {name: {"spp_done", "spp", "noise", "seconds", "done", "passes"}}, "light": bool}
+  json status() const;
+  // The latest image of slot `name`, tone mapped by `tonemap` (photo: the composite as encoded
+  // through the photo's own curve), as PNG; nullopt when that slot has no image yet.
+  std::optional<std::string> png(const std::string& name, const ToneMapSettings& tonemap) const;
+  // The light's previews as PNG (`irradiance`: E/π; else the radiance), once a scene has loaded.
+  std::optional<std::string> light_png(bool irradiance) const;
+  // Writes the last finished render of the scene's own integrator to the scene's outputs, as
+  // `insitu render` does (write_outputs: atomic, never over an input); their paths. Throws
+  // InputError when there is none yet.
+  std::vector<std::string> save_outputs() const;
+
+ private:
+  struct Slot {
+    Image linear, encoded;
+    int spp_done = 0, spp = 0, passes = 0;
+    double noise = -1, seconds = 0;
+    bool done = false;
+  };
+  void run(const std::string& integrator, int spp);
+  void stop_worker();  // with control_ held
+  void publish(const std::string& name, Slot slot);
+
+  std::string scene_path_;
+  std::mutex control_;  // serializes start() and stop() (two tabs may press at once)
+  std::thread worker_;
+  std::atomic<bool> stop_{false};
+  mutable std::mutex mutex_;  // guards everything below
+  std::string state_ = "idle", integrator_;
+  double fraction_ = 0;
+  std::optional<json> error_;
+  std::map<std::string, Slot> slots_;
+  std::optional<std::string> cube_png_, irradiance_png_;
+  struct Finished;  // a scene and its finished render, for save_outputs
+  std::shared_ptr<const Finished> finished_;
+};
+
+}  // namespace insitu
