@@ -49,6 +49,10 @@ start=$(date +%s)
 echo "check-fresh-install: building a minimal Debian 12 root in $root (sources: $sources)"
 mmdebstrap --quiet --variant=minbase --mode=root bookworm "$root" "$sources"
 mount -t proc proc "$root/proc"
+# Every installed Debian machine has an /etc/hosts (the installer or the cloud image writes it; no
+# package does), and mmdebstrap's root has none: without it "localhost" does not resolve, and
+# selenium cannot reach chromedriver, so the studio's browser test skipped here (found 2026-11-24).
+printf '127.0.0.1\tlocalhost\n::1\tlocalhost ip6-localhost ip6-loopback\n' > "$root/etc/hosts"
 
 # The work tree as a fresh clone would have it (tracked and new files, nothing ignored).
 mkdir -p "$root/root/insitu"
