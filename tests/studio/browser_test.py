@@ -94,7 +94,7 @@ def main():
     shots = sys.argv[2] if len(sys.argv) > 2 else work
     os.makedirs(shots, exist_ok=True)
     scene_dir = os.path.join(work, "demo")
-    shutil.copytree(source, scene_dir)
+    shutil.copytree(source, scene_dir, ignore=shutil.ignore_patterns("out"))  # not the README demo's outputs
     truth = json.load(open(os.path.join(scene_dir, "points.json")))
     points_file = os.path.join(scene_dir, "points.json")
     with open(points_file, "w") as f:
