@@ -36,9 +36,21 @@ try:
     from selenium.webdriver.common.action_chains import ActionChains
     from selenium.webdriver.chrome.service import Service
     from selenium.webdriver.common.by import By
-    from selenium.webdriver.support.ui import WebDriverWait
+    from selenium.common.exceptions import StaleElementReferenceException
+    from selenium.webdriver.support.ui import WebDriverWait as SeleniumWait
 except ImportError:
     skip("python3-selenium is not installed (apt-get install chromium chromium-driver python3-selenium)")
+
+
+def WebDriverWait(browser, seconds):
+    """selenium's wait, retrying when an element was replaced between its lookup and its use: the
+    page rebuilds the unfolded cube and the A/B buttons whenever the server answers."""
+    return SeleniumWait(browser, seconds, ignored_exceptions=(StaleElementReferenceException,))
+
+
+def click(browser, css):
+    """Clicks the element `css` names, looked up again if the page replaced it meanwhile."""
+    WebDriverWait(browser, 20).until(lambda b: b.find_element(By.CSS_SELECTOR, css).click() or True)
 
 
 def start_browser():
@@ -158,7 +170,7 @@ def run_shots(browser, scene_file, shots):
     assert column("-x") < column("-z") < column("+x") < column("+z")
     browser.save_screenshot(os.path.join(shots, "studio_shots.png"))
     assert not isinstance(shot_of(scene_file, "+x"), dict)
-    browser.find_element(By.CSS_SELECTOR, '#cube .cell[data-face="+x"] button.turn').click()
+    click(browser, '#cube .cell[data-face="+x"] button.turn')
     WebDriverWait(browser, 20).until(lambda b: isinstance(shot_of(scene_file, "+x"), dict)
                                      and shot_of(scene_file, "+x").get("rotate_deg") == 90)
     WebDriverWait(browser, 20).until(
@@ -203,7 +215,7 @@ def run_render(browser, shots, scene_dir, spp_text):
     browser.find_element(By.ID, "render-realtime").click()
     WebDriverWait(browser, 240).until(lambda b: "realtime: done, 100 %" in b.find_element(By.ID, "render-state").text)
     WebDriverWait(browser, 30).until(lambda b: image_loaded(b, "render-image", "/api/render/realtime.png"))
-    browser.find_element(By.CSS_SELECTOR, '#ab button[data-slot="path"]').click()
+    click(browser, '#ab button[data-slot="path"]')
     WebDriverWait(browser, 30).until(lambda b: image_loaded(b, "render-image", "/api/render/path.png"))
     print("browser_test: render panel: A/B between path and realtime")
 
