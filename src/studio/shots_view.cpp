@@ -110,10 +110,10 @@ std::string shot_preview_png(const std::string& scene_path, int face, int max_si
   }
   // A bracket's middle exposure is shown, with what clipped in its shortest (the one that clipped
   // least), whose clipping the library reports.
+  std::vector<double> clipped_fractions;
+  for (const ImageFile& f : files) clipped_fractions.push_back(clipped_fraction(f));
   const ImageFile& file = files[files.size() / 2];
-  const ImageFile& shortest = *std::min_element(files.begin(), files.end(), [](const ImageFile& a, const ImageFile& b) {
-    return clipped_fraction(a) < clipped_fraction(b);
-  });
+  const ImageFile& shortest = files[std::size_t(std::min_element(clipped_fractions.begin(), clipped_fractions.end()) - clipped_fractions.begin())];
   Image linear = linearize(file);
   if (!file.display_referred) {
     double sum = 0;

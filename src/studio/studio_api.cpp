@@ -17,6 +17,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A save or an edit made from a version the file no longer has (PUT /api/points, POST /api/shots).
+constexpr const char* kConflict = "changed since this page read it (another tab or program saved it); reload to see it";
+
 // The request's body as JSON; its name in messages is the route's.
 json body_json(const httplib::Request& req) { return parse_json_text(req.body, req.path); }
 
@@ -53,7 +56,7 @@ void put_points(StudioServer::Impl& s, const httplib::Request& req, httplib::Res
     throw InputError(req.path, "expected {\"version\": \"...\", \"points\": [...]}");
   const VersionedFile::UpdateResult r = s.points.save(body["points"], body["version"].get<std::string>());
   if (!r.saved) {
-    reply_error(res, 409, s.points.path(), "changed since this page read it (another tab or program saved it); reload to see it");
+    reply_error(res, 409, s.points.path(), kConflict);
     return;
   }
   res.set_content(json{{"version", r.now.version}}.dump(), "application/json");
@@ -105,7 +108,7 @@ void post_shots(StudioServer::Impl& s, const httplib::Request& req, httplib::Res
     if (op == "turn") return turn_shot(scene, name, text("key"), by_deg);
     return set_faced_wall(scene, name, text("wall"));
   });
-  if (!r.saved) return reply_error(res, 409, name, "changed since this page read it (another tab or program saved it); reload to see it");
+  if (!r.saved) return reply_error(res, 409, name, kConflict);
   res.set_content(json{{"version", r.now.version}}.dump(), "application/json");
 }
 
@@ -134,7 +137,7 @@ ToneMapSettings query_tonemap(const httplib::Request& req) {
   ToneMapSettings t;
   const std::string op = req.has_param("tonemap") ? req.get_param_value("tonemap") : "photo";
   const auto parsed = parse_name(kToneMaps, op);
-  if (!parsed) throw InputError(req.path + "?tonemap", "expected photo, adaptive_log, reinhard or linear");
+  if (!parsed) throw InputError(req.path + "?tonemap", "expected " + quoted_choices(names_of(kToneMaps)));
   t.op = *parsed;
   if (req.has_param("key")) t.key = query_number(req, "key", 1e-6, 1e6, 1);
   t.bias = query_number(req, "bias", 0.01, 0.99, t.bias);

@@ -1,14 +1,23 @@
-// insitu studio (issue 18): a local web page over one scene, served on 127.0.0.1 only, to click
-// the control points, see the calibration after every change, and save points.json.
+// insitu studio (issue 18): a local web page over one scene, served on 127.0.0.1 only, with three
+// panels: the control points (calibrated after every change, saved to points.json), the six shots
+// (turned, swapped, the faced wall set in the scene file), and the light and render.
 //
 // The server (cpp-httplib, Debian's libcpp-httplib-dev) answers:
-//   GET  /, /studio.js, /studio.css   the page (src/studio/page/, compiled in)
+//   GET  /, /studio.js, ...           the page (src/studio/page/, compiled in)
 //   GET  /api/state                   the scene's photo size, points.json's text and version
 //   GET  /api/photo.png               the photo, sRGB 8-bit (any photo format the CLI reads)
 //   GET  /files/PATH                  a file under the scene's folder (file_under.h), else 404
 //   PUT  /api/points                  {"version", "points"}: saved atomically, or 409 on conflict
 //   POST /api/calibrate               {"points", "model"}: calibration_view.h
 //   POST /api/snap                    {"uv"}: corner_snap.h
+//   GET  /api/shots                   the shots as assembled, and the scene file's version (shots_view.h)
+//   GET  /api/shot/N.png              shot N (0..5) as used, clipped pixels red
+//   POST /api/shots                   {"version", "op": swap | turn | faced, ...}: scene_edit.h, or 409
+//   POST /api/render                  {"integrator", "spp"}: a render started (render_job.h)
+//   POST /api/render/stop, /save      stop it; write the scene's outputs from the last finished one
+//   GET  /api/render                  its state, progress, noise and each integrator's slot
+//   GET  /api/render/NAME.png         slot NAME's latest image, ?tonemap=&key=&bias=
+//   GET  /api/light/cube.png, /api/light/irradiance.png   the light the render used
 // Errors are 400 with {"error": "<where>: <what>", "where", "what"}: the CLI's message. Request
 // bodies over 1 MiB are refused (413) before they are read.
 #pragma once
