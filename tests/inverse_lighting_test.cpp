@@ -8,6 +8,7 @@
 
 #include "cube_fixture.h"
 #include "light/clipped_sources.h"
+#include "light/irradiance.h"
 #include "render/inverse_lighting.h"
 #include "render/plane_irradiance.h"
 
@@ -164,6 +165,77 @@ TEST(InverseLighting, OpenPlaneWithAReferenceAlbedoIsDetermined) {
   ASSERT_TRUE(r.sources[0].determined) << r.message;
   EXPECT_NEAR(r.sources[0].scale, 50.0, 5.0);
   EXPECT_EQ(r.reference_surfaces, 1);
+}
+
+// A sheet of paper on the floor, seen in the photo: painted over pixels [13, 31) × [23, 34) (its
+// albedo instead of the floor's: P = ρ E / π at the same irradiance), and clicked a pixel inside
+// its edges, as a user would.
+const std::vector<Vec2d> kSheet = {{14, 24}, {30, 24}, {30, 33}, {14, 33}};
+
+void lay_sheet(Image& photo, float floor_albedo, float sheet_albedo) {
+  for (int y = 23; y < 34; ++y)
+    for (int x = 13; x < 31; ++x) photo.set_rgb(x, y, photo.rgb(x, y) * (sheet_albedo / floor_albedo));
+}
+
+// The lamp over an open floor of albedo 0.3 with a white sheet (0.8) on it, said to be `stated`.
+void open_plane_with_sheet(Fixture& fx, float stated) {
+  make_room(fx);
+  fx.in.room.reset();
+  fx.photo = photo_of(fx.in, fx.truth, 0.3f);
+  lay_sheet(fx.photo, 0.3f, 0.8f);
+  fx.in.references.push_back({kSheet, stated});
+}
+
+// Over an open plane the floor's albedo is unknown, but a white sheet in the photo fixes the
+// irradiance there, and with it the lamp's scale.
+TEST(InverseLighting, OpenPlaneWithAWhiteSheetInThePhotoIsDetermined) {
+  Fixture fx;
+  open_plane_with_sheet(fx, 0.8f);
+  const InverseLightingResult r = recover_clipped_sources(fx.in);
+  ASSERT_EQ(r.sources.size(), 1u);
+  ASSERT_TRUE(r.sources[0].determined) << r.message;
+  EXPECT_NEAR(r.sources[0].scale, 50.0, 5.0);
+  EXPECT_EQ(r.reference_surfaces, 1);
+  ASSERT_EQ(r.references.size(), 1u);
+  // The pixels whose centres lie inside: x 14 … 29, y 24 … 32.
+  EXPECT_EQ(r.references[0].sampled, 16 * 9);
+  EXPECT_EQ(r.references[0].used, r.references[0].sampled);
+}
+
+// The reference drives the scale as P = ρ E / π says: a sheet said to be 0.4 where it is 0.8 means
+// twice the true irradiance, E_rest + s E_lamp = 2 (E_rest + 50 E_lamp), so s = 100 + E_rest / E_lamp
+// with both irradiances exact from the clipped cube (the lamp's texels at their lower bound).
+TEST(InverseLighting, ASheetsAlbedoSetsTheScaleAsPhysicsSays) {
+  Fixture fx;
+  open_plane_with_sheet(fx, 0.4f);
+  const auto sources = find_clipped_sources(fx.mask, fx.clipped);
+  ASSERT_EQ(sources.size(), 1u);
+  const double e_rest = luminance(irradiance_reference(with_scaled_sources(fx.clipped, sources, {0.0}), Vec3d(0, 1, 0)));
+  const double e_lamp = luminance(irradiance_reference(source_only(fx.clipped, sources[0]), Vec3d(0, 1, 0)));
+  const double expected = 100 + e_rest / e_lamp;
+  const InverseLightingResult r = recover_clipped_sources(fx.in);
+  ASSERT_EQ(r.sources.size(), 1u);
+  ASSERT_TRUE(r.sources[0].determined) << r.message;
+  EXPECT_NEAR(r.sources[0].scale, expected, 0.1 * expected) << "E_rest / E_lamp " << e_rest / e_lamp;
+}
+
+// A white sheet the photo clipped says nothing: its pixels are left out and counted, and the open
+// plane stays undetermined.
+TEST(InverseLighting, ASheetClippedInThePhotoServesNothing) {
+  Fixture fx;
+  open_plane_with_sheet(fx, 0.8f);
+  Image clipped(fx.photo.width, fx.photo.height, 3);
+  for (int y = 20; y < 36; ++y)
+    for (int x = 10; x < 34; ++x) clipped.set_rgb(x, y, Rgb(1, 1, 1));
+  fx.in.photo_clipped = &clipped;
+  const InverseLightingResult r = recover_clipped_sources(fx.in);
+  ASSERT_EQ(r.references.size(), 1u);
+  EXPECT_GT(r.references[0].sampled, 100);
+  EXPECT_EQ(r.references[0].clipped, r.references[0].sampled);
+  EXPECT_EQ(r.references[0].used, 0);
+  EXPECT_EQ(r.reference_surfaces, 0);
+  ASSERT_EQ(r.sources.size(), 1u);
+  EXPECT_FALSE(r.sources[0].determined);
 }
 
 // A source that lights nothing the photo shows (below the floor's horizon) is not determined,

@@ -76,5 +76,42 @@ TEST(LightRecovery, AnHdrImageNeedsNothing) {
   EXPECT_EQ(light_of(fx, "out.exr.report.json")["determined_by"], "hdr image");
 }
 
+// A white sheet drawn in the photo: the report counts its pixels (sampled, clipped, used), and
+// what determined the light is whatever the fit found, with a reference when the sheet served.
+TEST(LightRecovery, AReferenceInThePhotoIsCountedInTheReport) {
+  SceneFixture fx;
+  auto j = clipped_shots_scene(fx);
+  j["references"] = {{{"polygon_px", {{10, 20}, {30, 20}, {30, 31}, {10, 31}}}, {"albedo", 0.8}}};
+  const CliRun r = run_insitu(fx.dir, "render " + fx.write(j) + " -o " + fx.dir.file("out.exr") + " --layers none");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto light = light_of(fx, "out.exr.report.json");
+  const auto& refs = light["inverse_lighting"]["references"];
+  ASSERT_EQ(refs.size(), 1u) << light.dump();
+  EXPECT_EQ(refs[0]["albedo"], 0.8);
+  EXPECT_GT(refs[0]["pixels_sampled"].get<int>(), 100);
+  const int used = refs[0]["pixels_used"].get<int>();
+  EXPECT_EQ(light["inverse_lighting"]["reference_surfaces"].get<int>(), used > 0 ? 1 : 0);
+  if (light["inverse_lighting"]["sources"][0]["determined"].get<bool>())
+    EXPECT_EQ(light["determined_by"], used > 0 ? "inverse lighting with a reference" : "inverse lighting");
+}
+
+// A corner outside the photo is refused where it is; a reference where nothing clipped is warned
+// of (it has no effect), not refused.
+TEST(LightRecovery, AReferenceOutsideThePhotoIsRefusedAndOneNotNeededIsWarnedOf) {
+  SceneFixture fx;
+  auto j = clipped_shots_scene(fx);
+  j["references"] = {{{"polygon_px", {{10, 20}, {48.5, 20}, {30, 31}}}, {"albedo", 0.8}}};
+  const CliRun bad = run_insitu(fx.dir, "render " + fx.write(j) + " -o " + fx.dir.file("out.exr") + " --layers none");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("$.references[0].polygon_px[1]: (48.5, 20) lies outside the photo (48 x 32 pixels)"),
+            std::string::npos) << bad.err;
+  auto hdr = fx.scene;
+  hdr["references"] = {{{"polygon_px", {{10, 20}, {30, 20}, {30, 31}}}, {"albedo", 0.18}}};
+  const CliRun ok = run_insitu(fx.dir, "render " + fx.write(hdr) + " -o " + fx.dir.file("out.exr") + " --layers none");
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_NE(ok.err.find("$.references: nothing clipped in the environment: the references are not needed"), std::string::npos)
+      << ok.err;
+}
+
 }  // namespace
 }  // namespace insitu

@@ -121,6 +121,26 @@ TEST(SceneFile, MeanAlbedoAndInverseLighting) {
   expect_error(fx, j, ":$.environment.inverse_lighting", "expected true or false");
 }
 
+// A reference in the photo: its polygon as given, its albedo; a polygon of fewer than three corners
+// or of less than a pixel's area is refused where it is.
+TEST(SceneFile, ReferencesInThePhoto) {
+  SceneFixture fx;
+  auto j = fx.scene;
+  j["references"] = {{{"polygon_px", {{1, 2}, {9.5, 2}, {9.5, 7}}}, {"albedo", 0.18}}};
+  const SceneSpec spec = parse_scene_file(fx.write(j));
+  ASSERT_EQ(spec.references.size(), 1u);
+  EXPECT_EQ(spec.references[0].albedo, 0.18);
+  ASSERT_EQ(spec.references[0].polygon_px.size(), 3u);
+  EXPECT_EQ(spec.references[0].polygon_px[1], Vec2d(9.5, 2));
+  EXPECT_NE(spec.references[0].where.find(":$.references[0]"), std::string::npos);
+  j["references"][0]["polygon_px"] = {{1, 2}, {9.5, 2}};
+  expect_error(fx, j, ":$.references[0].polygon_px", "3 or more");
+  j["references"][0]["polygon_px"] = {{1, 1}, {2, 2}, {3, 3.5}};  // area ¼ pixel
+  expect_error(fx, j, ":$.references[0].polygon_px", "less than one pixel");
+  j["references"][0]["polygon_px"] = {{1, 2}, {9.5, 2}, {9.5}};
+  expect_error(fx, j, ":$.references[0].polygon_px[2]", "[u, v]");
+}
+
 TEST(SceneFile, MissingFilesAndKeys) {
   SceneFixture fx;
   auto j = fx.scene;

@@ -116,7 +116,7 @@ bool done_already(const Entry& e) {
 // them share its loaded room).
 json room_keys(const json& scene) {
   json keys = json::object();
-  for (const char* k : {"photo", "camera", "environment", "local_scene"})
+  for (const char* k : {"photo", "camera", "environment", "local_scene", "references"})
     if (scene.contains(k)) keys[k] = scene[k];
   return keys;
 }

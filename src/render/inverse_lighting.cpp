@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
+#include <opencv2/imgproc.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -61,25 +63,86 @@ bool hit_surface(const Ray& ray, const InverseLightingInput& in, const RoomLight
   return true;
 }
 
-// Photo pixels on a regular grid that see a real surface and are neither clipped nor dark.
-std::vector<FitPixel> gather_pixels(const InverseLightingInput& in, const RoomLight& room) {
+// A reference polygon: a pixel belongs to it when its centre (x + ½, y + ½, DESIGN.md) lies
+// strictly inside (OpenCV's pointPolygonTest), tested within the polygon's bounding box.
+struct ReferenceMask {
+  std::vector<cv::Point2f> polygon;
+  cv::Rect box;
+  double area_px = 0;
+  bool contains(int x, int y) const {
+    return box.contains({x, y}) && cv::pointPolygonTest(polygon, cv::Point2f(float(x) + 0.5f, float(y) + 0.5f), false) > 0;
+  }
+};
+
+ReferenceMask reference_mask(const FitReference& ref, int width, int height) {
+  ReferenceMask m;
+  if (ref.polygon_px.empty()) return m;
+  for (const Vec2d& p : ref.polygon_px) m.polygon.emplace_back(float(p.x()), float(p.y()));
+  // Pixels whose centres lie within the polygon's bounds, clipped to the photo.
+  Vec2d lo = ref.polygon_px.front(), hi = lo;
+  for (const Vec2d& p : ref.polygon_px) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const int x0 = int(std::floor(lo.x() - 0.5)), y0 = int(std::floor(lo.y() - 0.5));
+  const int x1 = int(std::ceil(hi.x() - 0.5)), y1 = int(std::ceil(hi.y() - 0.5));
+  m.box = cv::Rect(x0, y0, x1 - x0 + 1, y1 - y0 + 1) & cv::Rect(0, 0, width, height);
+  m.area_px = std::abs(cv::contourArea(m.polygon));
+  return m;
+}
+
+enum class PixelUse { kUsed, kClipped, kOffSurface };
+
+// Pixel (x, y) of the photo as the fit uses it: not clipped, lit, on a real surface.
+PixelUse sample_pixel(const InverseLightingInput& in, const RoomLight& room, int x, int y, FitPixel& px) {
+  if (in.photo_clipped && in.photo_clipped->rgb(x, y).maxCoeff() > 0) return PixelUse::kClipped;
+  const double p = luminance(in.photo_linear->rgb(x, y));
+  if (!(p > 0) || !hit_surface(in.camera->ray(Vec2d(x + 0.5, y + 0.5)), in, room, px)) return PixelUse::kOffSurface;
+  px.log_p = std::log(p);
+  return PixelUse::kUsed;
+}
+
+// Each reference's pixels, on a grid of about in.reference_pixels inside its polygon: surface
+// planes + 6 + r, whatever real surface they lie on.
+void gather_reference_pixels(const InverseLightingInput& in, const RoomLight& room, const std::vector<ReferenceMask>& masks,
+                             std::vector<FitPixel>& out, std::vector<ReferenceUse>& uses) {
+  for (std::size_t r = 0; r < masks.size(); ++r) {
+    const ReferenceMask& m = masks[r];
+    const int step = std::max(1, int(std::sqrt(m.area_px / std::max(1, in.reference_pixels))));
+    for (int y = m.box.y + step / 2; y < m.box.br().y; y += step)
+      for (int x = m.box.x + step / 2; x < m.box.br().x; x += step) {
+        if (!m.contains(x, y)) continue;
+        FitPixel px;
+        ++uses[r].sampled;
+        const PixelUse use = sample_pixel(in, room, x, y, px);
+        if (use != PixelUse::kUsed) {
+          ++(use == PixelUse::kClipped ? uses[r].clipped : uses[r].off_surface);
+          continue;
+        }
+        px.surface = int(in.planes.size() + 6 + r);
+        out.push_back(px);
+      }
+  }
+}
+
+// Photo pixels on a regular grid that see a real surface and are neither clipped nor dark
+// (outside the references), and the references' own.
+std::vector<FitPixel> gather_pixels(const InverseLightingInput& in, const RoomLight& room, std::vector<ReferenceUse>& uses) {
   const Image& photo = *in.photo_linear;
+  std::vector<ReferenceMask> masks;
+  for (const FitReference& r : in.references) masks.push_back(reference_mask(r, photo.width, photo.height));
+  uses.assign(masks.size(), {});
   const int step = std::max(1, int(std::sqrt(double(photo.width) * photo.height / std::max(1, in.max_pixels))));
   std::vector<FitPixel> out;
-  std::vector<double> lum;
   for (int y = step / 2; y < photo.height; y += step)
     for (int x = step / 2; x < photo.width; x += step) {
-      if (in.photo_clipped && in.photo_clipped->rgb(x, y).maxCoeff() > 0) continue;
-      const double p = luminance(photo.rgb(x, y));
       FitPixel px;
-      if (!(p > 0) || !hit_surface(in.camera->ray(Vec2d(x + 0.5, y + 0.5)), in, room, px)) continue;
-      px.log_p = std::log(p);
-      out.push_back(px);
-      lum.push_back(p);
+      if (std::any_of(masks.begin(), masks.end(), [&](const ReferenceMask& m) { return m.contains(x, y); })) continue;
+      if (sample_pixel(in, room, x, y, px) == PixelUse::kUsed) out.push_back(px);
     }
-  if (lum.empty()) return out;
-  std::nth_element(lum.begin(), lum.begin() + std::ptrdiff_t(lum.size() / 2), lum.end());
-  const double dark = std::log(0.01 * lum[lum.size() / 2]);
+  gather_reference_pixels(in, room, masks, out, uses);
+  if (out.empty()) return out;
+  std::vector<double> log_p;
+  for (const FitPixel& p : out) log_p.push_back(p.log_p);
+  std::nth_element(log_p.begin(), log_p.begin() + std::ptrdiff_t(log_p.size() / 2), log_p.end());
+  const double dark = std::log(0.01) + log_p[log_p.size() / 2];
   out.erase(std::remove_if(out.begin(), out.end(), [&](const FitPixel& p) { return p.log_p < dark; }), out.end());
   return out;
 }
@@ -126,8 +189,9 @@ void estimate_irradiance(std::vector<FitPixel>& pixels, const RoomLight& room0,
   pixels.erase(std::remove_if(pixels.begin(), pixels.end(), [](const FitPixel& p) { return !(p.e0 > 0); }), pixels.end());
 }
 
-// The unknowns' columns: each a set of parts that share one a (a free source's part alone, or
-// every tied source's parts together). coef(p, c) = Σ_{j ∈ c} E_j(p).
+// The unknowns' columns: each a set of parts that share one a (a free source's part alone, a
+// source's parts fitted whole, or the most efficient tied source's parts: make_columns).
+// coef(p, c) = Σ_{j ∈ c} E_j(p).
 using Columns = std::vector<std::vector<int>>;
 
 std::vector<double> column_coefficients(const FitPixel& p, const Columns& columns) {
@@ -277,7 +341,7 @@ Fit solve(const std::vector<FitPixel>& pixels, const Columns& columns, const Alb
 // The unknown ρ start at π · median(P/E0) of their surface; known ones at their value.
 Albedos initial_albedos(const std::vector<FitPixel>& pixels, const InverseLightingInput& in) {
   Albedos a;
-  const std::size_t n = in.planes.size() + 6;
+  const std::size_t n = in.planes.size() + 6 + in.references.size();
   a.log_rho.assign(n, 0.0);
   a.known.assign(n, false);
   a.mean.assign(n, std::nullopt);
@@ -287,9 +351,12 @@ Albedos initial_albedos(const std::vector<FitPixel>& pixels, const InverseLighti
     if (ratio[s].empty()) continue;
     std::nth_element(ratio[s].begin(), ratio[s].begin() + std::ptrdiff_t(ratio[s].size() / 2), ratio[s].end());
     a.log_rho[s] = ratio[s][ratio[s].size() / 2];
-    if (s < in.planes.size() && in.planes[s].albedo) {
+    std::optional<float> known;
+    if (s < in.planes.size()) known = in.planes[s].albedo;
+    if (s >= in.planes.size() + 6) known = in.references[s - in.planes.size() - 6].albedo;
+    if (known) {
       a.known[s] = true;
-      a.log_rho[s] = std::log(std::max(1e-6f, *in.planes[s].albedo));
+      a.log_rho[s] = std::log(std::max(1e-6f, *known));
     }
     if (s < in.planes.size() && in.planes[s].mean_albedo) a.mean[s] = std::max(1e-6f, *in.planes[s].mean_albedo);
     ++a.surfaces;
@@ -471,9 +538,11 @@ InverseLightingResult recover_clipped_sources(const InverseLightingInput& in) {
     cubes[k] = source_only(*in.radiance, res.parts[k].texels);
     lights[k] = std::make_unique<RoomLight>(cubes[k], in.room);
   });
-  std::vector<FitPixel> pixels = gather_pixels(in, room0);
+  std::vector<FitPixel> pixels = gather_pixels(in, room0, res.references);
   estimate_irradiance(pixels, room0, lights, in);
   res.pixels = int(pixels.size());
+  for (const FitPixel& p : pixels)
+    if (p.surface >= int(in.planes.size() + 6)) ++res.references[std::size_t(p.surface) - in.planes.size() - 6].used;
   const Albedos albedos = initial_albedos(pixels, in);
   res.surfaces = albedos.surfaces;
   res.reference_surfaces = albedos.references;

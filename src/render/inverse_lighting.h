@@ -36,7 +36,10 @@
 // judged by the σ of its total added power (its parts need not be told apart).
 //
 // A reference of known mean albedo ρ̄ adds one residual, log(mean_i π P_i / E_i) − log ρ̄ over its
-// pixels, weighted as known to 1 %.
+// pixels, weighted as known to 1 %. A reference in the photo (FitReference: a white sheet, a grey
+// card, drawn as a polygon) is a surface of its own with ρ known: its pixels, sampled more densely
+// than the rest (it is small), leave the surface they lie on and fix the scale through
+// P_i = ρ/π E(x_i) at the geometry they see (the plane or wall under the sheet).
 #pragma once
 #include <optional>
 #include <string>
@@ -55,6 +58,19 @@ struct FitPlane {
   std::optional<float> mean_albedo;  // known on average over its pixels ("the floor's mean is 0.5")
 };
 
+// A patch of known uniform albedo in the photo (a white sheet ≈ 0.8, a grey card 0.18): a polygon
+// in photo pixels (DESIGN.md's pixel convention) on a real surface of the fit.
+struct FitReference {
+  std::vector<Vec2d> polygon_px;
+  float albedo = 0.8f;  // luminance
+};
+
+// What the fit made of a reference: the photo pixels it sampled inside the polygon, those left out
+// because the photo clipped there, those on no real surface (an opening, the sky), and those used.
+struct ReferenceUse {
+  int sampled = 0, clipped = 0, off_surface = 0, used = 0;
+};
+
 struct InverseLightingInput {
   const CubeMap* radiance = nullptr;          // as assembled
   const CubeMap* clipped = nullptr;           // EnvironmentInfo::clipped_cube
@@ -63,7 +79,9 @@ struct InverseLightingInput {
   const Image* photo_linear = nullptr;
   const Image* photo_clipped = nullptr;       // clipped_mask of the photo (may be null)
   std::vector<FitPlane> planes;
+  std::vector<FitReference> references;
   int max_pixels = 2000;                      // photo pixels used, on a regular grid
+  int reference_pixels = 256;                 // per reference, on its own finer grid
   int samples = 128;                          // per estimate of E0
   int part_samples = 64;                      // per estimate of a part's E (drawn on its few texels)
 };
@@ -87,6 +105,7 @@ struct InverseLightingResult {
   std::vector<PartFit> parts;
   int pixels = 0;               // photo pixels in the fit
   int surfaces = 0, reference_surfaces = 0;
+  std::vector<ReferenceUse> references;  // per FitReference, in order
   double clipped_power_share = 0;  // of the cube's power, at the lower bound
   double cube_power = 0;           // Σ Y ΔΩ of the cube as assembled
   // The light the undetermined sources add to the photo's surfaces, as a share of what they get

@@ -26,16 +26,37 @@ InverseLightingInput fit_input(const LoadedScene& s, const Image& photo_clipped)
     if (p.mean_albedo) f.mean_albedo = float(*p.mean_albedo);
     in.planes.push_back(f);
   }
+  for (const ReferenceSpec& r : s.spec.references) in.references.push_back({r.polygon_px, float(r.albedo)});
   return in;
+}
+
+// A reference that could not serve says why: inverse lighting did not run, or none of its pixels
+// was usable (clipped in the photo: a white sheet needs an exposure that keeps it below white).
+void warn_of_references(LoadedScene& s) {
+  if (s.spec.references.empty()) return;
+  if (!s.environment_info.clipped_cube || !s.spec.environment.inverse_lighting) {
+    s.warnings.add(s.spec.path + ":$.references",
+                   s.spec.environment.inverse_lighting ? "nothing clipped in the environment: the references are not needed"
+                                                       : "environment.inverse_lighting is false: the references are not used");
+    return;
+  }
+  const auto& uses = s.inverse_lighting->references;
+  for (std::size_t r = 0; r < uses.size() && r < s.spec.references.size(); ++r)
+    if (uses[r].used == 0)
+      s.warnings.add(s.spec.references[r].where,
+                     fmt::format("no pixel of the reference was used ({} sampled: {} clipped in the photo, {} on no real surface "
+                                 "of the local scene or the room box, the rest too dark)",
+                                 uses[r].sampled, uses[r].clipped, uses[r].off_surface));
 }
 
 }  // namespace
 
 void recover_clipped_light(LoadedScene& s) {
-  if (!s.environment_info.clipped_cube || !s.spec.environment.inverse_lighting) return;
+  if (!s.environment_info.clipped_cube || !s.spec.environment.inverse_lighting) return warn_of_references(s);
   const Image photo_clipped = clipped_mask(s.photo);
   s.inverse_lighting = recover_clipped_sources(fit_input(s, photo_clipped));
   if (s.inverse_lighting->any_determined()) s.environment = s.inverse_lighting->apply(s.environment);
+  warn_of_references(s);
   if (s.inverse_lighting->status != "fitted" && s.inverse_lighting->status != "none")
     s.warnings.add(s.spec.environment.where, s.inverse_lighting->message);
 }
@@ -74,7 +95,14 @@ nlohmann::json light_report(const LoadedScene& s) {
     parts.push_back({{"source", p.source}, {"direction_world", {d.x(), d.y(), d.z()}}, {"texels", p.texels.texels.size()},
                      {"scale", p.scale}});
   }
+  json references = json::array();
+  for (std::size_t r = 0; r < il->references.size() && r < s.spec.references.size(); ++r) {
+    const ReferenceUse& u = il->references[r];
+    references.push_back({{"albedo", s.spec.references[r].albedo}, {"pixels_sampled", u.sampled},
+                          {"pixels_clipped", u.clipped}, {"pixels_off_surface", u.off_surface}, {"pixels_used", u.used}});
+  }
   out["inverse_lighting"] = {{"status", il->status},       {"message", il->message}, {"parts", parts},
+                             {"references", references},
                              {"missing_irradiance", il->missing_irradiance ? json(*il->missing_irradiance) : json(nullptr)},
                              {"pixels", il->pixels},       {"surfaces", il->surfaces},
                              {"reference_surfaces", il->reference_surfaces},

@@ -173,6 +173,17 @@ void check_mesh_files(const std::vector<Mesh>& meshes, const SceneSpec& spec) {
 
 namespace {
 
+// Every corner of a reference polygon lies within the photo.
+void check_references(const SceneSpec& spec, int width, int height) {
+  for (const ReferenceSpec& r : spec.references)
+    for (std::size_t i = 0; i < r.polygon_px.size(); ++i) {
+      const Vec2d& p = r.polygon_px[i];
+      if (!(p.x() >= 0 && p.y() >= 0 && p.x() <= width && p.y() <= height))
+        throw InputError(fmt::format("{}.polygon_px[{}]", r.where, i),
+                         fmt::format("({}, {}) lies outside the photo ({} x {} pixels)", p.x(), p.y(), width, height));
+    }
+}
+
 // The room: the photo, the environment (the photo linearized with its response), the camera, the
 // room box and the clipped light recovered against the photo.
 void load_room(const SceneSpec& spec, LoadedScene& s) {
@@ -187,6 +198,7 @@ void load_room(const SceneSpec& spec, LoadedScene& s) {
   s.photo_linear = linearize_photo(s.photo, s.environment_info, &clamped);
   if (clamped > 0) s.warnings.add(spec.photo, fmt::format("{} negative or non-finite values clamped to 0", clamped));
   load_camera(spec, s.photo.stored.width, s.photo.stored.height, s);
+  check_references(spec, s.photo.stored.width, s.photo.stored.height);
   if (const auto& box = spec.environment.room_box) {
     RoomBox room{box->min.cast<float>(), box->max.cast<float>(), box->capture.cast<float>(), {}};
     for (const auto& o : box->openings) room.openings.push_back({o.axis, o.min.cast<float>(), o.max.cast<float>()});

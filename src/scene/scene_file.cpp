@@ -385,6 +385,31 @@ PlaneSpec parse_local_scene_item(JsonObject item, const fs::path& dir) {
   return plane;
 }
 
+// references[i]: {"polygon_px": [[u, v], ...] (3 or more, a simple polygon of positive area),
+// "albedo": a}. The photo's size is checked when it is read (pipeline.cpp).
+ReferenceSpec parse_reference(JsonObject item) {
+  ReferenceSpec ref;
+  ref.where = item.where();
+  const JsonValue poly = item.get("polygon_px");
+  if (poly.size() < 3) poly.fail("a polygon needs 3 or more [u, v] corners");
+  double twice_area = 0;
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    const JsonValue corner = poly.element(i);
+    if (corner.size() != 2) corner.fail("expected [u, v] in pixels");
+    ref.polygon_px.emplace_back(corner.element(0).number(-1e9, 1e9), corner.element(1).number(-1e9, 1e9));
+  }
+  // The shoelace formula: twice the signed area.
+  for (std::size_t i = 0; i < ref.polygon_px.size(); ++i) {
+    const Vec2d& a = ref.polygon_px[i];
+    const Vec2d& b = ref.polygon_px[(i + 1) % ref.polygon_px.size()];
+    twice_area += a.x() * b.y() - b.x() * a.y();
+  }
+  if (!(std::abs(twice_area) >= 2.0)) poly.fail("the polygon covers less than one pixel");
+  ref.albedo = item.get("albedo").number(0.001, 1.0);
+  item.finish();
+  return ref;
+}
+
 // The render loop's keys; the rest are the integrators', read by them (integrators/registry.h).
 void parse_render(const JsonValue& r, RenderSpec& render) {
   JsonObject ro(r);
@@ -444,6 +469,8 @@ SceneSpec parse_scene_json(const json& doc, const std::string& path, const std::
   scene.environment = parse_environment(root.get("environment"), dir);
   if (auto ls = root.find("local_scene"))
     for (std::size_t i = 0; i < ls->size(); ++i) scene.local_scene.push_back(parse_local_scene_item(JsonObject(ls->element(i)), dir));
+  if (auto refs = root.find("references"))
+    for (std::size_t i = 0; i < refs->size(); ++i) scene.references.push_back(parse_reference(JsonObject(refs->element(i))));
   if (auto objs = root.find("objects"))
     for (std::size_t i = 0; i < objs->size(); ++i) scene.objects.push_back(parse_object(JsonObject(objs->element(i)), dir));
   if (auto r = root.find("render")) parse_render(*r, scene.render);

@@ -57,6 +57,15 @@ struct PlaneSpec {
   std::optional<double> mean_albedo;
 };
 
+// A patch of known albedo in the photo, inverse lighting's reference (render/inverse_lighting.h):
+// a white sheet (≈ 0.8) or a grey card (0.18) lying on a real surface, drawn as a polygon in photo
+// pixels (top-left origin).
+struct ReferenceSpec {
+  std::string where;  // JSON location, for messages
+  std::vector<Vec2d> polygon_px;
+  double albedo = 0;  // luminance
+};
+
 struct OutputSpec {
   std::string image;   // composite (PNG, JPEG, EXR, TIFF)
   std::string layers;  // multi-layer EXR; empty: none
@@ -86,6 +95,7 @@ struct SceneSpec {
   CameraSpec camera;
   EnvironmentSpec environment;
   std::vector<PlaneSpec> local_scene;
+  std::vector<ReferenceSpec> references;
   std::vector<ObjectSpec> objects;
   RenderSpec render;
   CompositeMode composite = CompositeMode::kRatio;

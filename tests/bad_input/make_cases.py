@@ -185,6 +185,7 @@ def systematic_cases():
     shots = dict(SHOTS, faced="-z")
     full = scene_with(environment={"shots": shots})
     full["local_scene"] = [{"plane": {"point": [0, 0, 0], "normal": [0, 1, 0]}}]
+    full["references"] = [{"polygon_px": [[4, 20], [20, 20], [20, 30], [4, 30]], "albedo": 0.8}]
     full["render"] = {"integrator": "path", "spp": 1, "max_depth": 2, "seed": 1}
     full["composite"] = "ratio"
     full["output"] = {"image": "out/c.png", "layers": "out/l.exr", "tonemap": {"op": "adaptive_log", "key": 1, "bias": 0.85}}
@@ -222,7 +223,9 @@ def systematic_cases():
              (("output", "image"), "out/c.bmp", "extension"), (("output", "layers"), "out/l.png", "extension"),
              (("output", "tonemap", "op"), "filmic", "photo"), (("output", "tonemap", "bias"), 2, "range"),
              (("output", "tonemap", "key"), 0, "range"), (("local_scene", 0, "mean_albedo"), "half", "number"),
-             (("environment", "inverse_lighting"), "yes", "boolean"), (("render", "noise_target"), "1%", "number")]
+             (("environment", "inverse_lighting"), "yes", "boolean"), (("render", "noise_target"), "1%", "number"),
+             (("references",), {"polygon_px": []}, "array"), (("references", 0, "polygon_px"), [[1, 1], [9, 9]], "3"),
+             (("references", 0, "polygon_px", 1), "20, 20", "array"), (("references", 0, "albedo"), "white", "number")]
     for i, (path, value, word) in enumerate(typed):
         variant("wrong_type_%02d_%s" % (i, "_".join(str(k) for k in path).replace("+", "p")), path, value, r"WHERE: .*")
     # Numbers that are not finite or not sensible.
@@ -232,16 +235,21 @@ def systematic_cases():
                                        (("objects", 0, "scale"), [1, 0, 1]), (("objects", 0, "rotate"), 1e400),
                                        (("local_scene", 0, "plane", "normal"), [0, 0, 0]),
                                        (("render", "spp"), 0), (("render", "spp"), 1 << 40),
-                                       (("render", "noise_target"), -0.01), (("render", "noise_target"), 2)]):
+                                       (("render", "noise_target"), -0.01), (("render", "noise_target"), 2),
+                                       (("references", 0, "albedo"), 0), (("references", 0, "albedo"), 1.5),
+                                       (("references", 0, "polygon_px"), [[1, 1], [5, 5], [9, 9]]),
+                                       (("references", 0, "polygon_px"), [[4, 20], [60, 20], [20, 30]])]):
         variant("bad_number_%02d_%s" % (i, "_".join(str(k) for k in path)), path, value, r"scene.json.*")
     # Unknown keys, in every object of the file.
     for i, path in enumerate([("typo",), ("camera", "typo"), ("environment", "typo"), ("environment", "shots", "typo"),
                               ("objects", 0, "typo"), ("local_scene", 0, "typo"), ("local_scene", 0, "plane", "typo"),
-                              ("render", "typo"), ("output", "typo"), ("output", "tonemap", "typo")]):
+                              ("render", "typo"), ("output", "typo"), ("output", "tonemap", "typo"),
+                              ("references", 0, "typo")]):
         variant("unknown_key_%02d_%s" % (i, "_".join(str(k) for k in path[:-1]) or "root"), path, 1, r"WHERE: unknown key")
     # Missing required keys.
     for path in [("photo",), ("camera",), ("environment",), ("camera", "look"), ("environment", "shots", "faced"),
-                 ("environment", "shots", "down"), ("objects", 0, "mesh"), ("local_scene", 0, "plane", "point")]:
+                 ("environment", "shots", "down"), ("objects", 0, "mesh"), ("local_scene", 0, "plane", "point"),
+                 ("references", 0, "albedo")]:
         variant("missing_key_" + "_".join(str(k) for k in path), path, None, r"scene.json.*(missing|required)", delete=True)
 
 
