@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "box_fixture.h"
@@ -14,8 +15,10 @@ namespace {
 const RoomBox kBox{Vec3f(-2.5f, 0, -3), Vec3f(2.5f, 2.6f, 3), Vec3f(-0.2f, 0.9f, -1.2f),
                    {{0, Vec3f(-2.5f, 0.9f, -2.2f), Vec3f(-2.5f, 2.3f, -0.2f)}}};
 
-// A room of constant radiance L, window or not: E = π L at every point and normal (the remaining
-// noise of 2048 stratified pairs per probe is about 1 %).
+// A room of constant radiance L, window or not: E = π L at every point and normal, up to the noise
+// of 2048 stratified pairs per probe: 0.75 % RMS over 2000 random points (with independent or
+// scrambled-Sobol jitter alike), its tail reaching 4 % near the box's corners, where the probes
+// extrapolate. So: RMS within 1 % over these 50 points, each within 5 %.
 TEST(IrradianceVolume, ConstantRoomGivesPiL) {
   const CubeMap cube = test::constant_cube(8, Rgb::Constant(0.7f));
   const RoomLight room(cube, kBox);
@@ -23,11 +26,15 @@ TEST(IrradianceVolume, ConstantRoomGivesPiL) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(0, 1);
   std::normal_distribution<float> g(0, 1);
+  double sum_sq = 0;
   for (int k = 0; k < 50; ++k) {
     const Vec3f x = kBox.min + Vec3f(u(rng), u(rng), u(rng)).cwiseProduct(kBox.max - kBox.min);
     const Vec3f n = Vec3f(g(rng), g(rng), g(rng)).normalized();
-    EXPECT_NEAR(volume.irradiance(x, n)[0], kPiF * 0.7f, 0.025f * kPiF * 0.7f) << x.transpose() << " n " << n.transpose();
+    const double e = volume.irradiance(x, n)[0] / (kPiF * 0.7f) - 1;
+    EXPECT_LT(std::abs(e), 0.05) << x.transpose() << " n " << n.transpose();
+    sum_sq += e * e;
   }
+  EXPECT_LT(std::sqrt(sum_sq / 50), 0.01);
 }
 
 // A probe's projection against the slow, obviously correct one: Σ L_room(p, ω) Y_lm(ω) over many

@@ -173,8 +173,11 @@ TEST(Layers, VariancePredictsTheSpreadAcrossSeeds) {
   ASSERT_GT(n, 100);
   // Never optimistic: the ratio of the observed spread to the predicted one may exceed 1 only by
   // its own sampling error, about √(2/n) relative for n pixels (a χ² with n degrees of freedom);
-  // 4 of those. Not absurdly conservative either.
-  EXPECT_GT(diff2 / var, 0.5);
+  // 4 of those. Not absurdly conservative either: the variance layer is that of independent
+  // samples, and a pixel's scrambled Sobol points (core/sampler.h) err less than that says (0.28 of
+  // it here at 64 spp, 1.0 with independent numbers), so only an estimate off by an order of
+  // magnitude fails.
+  EXPECT_GT(diff2 / var, 0.1);
   EXPECT_LT(diff2 / var, 1 + 4 * std::sqrt(2.0 / n)) << "n = " << n;
   // Where the camera met the object: its normal (+Y, the quad faces up) and albedo in the layers.
   const Vec2d uv = s.camera.project({0.5, 0.3, -0.5});

@@ -18,8 +18,8 @@ using test::exr_pixels;
 using test::run_insitu;
 using test::SceneFixture;
 
-// The path integrator with a catcher plane, 24 spp (the strata of a 24 spp plan are plain jitter;
-// 16 spp is a 4 × 4 grid: both are split below).
+// The path integrator with a catcher plane, at 24 spp (not a power of two) or 16 (one Sobol net):
+// both are split below.
 std::string split_scene(SceneFixture& fx, int spp) {
   auto j = fx.scene;
   j["render"] = {{"integrator", "path"}, {"spp", spp}};

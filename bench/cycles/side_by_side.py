@@ -7,10 +7,12 @@ For each renderer (cycles_*.exr with cycles_times.json, insitu_*.exr with insitu
   noise(s)   relative RMSE over the mask (objects + changed pixels), RGB, against the renderer's own
              reference R of another seed: sqrt(Σ (a − r)²) / sqrt(Σ r²). R is noisy too: with
              variance ∝ 1/spp, E[noise²] = σ²(s) (1 + s/R_spp), so σ(s) = noise / sqrt(1 + s/R_spp).
-  σ₁         the 1/√spp law fitted through the ladder: σ(s) = σ₁/√s, σ₁ the geometric mean of
-             σ(s)·√s (a least-squares fit of log σ with the slope fixed at −½).
+  σ·√s      at each rung: constant for independent samples (σ = σ₁/√s); falling with s for
+             quasi-Monte Carlo points (both renderers' samplers), whose error falls faster.
   seconds    t(s) = t₀ + k·s fitted by least squares (t₀: what does not scale with spp).
-  to 2 %     s₂ = (σ₁ / 0.02)², and t(s₂).
+  to 2 %     from the rung whose σ is nearest 2 %, along the 1/√spp line through it:
+             s₂ = s (σ(s) / 0.02)², and t(s₂). (A single 1/√spp line fitted through the whole
+             ladder would misjudge a renderer whose σ·√s falls.)
 Writes OUT_DIR/side_by_side.md (the table) and, with python3-matplotlib, OUT_DIR/side_by_side.png
 (noise against seconds, log-log).
 """
@@ -49,10 +51,10 @@ def renderer(out, name, times, mask):
             continue
         n = noise(read(os.path.join(out, f"{name}_{key}.exr")), ref, mask)
         rows.append((spp, seconds, n, n / math.sqrt(1 + spp / ref_spp)))
-    sigma1 = math.exp(sum(math.log(r[3] * math.sqrt(r[0])) for r in rows) / len(rows))
     k, t0 = np.polyfit([r[0] for r in rows], [r[1] for r in rows], 1)
-    spp2 = (sigma1 / TARGET) ** 2
-    return {"rows": rows, "sigma1": sigma1, "t0": t0, "k": k, "spp2": spp2, "t2": t0 + k * spp2,
+    near = min(rows, key=lambda r: abs(math.log(r[3] / TARGET)))
+    spp2 = near[0] * (near[3] / TARGET) ** 2
+    return {"rows": rows, "t0": t0, "k": k, "spp2": spp2, "t2": t0 + k * spp2, "from_spp": near[0],
             "ref_spp": ref_spp}
 
 
@@ -67,16 +69,17 @@ def main():
     cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "?")
     lines = [f"Machine: {cpu}, {os.cpu_count()} threads used by both ({platform.node()}); "
              f"mask: {int(mask.sum())} pixels (objects + changed).", "",
-             "| renderer | spp | seconds | noise vs own reference | σ (reference's noise removed) |",
-             "|---|---|---|---|---|"]
+             "| renderer | spp | seconds | noise vs own reference | σ (reference's noise removed) | σ·√spp |",
+             "|---|---|---|---|---|---|"]
     for name, f in fits.items():
         for spp, seconds, n, s in f["rows"]:
-            lines.append(f"| {name} | {spp} | {seconds:.1f} | {100 * n:.2f} % | {100 * s:.2f} % |")
-    lines += ["", "| renderer | σ₁ (noise at 1 spp) | seconds = t₀ + k·spp | spp to 2 % | seconds to 2 % |",
-              "|---|---|---|---|---|"]
+            lines.append(f"| {name} | {spp} | {seconds:.1f} | {100 * n:.2f} % | {100 * s:.2f} % | "
+                         f"{100 * s * math.sqrt(spp):.1f} % |")
+    lines += ["", "| renderer | seconds = t₀ + k·spp | spp to 2 % (from the rung at) | seconds to 2 % |",
+              "|---|---|---|---|"]
     for name, f in fits.items():
-        lines.append(f"| {name} | {100 * f['sigma1']:.1f} % | {f['t0']:.2f} + {1000 * f['k']:.2f} ms·spp | "
-                     f"{f['spp2']:.0f} | {f['t2']:.1f} |")
+        lines.append(f"| {name} | {f['t0']:.2f} + {1000 * f['k']:.2f} ms·spp | {f['spp2']:.0f} ({f['from_spp']}) | "
+                     f"{f['t2']:.1f} |")
     c, i = fits["Cycles 3.4"]["t2"], fits["insitu path"]["t2"]
     lines += ["", f"insitu / Cycles, time to 2 %: {i / c:.3f} (goal ≤ 0.2)."]
     text = "\n".join(lines) + "\n"

@@ -2,6 +2,27 @@
 
 namespace insitu {
 
+namespace {
+
+// Direction numbers of the Sobol sequence's dimension 1: v_0 = 2³¹, v_k = v_{k−1} ⊕ (v_{k−1} >> 1).
+struct PascalDirections {
+  std::uint32_t v[32];
+  constexpr PascalDirections() : v() {
+    v[0] = 0x80000000u;
+    for (int k = 1; k < 32; ++k) v[k] = v[k - 1] ^ (v[k - 1] >> 1);
+  }
+};
+constexpr PascalDirections kPascal;
+
+}  // namespace
+
+std::uint32_t sobol_2d(std::uint32_t index, int dim) {
+  if (dim == 0) return reverse_bits(index);
+  std::uint32_t v = 0;
+  for (; index != 0; index &= index - 1) v ^= kPascal.v[__builtin_ctz(index)];
+  return v;
+}
+
 std::uint32_t permute(std::uint32_t i, std::uint32_t n, std::uint32_t key) {
   if (n <= 1) return 0;
   std::uint32_t w = n - 1;  // the mask of the power-of-two domain

@@ -80,22 +80,11 @@ double mean_relative_noise(const RenderState& st) {
   return mean_relative_noise(st.width, st.height, [&](std::size_t i) { return fold_blocks(st.pixels[i]); }, true);
 }
 
-// The key of a pixel's order of strata.
-std::uint32_t stratum_key(std::uint64_t pixel) {
-  return std::uint32_t(hash4(0x5354524154ull, pixel, 0, 0) >> 32);  // "STRAT"
-}
-
-// Sample s of pixel (x, y): a jittered position, in stratum permute(s) of a grid × grid pixel
-// when spp is a perfect square (grid > 0). Strata come in a per-pixel random order, so that every
-// pass's prefix of samples covers the pixel evenly (row by row, the first passes would see only
-// its top). Draws the sampler's first two numbers.
-Ray jittered_ray(const Camera& camera, int x, int y, std::uint64_t pixel, int s, int spp, int grid, Sampler& sampler) {
-  float jx = sampler.next(), jy = sampler.next();
-  if (grid > 0) {
-    const int stratum = int(permute(std::uint32_t(s), std::uint32_t(spp), stratum_key(pixel)));
-    jx = (float(stratum % grid) + jx) / float(grid);
-    jy = (float(stratum / grid) + jy) / float(grid);
-  }
+// Sample s of pixel (x, y): a position in the pixel from the sampler's first pair of numbers —
+// the Sobol points of core/sampler.h, so that every power-of-two prefix of a pixel's samples (a
+// pass's) covers it evenly, one point in each of n cells of every shape.
+Ray jittered_ray(const Camera& camera, int x, int y, Sampler& sampler) {
+  const float jx = sampler.next(), jy = sampler.next();
   return camera.ray({double(x) + jx, double(y) + jy});
 }
 
@@ -171,7 +160,7 @@ struct PassContext {
   const Integrator& integrator;
   const RenderSettings& settings;
   const ProgressFn& progress;
-  int spp, grid, first;  // first: the first sample of the range rendered
+  int spp, first;  // first: the first sample of the range rendered
   Vec3f axis_world;
   std::vector<PixelBlocks>& pixels;
   const std::vector<std::uint8_t>& stopped;  // by adaptive sampling (empty when it is off)
@@ -202,7 +191,7 @@ void render_tile(const PassContext& c, int tile, int s0, int s1) {
       pass_blocks.clear();
       for (int s = s0; s < s1; ++s) {
         Sampler sampler(c.settings.seed, pixel, std::uint64_t(s));
-        const Ray ray = jittered_ray(c.camera, x, y, pixel, s, c.spp, c.grid, sampler);
+        const Ray ray = jittered_ray(c.camera, x, y, sampler);
         PixelSums leaf;
         if (!accumulate(leaf, c.integrator.sample(ray, sampler), ray, c.axis_world)) ++local_nonfinite;
         leaf.samples = 1;
@@ -319,8 +308,6 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
   if (begin < 0 || end <= begin || end > spp) throw std::invalid_argument("render: the sample range is not within [0, spp)");
   if (!(settings.noise_target >= 0) || (settings.noise_target > 0 && (begin != 0 || end != spp)))
     throw std::invalid_argument("render: adaptive sampling renders whole images, with a noise target >= 0");
-  int grid = int(std::lround(std::sqrt(double(spp))));
-  if (grid * grid != spp) grid = 0;  // not a perfect square: plain jitter
   RenderState local;
   RenderState& st = state ? *state : local;
   start_state(st, w, h, spp, begin, end, settings.noise_target);
@@ -331,7 +318,7 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
   // within.
   const int done = pass_start(begin, end, st.passes_done) - begin;
   std::atomic<long> area_done{long(w) * h * done};  // (a cancelled pass's tiles aside)
-  const PassContext c{camera, integrator, settings, progress, spp, grid, begin,
+  const PassContext c{camera, integrator, settings, progress, spp, begin,
                       camera.R_cam_from_world.row(2).transpose().cast<float>(),  // the optical axis
                       st.pixels, st.stopped, nonfinite, area_done, progress_mutex, double(w) * h * (end - begin)};
   if (progress) progress({double(done) / (end - begin), done, -1.0});

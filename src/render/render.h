@@ -1,5 +1,5 @@
-// The render loop: for every pixel, spp camera samples at jittered sub-pixel positions (a
-// stratified jittered grid when spp is a perfect square), each traced by the integrator, in up to
+// The render loop: for every pixel, spp camera samples at sub-pixel positions from the sampler's
+// scrambled Sobol points (core/sampler.h), each traced by the integrator, in up to
 // 8 passes over the image so that progress can report the noise reached. Tiles run in parallel on
 // TBB; every sample's random numbers come from the counter-based hash and each pixel sums its
 // samples over a fixed tree of sample indices (render/pixel_blocks.h), so the image does not
