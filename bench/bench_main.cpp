@@ -9,6 +9,7 @@
 #include <random>
 
 #include "calib/calibration.h"
+#include "core/sampler.h"
 #include "light/cubemap.h"
 #include "light/equirect.h"
 #include "light/gaussian_irradiance.h"
@@ -43,6 +44,20 @@ void BM_CubeLookup(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_CubeLookup)->Arg(64)->Arg(512);
+
+// Numbers per second of the sampler: a pixel's sample drawing 32 dimensions (16 pairs), as a path of
+// a few bounces does; items are numbers.
+void BM_SamplerNumbers(benchmark::State& state) {
+  std::uint64_t sample = 0;
+  for (auto _ : state) {
+    Sampler sampler(7, 12345, sample++);
+    float sum = 0;
+    for (int d = 0; d < 32; ++d) sum += sampler.next();
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(state.iterations() * 32);
+}
+BENCHMARK(BM_SamplerNumbers);
 
 // The legacy per-face blur (kernel as wide as the face), per cube.
 void BM_LegacyBlur(benchmark::State& state) {

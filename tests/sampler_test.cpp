@@ -55,7 +55,25 @@ TEST(Sampler, SobolMatchesItsGeneratorMatrices) {
     h = mix64(h + i);
     for (const std::uint32_t index : {i, std::uint32_t(h), ~i})
       for (int dim : {0, 1}) ASSERT_EQ(sobol_2d(index, dim), sobol_by_matrix(index, dim)) << index << " dim " << dim;
+    ASSERT_EQ(sobol1_reversed(std::uint32_t(h)), reverse_bits(sobol_2d(std::uint32_t(h), 1)));
   }
+}
+
+// Sampler::next() computes, in the reversed domain, the formula of its comment; here the formula
+// itself, over pixels, samples and 12 dimensions.
+TEST(Sampler, NextIsTheScrambledSobolFormula) {
+  for (const std::uint64_t seed : {1ull, 987654321ull})
+    for (const std::uint64_t pixel : {0ull, 77ull, 1ull << 40})
+      for (std::uint64_t sample = 0; sample < 300; sample += 7) {
+        Sampler sampler(seed, pixel, sample);
+        const std::uint64_t base = sampler_base(seed, pixel);
+        for (std::uint32_t d = 0; d < 12; ++d) {
+          const PairSeeds ps = pair_seeds(base, d / 2);
+          const std::uint32_t index = owen_scramble(std::uint32_t(sample), ps.index);
+          const std::uint32_t v = owen_scramble(sobol_2d(index, int(d % 2)), ps.digits[d % 2]);
+          ASSERT_EQ(sampler.next(), float(v >> 8) / 16777216.0f) << "sample " << sample << " dim " << d;
+        }
+      }
 }
 
 // The definition of an Owen scramble: flipping a digit of the input flips the same digit of the

@@ -14,7 +14,25 @@ struct PascalDirections {
 };
 constexpr PascalDirections kPascal;
 
+// sobol1_reversed by bytes: table b holds, for each byte x, the xor of reverse_bits(v_k) over the
+// bits k of x << 8b.
+struct ReversedTables {
+  std::uint32_t t[4][256];
+  constexpr ReversedTables() : t() {
+    for (int b = 0; b < 4; ++b)
+      for (int x = 0; x < 256; ++x)
+        for (int k = 0; k < 8; ++k)
+          if ((x >> k) & 1) t[b][x] ^= reverse_bits(kPascal.v[8 * b + k]);
+  }
+};
+constexpr ReversedTables kReversed;
+
 }  // namespace
+
+std::uint32_t sobol1_reversed(std::uint32_t index) {
+  return kReversed.t[0][index & 0xFFu] ^ kReversed.t[1][(index >> 8) & 0xFFu] ^ kReversed.t[2][(index >> 16) & 0xFFu] ^
+         kReversed.t[3][index >> 24];
+}
 
 std::uint32_t sobol_2d(std::uint32_t index, int dim) {
   if (dim == 0) return reverse_bits(index);

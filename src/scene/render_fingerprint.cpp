@@ -41,7 +41,7 @@ void add_local_scene(Fnv1a& h, const LoadedScene& s) {
 
 std::uint64_t render_fingerprint(const LoadedScene& s) {
   Fnv1a h;
-  h.text("insitu render state 2");  // 2: the samples are scrambled Sobol points (core/sampler.h)
+  h.text("insitu render state 3");  // 2: scrambled Sobol points (core/sampler.h); 3: their seeds per pair
   add_camera(h, s.camera);
   h.value(s.spec.render.spp), h.value(s.spec.render.seed), h.value(s.spec.render.noise_target);
   h.text(s.spec.render.integrator), h.text(s.integrator.params.dump());
