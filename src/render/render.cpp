@@ -50,10 +50,10 @@ void add_relative_noise(const PixelSums& p, double& noise, long& changed) {
   ++changed;
 }
 
-// Summed row by row (each row in x order), then the rows in order: the same bits whether the rows
-// were summed in parallel or not. `pixel(i)` gives pixel i's sums.
+// Summed row by row (each row in x order), then the rows in order: the same bits however the rows
+// are shared among threads. `pixel(i)` gives pixel i's sums.
 template <class PixelAt>
-double mean_relative_noise(int w, int h, const PixelAt& pixel, bool parallel) {
+double mean_relative_noise(int w, int h, const PixelAt& pixel) {
   std::vector<double> row_noise(std::size_t(h), 0.0);
   std::vector<long> row_changed(std::size_t(h), 0);
   auto row = [&](int y) {
@@ -61,23 +61,18 @@ double mean_relative_noise(int w, int h, const PixelAt& pixel, bool parallel) {
       add_relative_noise(pixel(std::size_t(y) * std::size_t(w) + std::size_t(x)), row_noise[std::size_t(y)],
                          row_changed[std::size_t(y)]);
   };
-  if (parallel) tbb::parallel_for(0, h, row);
-  else for (int y = 0; y < h; ++y) row(y);
+  tbb::parallel_for(0, h, row);
   double noise = 0;
   long changed = 0;
   for (int y = 0; y < h; ++y) noise += row_noise[std::size_t(y)], changed += row_changed[std::size_t(y)];
   return changed > 0 ? noise / double(changed) : 0.0;
 }
 
-double mean_relative_noise(const std::vector<PixelSums>& sums, int w, int h) {
-  return mean_relative_noise(w, h, [&](std::size_t i) -> const PixelSums& { return sums[i]; }, false);
-}
-
 // The same figure from the state, each pixel's blocks folded where it is read. The progress report
 // after every pass used to fold the whole image into a new array first, 46 MB for the demo: 8
 // passes of a 16-spp `realtime` render spent more time there, in page faults, than in rendering.
 double mean_relative_noise(const RenderState& st) {
-  return mean_relative_noise(st.width, st.height, [&](std::size_t i) { return fold_blocks(st.pixels[i]); }, true);
+  return mean_relative_noise(st.width, st.height, [&](std::size_t i) { return fold_blocks(st.pixels[i]); });
 }
 
 // Sample s of pixel (x, y): a position in the pixel from the sampler's first pair of numbers —
@@ -113,9 +108,31 @@ bool accumulate(PixelSums& p, const CameraSample& cs, const Ray& ray, const Vec3
   return true;
 }
 
-// The layers: means over each pixel's samples (normal, albedo and depth over those that met
+// Pixel (x, y)'s layers: means over its samples (normal, albedo and depth over those that met
 // something); a pixel without samples (a cancelled first pass) stays 0.
-RenderLayers layers_from_sums(const std::vector<PixelSums>& sums, int w, int h) {
+void set_pixel_layers(RenderLayers& out, int x, int y, const PixelSums& p) {
+  const int spp = p.samples;
+  *out.samples.at(x, y) = float(spp);
+  if (spp == 0) return;
+  out.objects.set_rgb(x, y, p.objects / float(spp));
+  *out.alpha.at(x, y) = float(p.coverage / spp);
+  out.with_objects.set_rgb(x, y, p.with / float(spp));
+  out.without_objects.set_rgb(x, y, p.without / float(spp));
+  if (p.met > 0) {
+    out.normal.set_rgb(x, y, Rgb(p.normal.array() / float(p.met)));
+    out.albedo.set_rgb(x, y, p.albedo / float(p.met));
+    *out.depth.at(x, y) = float(p.depth / p.met);
+  }
+  *out.variance.at(x, y) = float(variance_of_mean(p, spp));
+  *out.ratio_variance.at(x, y) = float(ratio_variance(p, spp));
+  *out.difference_variance.at(x, y) = float(difference_variance(p, spp));
+  *out.catcher_samples.at(x, y) = float(p.catcher);
+}
+
+// The layers of the state, each pixel's blocks folded where it is read: no image-sized array of
+// totals (46 MB for the demo, whose page faults were a third of a 1-spp `realtime` render).
+RenderLayers layers_from_blocks(const RenderState& st) {
+  const int w = st.width, h = st.height;
   RenderLayers out;
   out.objects = Image(w, h, 3);
   out.alpha = Image(w, h, 1);
@@ -130,27 +147,9 @@ RenderLayers layers_from_sums(const std::vector<PixelSums>& sums, int w, int h) 
   out.difference_variance = Image(w, h, 1);
   out.catcher_samples = Image(w, h, 1);
   tbb::parallel_for(0, h, [&](int y) {  // rows in parallel: each pixel's own, in any order
-    for (int x = 0; x < w; ++x) {
-      const PixelSums& p = sums[std::size_t(y) * w + x];
-      const int spp = p.samples;
-      *out.samples.at(x, y) = float(spp);
-      if (spp == 0) continue;
-      out.objects.set_rgb(x, y, p.objects / float(spp));
-      *out.alpha.at(x, y) = float(p.coverage / spp);
-      out.with_objects.set_rgb(x, y, p.with / float(spp));
-      out.without_objects.set_rgb(x, y, p.without / float(spp));
-      if (p.met > 0) {
-        out.normal.set_rgb(x, y, Rgb(p.normal.array() / float(p.met)));
-        out.albedo.set_rgb(x, y, p.albedo / float(p.met));
-        *out.depth.at(x, y) = float(p.depth / p.met);
-      }
-      *out.variance.at(x, y) = float(variance_of_mean(p, spp));
-      *out.ratio_variance.at(x, y) = float(ratio_variance(p, spp));
-      *out.difference_variance.at(x, y) = float(difference_variance(p, spp));
-      *out.catcher_samples.at(x, y) = float(p.catcher);
-    }
+    for (int x = 0; x < w; ++x) set_pixel_layers(out, x, y, fold_blocks(st.pixels[std::size_t(y) * w + x]));
   });
-  out.mean_relative_noise = mean_relative_noise(sums, w, h);
+  out.mean_relative_noise = mean_relative_noise(st);
   return out;
 }
 
@@ -273,7 +272,7 @@ double mean_spp(const RenderLayers& layers) {
 }
 
 RenderLayers layers_from_state(const RenderState& st) {
-  RenderLayers out = layers_from_sums(pixel_totals(st), st.width, st.height);
+  RenderLayers out = layers_from_blocks(st);
   out.spp_done = st.spp_done;
   out.sample_begin = st.sample_begin;
   out.interrupted = st.spp_done < st.sample_end - st.sample_begin;

@@ -277,7 +277,10 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress, 
   // Everything before the sample loop is preparation: the catcher's irradiance included.
   const auto start = std::chrono::steady_clock::now();
   std::unique_ptr<IrradianceField> catcher_irradiance;
-  for (const PlaneSpec& p : scene.spec.local_scene) {
+  // The catchers' irradiance only for an integrator that catches (realtime and irradiance ignore
+  // the local scene: its exact irradiance was most of `realtime`'s preparation).
+  const std::vector<PlaneSpec> no_planes;
+  for (const PlaneSpec& p : scene.integrator.entry->uses.local_scene ? scene.spec.local_scene : no_planes) {
     if (p.mesh) {
       inputs.catcher_mesh_info.push_back({p.albedo_from_photo, p.albedo});
       continue;
