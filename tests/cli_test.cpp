@@ -222,7 +222,8 @@ TEST(Cli, TradeoffWritesTableCsvPlotAndAb) {
                                           " --ladder 1,4,32 --reference-spp 64 --noise-targets 0.5");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* f : {"tradeoff.csv", "tradeoff.png", "ab.png"}) EXPECT_TRUE(std::filesystem::exists(fx.dir.file(std::string("t/") + f))) << f;
-  for (const char* mode : {"| realtime |", "| irradiance/sh9 |", "| path | 4 |", "| path adaptive 0.5 |"}) EXPECT_NE(r.out.find(mode), std::string::npos) << r.out;
+  for (const char* mode : {"| realtime | 1 |", "| realtime | 16 |", "| irradiance/sh9 | 16 |", "| path | 4 |", "| path adaptive 0.5 |"})
+    EXPECT_NE(r.out.find(mode), std::string::npos) << r.out;
   // More samples, closer to the reference.
   std::ifstream csv(fx.dir.file("t/tradeoff.csv"));
   std::string line;

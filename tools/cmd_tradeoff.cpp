@@ -2,8 +2,8 @@
 //                 [--noise-targets 0.04,0.02,0.01]
 //
 // The speed/accuracy trade of a scene: renders it with `realtime`, with `irradiance` in each mode
-// (16 spp, for anti-aliasing), and with `path` over a ladder of sample counts, and measures each
-// composite against a `path` reference of many samples (a different seed), over the pixels the
+// (1 spp, a legacy frame, and 16 spp, anti-aliased), and with `path` over a ladder of sample
+// counts, and measures each composite against a `path` reference of many samples (a different seed), over the pixels the
 // reference changed visibly (changed_mask: the objects, and 3 % or more of the photo's luminance)
 // — the objects and their shadows. Writes DIR/tradeoff.csv (mode, spp, seconds,
 // relative RMSE), DIR/tradeoff.png (error against time, log–log), and DIR/ab.png (the `realtime`
@@ -149,8 +149,8 @@ int run_tradeoff(const TradeoffArgs& a) {
                  c.masked->relative_rmse);
     if (keep) *keep = std::move(r);
   };
-  // Every integrator of the registry: a Monte Carlo one over the ladder, the others at 16 spp
-  // (anti-aliasing only), in each irradiance mode when it reads one. The A/B picture sets the
+  // Every integrator of the registry: a Monte Carlo one over the ladder, the others at 1 spp (a
+  // legacy frame) and 16 (anti-aliased), in each irradiance mode when it reads one. The A/B picture sets the
   // legacy path against the best path-traced render.
   for (const IntegratorEntry& e : integrator_registry()) {
     const std::string name = e.name;
@@ -161,7 +161,7 @@ int run_tradeoff(const TradeoffArgs& a) {
       if (mode == IrradianceMode::kVolume && !scene.spec.environment.room_box) continue;  // it needs one
       const std::string label = reads_mode ? name + "/" + mode_name : name;
       if (!e.uses.monte_carlo) {
-        measure(label, name, mode, 16, name == "realtime" ? &realtime_result : nullptr);
+        for (int spp : {1, 16}) measure(label, name, mode, spp, name == "realtime" && spp == 16 ? &realtime_result : nullptr);
         continue;
       }
       for (int spp : a.ladder) measure(label, name, mode, spp, name == "path" ? &best_path : nullptr);
