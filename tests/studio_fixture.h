@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <sstream>
 #include <thread>
 
 #include "core/json_reader.h"
@@ -46,6 +47,21 @@ class StudioFixture {
   int port_ = 0;
   std::thread thread_;
 };
+
+// A file's bytes (the scene file an edit rewrote).
+inline std::string text_of(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// A POST of `body` as JSON; the reply's status and body.
+inline std::pair<int, json> post(httplib::Client c, const std::string& path, const json& body) {
+  const auto r = c.Post(path.c_str(), body.dump(), "application/json");
+  EXPECT_TRUE(r) << path;
+  return {r->status, json::parse(r->body)};
+}
 
 inline json get_json(const httplib::Client& c_in, const std::string& path) {
   httplib::Client& c = const_cast<httplib::Client&>(c_in);

@@ -19,21 +19,9 @@ namespace {
 using test::StudioFixture;
 using test::TempDir;
 using test::get_json;
+using test::post;
+using test::text_of;
 namespace fs = std::filesystem;
-
-std::string text_of(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// A POST of `body` as JSON; the reply's status and body.
-std::pair<int, json> post(httplib::Client c, const std::string& path, const json& body) {
-  const auto r = c.Post(path.c_str(), body.dump(), "application/json");
-  EXPECT_TRUE(r) << path;
-  return {r->status, json::parse(r->body)};
-}
 
 TEST(StudioShots, ShowsEachShotAsTheLibraryAssemblesIt) {
   TempDir dir;

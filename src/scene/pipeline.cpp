@@ -171,8 +171,6 @@ void check_mesh_files(const std::vector<Mesh>& meshes, const SceneSpec& spec) {
 
 }  // namespace
 
-namespace {
-
 // Every corner of a reference polygon lies within the photo.
 void check_references(const SceneSpec& spec, int width, int height) {
   for (const ReferenceSpec& r : spec.references)
@@ -183,6 +181,8 @@ void check_references(const SceneSpec& spec, int width, int height) {
                          fmt::format("({}, {}) lies outside the photo ({} x {} pixels)", p.x(), p.y(), width, height));
     }
 }
+
+namespace {
 
 // The room: the photo, the environment (the photo linearized with its response), the camera, the
 // room box and the clipped light recovered against the photo.

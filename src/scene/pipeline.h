@@ -50,6 +50,10 @@ struct LoadedScene {
 // settings are the same).
 LoadedScene load_scene(const SceneSpec& spec, std::vector<Mesh> memory_objects = {}, const LoadedScene* room = nullptr);
 
+// Every corner of each reference polygon lies within a photo of width x height pixels (InputError
+// naming references[i].polygon_px[j]); load_scene checks it, and the studio before it saves one.
+void check_references(const SceneSpec& spec, int width, int height);
+
 // The files a scene reads (before loading its meshes) and writes.
 std::vector<NamedPath> scene_input_files(const SceneSpec& spec);
 std::vector<NamedPath> scene_output_files(const SceneSpec& spec);

@@ -62,4 +62,26 @@ std::string set_faced_wall(const std::string& text, const std::string& file, con
   return dumped(scene);
 }
 
+std::string add_reference(const std::string& text, const std::string& file, const nlohmann::json& reference) {
+  ordered scene = parse(text, file);
+  if (!scene.is_object()) throw InputError(file, "the scene is not a JSON object");
+  if (!scene.contains("references")) scene["references"] = ordered::array();
+  if (!scene["references"].is_array()) throw InputError(file + ":$.references", "expected an array of references");
+  ordered item = ordered::object();
+  item["polygon_px"] = reference.value("polygon_px", nlohmann::json());
+  item["albedo"] = reference.value("albedo", nlohmann::json());
+  scene["references"].push_back(item);
+  return dumped(scene);
+}
+
+std::string remove_reference(const std::string& text, const std::string& file, int index) {
+  ordered scene = parse(text, file);
+  if (!scene.is_object() || !scene.contains("references") || !scene["references"].is_array() || index < 0 ||
+      std::size_t(index) >= scene["references"].size())
+    throw InputError(file + ":$.references", "no reference " + std::to_string(index));
+  scene["references"].erase(std::size_t(index));
+  if (scene["references"].empty()) scene.erase("references");
+  return dumped(scene);
+}
+
 }  // namespace insitu

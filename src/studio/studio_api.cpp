@@ -5,6 +5,8 @@
 #include "calib/control_points.h"
 #include "integrators/registry.h"
 #include "output/settings.h"
+#include "scene/pipeline.h"
+#include "scene/scene_file.h"
 #include "studio/calibration_view.h"
 #include "studio/corner_snap.h"
 #include "studio/render_job.h"
@@ -112,6 +114,37 @@ void post_shots(StudioServer::Impl& s, const httplib::Request& req, httplib::Res
   res.set_content(json{{"version", r.now.version}}.dump(), "application/json");
 }
 
+// {"version", "op": "add", "polygon_px": [[u, v], ...], "albedo": a} | {"version", "op": "remove",
+// "index": i}: the scene file's references of known albedo edited (scene_edit.h), the result
+// read as the CLI reads it (a bad corner or albedo is refused where it is, nothing written), or 409.
+void post_references(StudioServer::Impl& s, const httplib::Request& req, httplib::Response& res) {
+  const json body = body_json(req);
+  if (!body.is_object() || !body.contains("version") || !body["version"].is_string() || !body.contains("op"))
+    throw InputError(req.path, "expected {\"version\": \"...\", \"op\": \"add\" | \"remove\", ...}");
+  const std::string op = body["op"].is_string() ? body["op"].get<std::string>() : "";
+  if (op != "add" && op != "remove") throw InputError(req.path + ":$.op", "expected add or remove");
+  if (op == "remove" && !(body.contains("index") && body["index"].is_number_integer() && body["index"].get<long long>() >= 0 &&
+                          body["index"].get<long long>() < (1 << 20)))
+    throw InputError(req.path + ":$.index", "expected the index of a reference");
+  const std::string& path = s.scene_file.path();
+  const std::string name = fs::path(path).filename().string();
+  const VersionedFile::UpdateResult r = s.scene_file.update(body["version"].get<std::string>(), [&](const std::string& scene) {
+    std::string edited = op == "add" ? add_reference(scene, name, body) : remove_reference(scene, name, body["index"].get<int>());
+    const SceneSpec spec = parse_scene_json(parse_json_text(edited, path), path, fs::path(path).parent_path().string());
+    check_references(spec, s.width, s.height);
+    return edited;
+  });
+  if (!r.saved) return reply_error(res, 409, name, kConflict);
+  res.set_content(json{{"version", r.now.version}}.dump(), "application/json");
+}
+
+// The scene's references as the page draws them, with the scene file's version to edit from.
+json references_state(const StudioServer::Impl& s) {
+  const FileVersion v = s.scene_file.read();
+  const json scene = parse_json_text(v.text, s.scene_file.path());
+  return {{"version", v.version}, {"references", scene.is_object() && scene.contains("references") ? scene["references"] : json::array()}};
+}
+
 json shots_state(const StudioServer::Impl& s) {
   const FileVersion v = s.scene_file.read();
   json out = shots_view(s.scene_file.path());
@@ -200,6 +233,12 @@ void StudioServer::Impl::add_api_routes() {
   });
   http.Post("/api/shots", [this](const httplib::Request& req, httplib::Response& res) {
     guarded(res, [&] { post_shots(*this, req, res); });
+  });
+  http.Get("/api/references", [this](const httplib::Request&, httplib::Response& res) {
+    guarded(res, [&] { res.set_content(references_state(*this).dump(), "application/json"); });
+  });
+  http.Post("/api/references", [this](const httplib::Request& req, httplib::Response& res) {
+    guarded(res, [&] { post_references(*this, req, res); });
   });
   http.Get("/api/state", [this](const httplib::Request&, httplib::Response& res) {
     guarded(res, [&] { res.set_content(state_json(*this).dump(), "application/json"); });

@@ -13,6 +13,9 @@
 //   GET  /api/shots                   the shots as assembled, and the scene file's version (shots_view.h)
 //   GET  /api/shot/N.png              shot N (0..5) as used, clipped pixels red
 //   POST /api/shots                   {"version", "op": swap | turn | faced, ...}: scene_edit.h, or 409
+//   GET  /api/references              the scene's references of known albedo, and its version
+//   POST /api/references              {"version", "op": add | remove, ...}: scene_edit.h, read as the
+//                                     CLI reads it (corners within the photo), or 409
 //   POST /api/render                  {"integrator", "spp"}: a render started (render_job.h)
 //   POST /api/render/stop, /save      stop it; write the scene's outputs from the last finished one
 //   GET  /api/render                  its state, progress, noise and each integrator's slot

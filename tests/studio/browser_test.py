@@ -6,7 +6,9 @@
 Starts `insitu studio` on a copy of the demo scene whose points.json is empty, clicks seven of the
 demo's landmarks on the photo (on two walls: not coplanar), types their names and 3D positions, and checks that points.json holds them
 (the file the CLI reads), that the calibration panel shows the demo's model ("f": the generator's
-camera has square pixels and a centred principal point) and that a removed point leaves the file.
+camera has square pixels and a centred principal point) and that a removed point leaves the file;
+then draws a white sheet on the floor as a reference of known albedo (issue 13), checks that the
+scene file holds it, and removes it.
 Then the shots panel: six shots laid out with the faced wall marked, and a click on "turn" that
 writes the turn into scene.json. Then the light and render panel: a render that reaches 100 %,
 the key slider re-mapping it, and the A/B flip to a realtime render. A screenshot of each panel
@@ -145,11 +147,36 @@ def run(browser, url, truth, points_file, shots):
         assert off <= 1.0 / scale + 5.5, (s, p, scale)
     summary = browser.find_element(By.ID, "summary").text
     print(f"browser_test: {len(saved)} points saved; calibration panel: {summary}")
+    scene_file = os.path.join(os.path.dirname(points_file), "scene.json")
+    draw_reference(browser, canvas, scene_file)
+    browser.execute_script("document.getElementById('side').scrollTop = 0;")  # the points table
     browser.save_screenshot(os.path.join(shots, "studio_points.png"))
+    # Removing the reference takes it out of the scene file (the render below is the demo's own).
+    browser.execute_script("document.querySelector('#references button').scrollIntoView({block: 'center'});")
+    click(browser, "#references button")
+    WebDriverWait(browser, 20).until(lambda b: "references" not in json.load(open(scene_file)))
     # Removing a point rewrites the file without it.
     browser.find_elements(By.CSS_SELECTOR, "#points tbody button")[-1].click()
     WebDriverWait(browser, 20).until(lambda b: len(json.load(open(points_file))) == len(chosen) - 1)
 
+
+
+def draw_reference(browser, canvas, scene_file):
+    """A white sheet on the floor drawn as a reference of known albedo: four corners clicked,
+    albedo 0.8, saved to the scene file."""
+    click(browser, "#ref-draw")
+    corners = [[90, 400], [190, 400], [190, 450], [90, 450]]
+    for k, uv in enumerate(corners):
+        click_image_point(browser, canvas, uv)
+        WebDriverWait(browser, 20).until(lambda b: b.execute_script("return REFS.drawing.length") == k + 1)
+    click(browser, "#ref-finish")
+    WebDriverWait(browser, 20).until(lambda b: len(json.load(open(scene_file)).get("references", [])) == 1)
+    ref = json.load(open(scene_file))["references"][0]
+    assert ref["albedo"] == 0.8 and len(ref["polygon_px"]) == 4, ref
+    for got, want in zip(ref["polygon_px"], corners):  # within a screen pixel and the snap window
+        assert max(abs(got[0] - want[0]), abs(got[1] - want[1])) <= 6.5, (got, want)
+    WebDriverWait(browser, 20).until(lambda b: "albedo 0.8" in b.find_element(By.ID, "references").text)
+    print(f"browser_test: reference drawn, scene file holds {ref}")
 
 
 def shot_of(scene_file, key):

@@ -203,6 +203,7 @@ function draw() {
   ctx.rect(S.view.ox, S.view.oy, S.width * S.view.scale, S.height * S.view.scale);
   ctx.clip();  // the overlay stays on the photo
   if (S.calib) draw_calibration();
+  draw_references();
   ctx.restore();
   S.points.forEach((p, i) => circle(p.uv, i === S.selected ? 7 : 4, complete(p) ? "#ffffff" : "#ffff00", String(i + 1)));
 }
@@ -230,6 +231,7 @@ canvas.addEventListener("mouseup", async (ev) => {
   if (u < 0 || v < 0 || u > S.width || v > S.height) return;
   const { status: code, data } = await api("POST", "/api/snap", { uv: [u, v] });
   const snap = code === 200 ? data : null;
+  if (reference_click(snap ? snap.uv : [u, v])) return;  // a corner of a reference (references.js)
   S.points.push({ name: `#${S.points.length + 1}`, uv: snap ? snap.uv : [u, v], xyz: [null, null, null], snap });
   S.selected = S.points.length - 1;
   table(); draw();
