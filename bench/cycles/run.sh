@@ -48,4 +48,4 @@ for entry in $(echo "$ladder" | tr , ' ') "reference:$reference"; do
     >> "$out/insitu_times.csv"
 done
 
-/usr/bin/python3 "$here/side_by_side.py" "$out" "$val/mask_all.png"
+/usr/bin/python3 "$here/side_by_side.py" "$out" "$val/mask_all.png" "$val/mask_objects.png"

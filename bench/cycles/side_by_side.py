@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The side-by-side figures of bench/cycles/run.sh (issue 16), from its output folder:
 
-    /usr/bin/python3 bench/cycles/side_by_side.py OUT_DIR MASK.png
+    /usr/bin/python3 bench/cycles/side_by_side.py OUT_DIR MASK.png [OBJECTS_MASK.png]
 
 For each renderer (cycles_*.exr with cycles_times.json, insitu_*.exr with insitu_times.csv):
   noise(s)   relative RMSE over the mask (objects + changed pixels), RGB, against the renderer's own
@@ -13,7 +13,9 @@ For each renderer (cycles_*.exr with cycles_times.json, insitu_*.exr with insitu
   to 2 %     from the rung whose σ is nearest 2 %, along the 1/√spp line through it:
              s₂ = s (σ(s) / 0.02)², and t(s₂). (A single 1/√spp line fitted through the whole
              ladder would misjudge a renderer whose σ·√s falls.)
-Writes OUT_DIR/side_by_side.md (the table) and, with python3-matplotlib, OUT_DIR/side_by_side.png
+  by region  with OBJECTS_MASK (the validation's mask_objects.png), σ at each rung over the objects
+             and over the rest of MASK (shadows, bounce light) apart.
+Writes OUT_DIR/side_by_side.md (the tables) and, with python3-matplotlib, OUT_DIR/side_by_side.png
 (noise against seconds, log-log).
 """
 import csv
@@ -58,6 +60,21 @@ def renderer(out, name, times, mask):
             "ref_spp": ref_spp}
 
 
+def by_region(out, times, objects, rest):
+    """Lines of σ at each rung over the objects and over the rest of the mask, for each renderer."""
+    lines = ["", "| renderer | spp | σ, objects | σ, shadows and other changed pixels |", "|---|---|---|---|"]
+    for name, label in (("cycles", "Cycles 3.4"), ("insitu", "insitu path")):
+        ref = read(os.path.join(out, f"{name}_reference.exr"))
+        ref_spp = times[name]["reference"][0]
+        for key, (spp, _) in sorted(times[name].items(), key=lambda kv: kv[1][0]):
+            if key == "reference":
+                continue
+            image = read(os.path.join(out, f"{name}_{key}.exr"))
+            s_obj, s_rest = (noise(image, ref, m) / math.sqrt(1 + spp / ref_spp) for m in (objects, rest))
+            lines.append(f"| {label} | {spp} | {100 * s_obj:.2f} % | {100 * s_rest:.2f} % |")
+    return lines
+
+
 def main():
     out, mask_path = sys.argv[1], sys.argv[2]
     mask = read(mask_path)[:, :, 0] > 0.5
@@ -82,6 +99,9 @@ def main():
                      f"{f['t2']:.1f} |")
     c, i = fits["Cycles 3.4"]["t2"], fits["insitu path"]["t2"]
     lines += ["", f"insitu / Cycles, time to 2 %: {i / c:.3f} (goal ≤ 0.2)."]
+    if len(sys.argv) > 3:
+        objects = read(sys.argv[3])[:, :, 0] > 0.5
+        lines += by_region(out, {"cycles": cycles_times, "insitu": insitu_times}, objects & mask, mask & ~objects)
     text = "\n".join(lines) + "\n"
     open(os.path.join(out, "side_by_side.md"), "w").write(text)
     print(text, end="")
