@@ -47,8 +47,8 @@ struct RenderLayers {
                          // something; kNoHitDepth where none did
   Image samples;         // 1 channel: samples taken in the pixel (fewer where adaptive sampling stopped it)
   Image variance;        // 1 channel: variance of the pixel's mean, luminance of O + W − N, estimated
-                         // as if the samples were independent (conservative: their positions are
-                         // stratified)
+                         // as if the samples were independent (an upper bound: they are
+                         // scrambled Sobol points)
   // For the composite's choice between the ratio and the additive form (composite.h): variance
   // of the ratio of means W̄/N̄ and of the difference W̄ − N̄ (luminance), and the number of samples
   // that saw the catcher.

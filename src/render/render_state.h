@@ -32,7 +32,7 @@ using PixelBlocks = std::vector<PixelSums>;
 // The render of the samples [sample_begin, sample_end) of a plan of spp per pixel (all of them
 // unless the render is a part of a split one, issue 17).
 struct RenderState {
-  int width = 0, height = 0, spp = 0;  // the plan: the strata depend on spp
+  int width = 0, height = 0, spp = 0;  // the plan (a part of a split render checks it is the same)
   int sample_begin = 0, sample_end = 0;
   int passes_done = 0;                 // of render_passes(sample_end − sample_begin)
   int tiles_done = 0;                  // of pass passes_done, in tile order (a cancelled pass)
