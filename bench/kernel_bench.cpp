@@ -1,10 +1,12 @@
 // The kernel against Embree (issue 16): rays per second of a `path` render of the demo, against a
 // bare rtcIntersect1 / rtcOccluded1 loop over the very same rays (recorded by a RayLog during one
-// render, replayed in each thread's order), each on 1 and on 2 threads.
+// render, replayed in each thread's order), each on 1 and on 2 threads, on the demo and on the
+// demo with its objects subdivided to furniture size (kHeavy).
 //   build/bench/insitu_bench --benchmark_filter='Kernel|BareEmbree'
-// The kernel's share of Embree's speed is rays/s of BM_KernelPath/T over that of BM_BareEmbree/T;
-// the scaling is /2 over /1. Both exclude loading the scene; the render includes everything else
-// (shading, light sampling, the catcher, accumulation, the composite).
+// The render's share of Embree's speed is rays/s of BM_KernelPath/T/L over that of
+// BM_BareEmbree/T/L; the scaling is /2 over /1. Both exclude loading the scene; the render includes
+// everything else (shading, light sampling, the catcher, accumulation, the composite).
+// BM_KernelTrace/T/L replays the rays through insitu's tracing layer alone.
 #include <benchmark/benchmark.h>
 #include <embree3/rtcore.h>
 #include <tbb/global_control.h>
@@ -15,6 +17,7 @@
 
 #include "render/ray_log.h"
 #include "scene/pipeline.h"
+#include "subdivide.h"
 
 namespace {
 using namespace insitu;
@@ -25,18 +28,28 @@ constexpr std::size_t kPiece = 4096;  // consecutive rays of one thread: a unit 
 struct DemoRays {
   LoadedScene scene;
   std::vector<std::vector<LoggedRay>> pieces;
-  double count = 0, shadow = 0;
+  double count = 0, shadow = 0, triangles = 0;
+  Image composite;  // of the recording render (linear)
 };
 
-DemoRays record_demo_rays() {
+// The demo's objects, each triangle split into 4^levels by midpoint subdivision (subdivide.h).
+void subdivide_objects(LoadedScene& scene, int levels) {
+  std::vector<Mesh> meshes;
+  for (const Mesh& mesh : scene.objects->meshes()) meshes.push_back(subdivide_midpoint(mesh, levels));
+  scene.objects = std::make_unique<EmbreeScene>(std::move(meshes));
+}
+
+DemoRays record_demo_rays(int levels) {
   DemoRays d;
   SceneSpec spec = parse_scene_file(std::string(INSITU_SOURCE_DIR) + "/scenes/demo/scene.json");
   spec.render.integrator = "path";
   spec.render.spp = kSpp;
   d.scene = load_scene(spec);
+  if (levels > 0) subdivide_objects(d.scene, levels);
+  for (const Mesh& mesh : d.scene.objects->meshes()) d.triangles += double(mesh.triangles.size());
   RayLog log;
   d.scene.objects->set_ray_log(&log);
-  render_scene(d.scene);
+  d.composite = render_scene(d.scene).composite_linear;
   d.scene.objects->set_ray_log(nullptr);
   for (const std::vector<LoggedRay>& list : log.lists())
     for (std::size_t i = 0; i < list.size(); i += kPiece) {
@@ -47,8 +60,15 @@ DemoRays record_demo_rays() {
   return d;
 }
 
-const DemoRays& demo_rays() {
-  static const DemoRays rays = record_demo_rays();
+// kHeavy: the demo's 2298 triangles subdivided 4 times, 588 288 triangles: a furniture model's size.
+constexpr int kHeavy = 4;
+
+const DemoRays& demo_rays(int levels = 0) {
+  if (levels == kHeavy) {
+    static const DemoRays heavy = record_demo_rays(kHeavy);
+    return heavy;
+  }
+  static const DemoRays rays = record_demo_rays(0);
   return rays;
 }
 
@@ -57,16 +77,26 @@ void set_counters(benchmark::State& state, const DemoRays& d) {
   state.counters["rays/s"] = benchmark::Counter(n, benchmark::Counter::kIsRate);
   state.counters["rays"] = d.count;
   state.counters["shadow_share"] = d.shadow / d.count;
+  state.counters["triangles"] = d.triangles;
+}
+
+// Σ|a − b| / Σ|b| over every pixel and channel: the subdivided demo renders the demo's image.
+double relative_difference(const Image& a, const Image& b) {
+  double diff = 0, sum = 0;
+  for (std::size_t i = 0; i < a.data.size(); ++i) diff += std::abs(double(a.data[i]) - double(b.data[i])), sum += std::abs(double(b.data[i]));
+  return diff / sum;
 }
 
 // The render, as `insitu render` runs it (load excluded).
 void BM_KernelPath(benchmark::State& state) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(state.range(0)));
-  const DemoRays& d = demo_rays();
+  const DemoRays& d = demo_rays(int(state.range(1)));
   for (auto _ : state) benchmark::DoNotOptimize(render_scene(d.scene));
   set_counters(state, d);
+  if (state.range(1) > 0) state.counters["image_diff"] = relative_difference(d.composite, demo_rays(0).composite);
 }
-BENCHMARK(BM_KernelPath)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+// Arguments: threads, subdivision levels (0: the demo; kHeavy: its objects at furniture size).
+BENCHMARK(BM_KernelPath)->ArgsProduct({{1, 2}, {0, kHeavy}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void trace_bare(RTCScene scene, const std::vector<LoggedRay>& rays) {
   RTCIntersectContext context;
@@ -92,13 +122,40 @@ void trace_bare(RTCScene scene, const std::vector<LoggedRay>& rays) {
 // The same rays through Embree alone: no shading, no sampling, no bookkeeping.
 void BM_BareEmbree(benchmark::State& state) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(state.range(0)));
-  const DemoRays& d = demo_rays();
+  const DemoRays& d = demo_rays(int(state.range(1)));
   const RTCScene scene = d.scene.objects->rtc_scene();
   for (auto _ : state)
     tbb::parallel_for(std::size_t(0), d.pieces.size(), [&](std::size_t i) { trace_bare(scene, d.pieces[i]); });
   set_counters(state, d);
 }
-BENCHMARK(BM_BareEmbree)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_BareEmbree)->ArgsProduct({{1, 2}, {0, kHeavy}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The same rays through insitu's own tracing layer, what the integrators call: EmbreeScene's
+// intersect() and occluded(), and surface() at every hit (the shading point: barycentric position,
+// normals, UV, material). Its rays/s over BM_BareEmbree's is the overhead of the layer itself.
+void trace_insitu(const EmbreeScene& objects, const std::vector<LoggedRay>& rays) {
+  for (const LoggedRay& r : rays) {
+    const Ray ray{Vec3f(r.org[0], r.org[1], r.org[2]), Vec3f(r.dir[0], r.dir[1], r.dir[2])};
+    if (r.shadow) {
+      benchmark::DoNotOptimize(objects.occluded(ray, r.t_near, r.t_far));
+      continue;
+    }
+    const Hit hit = objects.intersect(ray, r.t_near, r.t_far);
+    if (hit.valid()) {
+      const SurfacePoint sp = objects.surface(ray, hit);
+      benchmark::DoNotOptimize(sp);
+    }
+  }
+}
+
+void BM_KernelTrace(benchmark::State& state) {
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(state.range(0)));
+  const DemoRays& d = demo_rays(int(state.range(1)));
+  for (auto _ : state)
+    tbb::parallel_for(std::size_t(0), d.pieces.size(), [&](std::size_t i) { trace_insitu(*d.scene.objects, d.pieces[i]); });
+  set_counters(state, d);
+}
+BENCHMARK(BM_KernelTrace)->ArgsProduct({{1, 2}, {0, kHeavy}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Whether packets pay (issue 16, item 4): the demo's primary rays, 1 spp at pixel centres, one
 // thread, through rtcIntersect1 one by one and through rtcIntersect8 in 4×2-pixel packets (the
