@@ -108,6 +108,51 @@ TEST(Image, GreyIsRepeatedIntoRgb) {
     for (int c = 0; c < 3; ++c) ASSERT_EQ(img.data[i * 3 + c], grey[i]);
 }
 
+// Where the stored pixel (x, y) of a w × h image is shown under EXIF orientation o, from the
+// tag's definition (TIFF 6.0, tag 274: which visual side the 0th row and the 0th column are).
+std::pair<int, int> shown_at(int o, int x, int y, int w, int h) {
+  switch (o) {
+    case 2: return {w - 1 - x, y};          // row 0 top, column 0 right: mirrored
+    case 3: return {w - 1 - x, h - 1 - y};  // row 0 bottom, column 0 right: turned 180°
+    case 4: return {x, h - 1 - y};          // row 0 bottom, column 0 left: flipped
+    case 5: return {y, x};                  // row 0 left, column 0 top: transposed
+    case 6: return {h - 1 - y, x};          // row 0 right, column 0 top: turned 90° clockwise
+    case 7: return {h - 1 - y, w - 1 - x};  // row 0 right, column 0 bottom: transverse
+    case 8: return {y, w - 1 - x};          // row 0 left, column 0 bottom: turned 90° anticlockwise
+    default: return {x, y};
+  }
+}
+
+// A phone that stores the orientation tag instead of turning its pixels: the image is read as
+// shown. The same pixels are written with each tag and without one; JPEG decodes identical data
+// identically, so every shown pixel must equal the untagged file's pixel the tag maps there.
+TEST(Image, ExifOrientationIsApplied) {
+  test::TempDir dir;
+  const int w = 24, h = 16;
+  std::vector<float> values(std::size_t(w) * h * 3);
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = float((i * 37) % 251) / 255.0f;
+  write_with_oiio(dir.file("plain.jpg"), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::UINT8), values);
+  const ImageFile plain = read_image_file(dir.file("plain.jpg"));
+  ASSERT_EQ(plain.orientation, 1);
+  for (int o = 1; o <= 8; ++o) {
+    OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
+    spec.attribute("Orientation", o);
+    const std::string path = dir.file(fmt::format("tagged{}.jpg", o));
+    write_with_oiio(path, spec, values);
+    const ImageFile tagged = read_image_file(path);
+    ASSERT_EQ(tagged.orientation, o);
+    const auto [sw, sh] = o >= 5 ? std::pair(h, w) : std::pair(w, h);
+    ASSERT_EQ(tagged.stored.width, sw) << o;
+    ASSERT_EQ(tagged.stored.height, sh) << o;
+    EXPECT_EQ(read_image_size(path), std::pair(sw, sh)) << o;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const auto [xs, ys] = shown_at(o, x, y, w, h);
+        ASSERT_TRUE((tagged.stored.rgb(xs, ys) == plain.stored.rgb(x, y)).all()) << "orientation " << o << " at " << x << "," << y;
+      }
+  }
+}
+
 // The process's peak resident size since the last reset_peak_rss(), in MB (Linux: VmHWM).
 long peak_resident_mb() {
   std::ifstream status("/proc/self/status");

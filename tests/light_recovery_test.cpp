@@ -91,8 +91,9 @@ TEST(LightRecovery, AReferenceInThePhotoIsCountedInTheReport) {
   EXPECT_GT(refs[0]["pixels_sampled"].get<int>(), 100);
   const int used = refs[0]["pixels_used"].get<int>();
   EXPECT_EQ(light["inverse_lighting"]["reference_surfaces"].get<int>(), used > 0 ? 1 : 0);
-  if (light["inverse_lighting"]["sources"][0]["determined"].get<bool>())
+  if (light["inverse_lighting"]["sources"][0]["determined"].get<bool>()) {
     EXPECT_EQ(light["determined_by"], used > 0 ? "inverse lighting with a reference" : "inverse lighting");
+  }
 }
 
 // A corner outside the photo is refused where it is; a reference where nothing clipped is warned

@@ -157,6 +157,38 @@ void check_exr_header(const std::string& path) {
                                        std::uint64_t(kMaxChunkBytes) >> 20));
 }
 
+// EXIF orientation 1–8 (TIFF 6.0, tag 274): 5–8 swap width and height. Others are ignored (1).
+int exif_orientation(const ImageSpec& spec) {
+  const int o = spec.get_int_attribute("Orientation", 1);
+  return o >= 1 && o <= 8 ? o : 1;
+}
+
+// The image as displayed: turned and mirrored as the tag says, by OpenImageIO's exact pixel
+// moves. Not ImageBufAlgo::reorient: before OpenImageIO 2.5.x/3.x (PR #5350; Debian 12 has 2.4.7)
+// it swaps 5 and 7, transverse for transpose (issue #4661), which the test of every tag caught.
+ImageBuf shown_as_tagged(const ImageBuf& stored, int orientation) {
+  switch (orientation) {
+    case 2: return ImageBufAlgo::flop(stored);                        // mirrored left–right
+    case 3: return ImageBufAlgo::rotate180(stored);
+    case 4: return ImageBufAlgo::flip(stored);                        // mirrored top–bottom
+    case 5: return ImageBufAlgo::transpose(stored);                   // row 0 left, column 0 top
+    case 6: return ImageBufAlgo::rotate90(stored);                    // clockwise
+    case 7: return ImageBufAlgo::rotate180(ImageBufAlgo::transpose(stored));  // transverse
+    case 8: return ImageBufAlgo::rotate270(stored);                   // anticlockwise
+    default: return ImageBufAlgo::copy(stored);
+  }
+}
+
+Image reoriented(Image img, int orientation) {
+  if (orientation == 1) return img;
+  const ImageBuf stored(ImageSpec(img.width, img.height, 3, TypeDesc::FLOAT), img.data.data());  // wraps, no copy
+  const ImageBuf shown = shown_as_tagged(stored, orientation);
+  Image out(shown.spec().width, shown.spec().height, 3);
+  if (shown.has_error() || !shown.get_pixels(shown.roi(), TypeDesc::FLOAT, out.data.data()))
+    throw std::runtime_error("reorienting an image failed: " + shown.geterror());
+  return out;
+}
+
 ImageFile read_image_file_quietly(const std::string& path) {
   check_exr_header(path);
   auto in = ImageInput::open(path);
@@ -179,7 +211,8 @@ ImageFile read_image_file_quietly(const std::string& path) {
   if (iso <= 0) iso = spec.get_int_attribute("Exif:ISOSpeedRatings", 0);
   if (iso > 0) file.exposure.iso = iso;
   if (const int f35 = spec.get_int_attribute("Exif:FocalLengthIn35mmFilm", 0); f35 > 0) file.exposure.focal_35mm_mm = f35;
-  file.stored = decode_rgb(*in, path);
+  file.orientation = exif_orientation(spec);
+  file.stored = reoriented(decode_rgb(*in, path), file.orientation);
   in->close();
   return file;
 }
@@ -197,7 +230,9 @@ std::pair<int, int> read_image_size(const std::string& path) {
   check_exr_header(path);
   auto in = ImageInput::open(path);
   if (!in) throw InputError(path, "cannot read image: " + geterror());
-  return {in->spec().width, in->spec().height};
+  const int w = in->spec().width, h = in->spec().height;
+  if (exif_orientation(in->spec()) >= 5) return {h, w};
+  return {w, h};
 }
 
 std::size_t sanitize(Image& img) {

@@ -34,7 +34,8 @@ struct Exposure {
   std::optional<double> relative() const;
 };
 
-// An image file as stored: values normalized by OpenImageIO (8-bit k -> k/255), always RGB.
+// An image file: its values as stored, normalized by OpenImageIO (8-bit k -> k/255), always RGB,
+// its pixels as displayed (the EXIF orientation applied).
 struct ImageFile {
   std::string path;
   Image stored;
@@ -42,6 +43,9 @@ struct ImageFile {
   std::string format;             // "png", "jpeg", "openexr", ...
   int bits = 32;                  // bits per stored channel
   Exposure exposure;
+  // The EXIF orientation tag (1–8; 1: none), already applied: `stored` is the image as displayed,
+  // turned and mirrored as a phone that stores the tag instead of turning its pixels means it.
+  int orientation = 1;
 };
 
 // Images larger than this are refused from their header, before decoding (a 16384 × 8192 HDRI is
@@ -61,8 +65,9 @@ constexpr std::uint64_t kMaxDecodedBytesPerByte = 4096;
 constexpr double kMaxChunkBytes = double(std::uint64_t(1) << 28);
 
 // Refuses (InputError naming the file) a missing, unreadable, oversized, truncated or corrupt image.
+// The EXIF orientation is applied (ImageFile::orientation).
 ImageFile read_image_file(const std::string& path);
-// Width and height from the header alone.
+// Width and height from the header alone, as displayed (after the EXIF orientation).
 std::pair<int, int> read_image_size(const std::string& path);
 
 // Linear Rec.709: display-referred files through the inverse sRGB transfer function, float files

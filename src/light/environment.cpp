@@ -30,7 +30,8 @@ float median_luminance(std::vector<float> y) {
 // The field of view of a shot: its own, the set's, EXIF's 35 mm-equivalent focal length (which
 // describes the diagonal: 2·atan(43.27 mm / 2f)), or 90°.
 // The field of view across the shot's width as used (after its rotation; read_shot_files has
-// turned `file` already). A given hfov is across the file's stored width W0; turned a quarter,
+// turned `file` already). A given hfov is across the width W0 as displayed (EXIF orientation
+// applied, core/image.h), before rotate_deg; turned a quarter,
 // the width is the stored height H0, and with the focal length f = W0 / (2 tan(hfov0/2)) in
 // pixels, hfov = 2 atan(H0 / (2 f)) = 2 atan(tan(hfov0/2) · H0/W0).
 double shot_hfov(const ShotSpec& shot, const EnvironmentSpec& spec, const ImageFile& file) {

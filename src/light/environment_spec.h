@@ -16,7 +16,7 @@ namespace insitu {
 struct ShotSpec {
   std::vector<std::string> files;
   std::vector<double> times_s;       // empty: from EXIF
-  std::optional<double> hfov_deg;    // across the file's stored width; empty: the set's, else EXIF
+  std::optional<double> hfov_deg;    // across the width as displayed (EXIF orientation applied); empty: the set's, else EXIF
                                      // 35 mm focal length, else 90°
   int rotate_deg = 0;                // the files turned clockwise by 0, 90, 180 or 270 before use
   std::string key;                   // its key in the scene file ("+x", "front", "up", ...)
