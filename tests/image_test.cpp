@@ -145,6 +145,9 @@ TEST(Image, ExifOrientationIsApplied) {
     ASSERT_EQ(tagged.stored.width, sw) << o;
     ASSERT_EQ(tagged.stored.height, sh) << o;
     EXPECT_EQ(read_image_size(path), std::pair(sw, sh)) << o;
+    const ImageFile texture = read_image_file(path, PixelGrid::kAsStored);  // UVs address the stored grid
+    ASSERT_EQ(texture.orientation, 1);
+    ASSERT_EQ(texture.stored.data, plain.stored.data) << o;
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
         const auto [xs, ys] = shown_at(o, x, y, w, h);

@@ -72,15 +72,15 @@ std::string one_line(std::string s) {
 }
 
 // Reads the image; read_image_file() wraps it in a StderrCapture.
-ImageFile read_image_file_quietly(const std::string& path);
+ImageFile read_image_file_quietly(const std::string& path, PixelGrid grid);
 
 }  // namespace
 
-ImageFile read_image_file(const std::string& path) {
+ImageFile read_image_file(const std::string& path, PixelGrid grid) {
   require_existing(path);
   StderrCapture capture;
   try {
-    return read_image_file_quietly(path);
+    return read_image_file_quietly(path, grid);
   } catch (...) {
     capture.failed();
     throw;
@@ -189,7 +189,7 @@ Image reoriented(Image img, int orientation) {
   return out;
 }
 
-ImageFile read_image_file_quietly(const std::string& path) {
+ImageFile read_image_file_quietly(const std::string& path, PixelGrid grid) {
   check_exr_header(path);
   auto in = ImageInput::open(path);
   if (!in) throw InputError(path, "cannot read image: " + one_line(geterror()));
@@ -211,7 +211,7 @@ ImageFile read_image_file_quietly(const std::string& path) {
   if (iso <= 0) iso = spec.get_int_attribute("Exif:ISOSpeedRatings", 0);
   if (iso > 0) file.exposure.iso = iso;
   if (const int f35 = spec.get_int_attribute("Exif:FocalLengthIn35mmFilm", 0); f35 > 0) file.exposure.focal_35mm_mm = f35;
-  file.orientation = exif_orientation(spec);
+  file.orientation = grid == PixelGrid::kAsDisplayed ? exif_orientation(spec) : 1;
   file.stored = reoriented(decode_rgb(*in, path), file.orientation);
   in->close();
   return file;

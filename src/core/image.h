@@ -43,8 +43,9 @@ struct ImageFile {
   std::string format;             // "png", "jpeg", "openexr", ...
   int bits = 32;                  // bits per stored channel
   Exposure exposure;
-  // The EXIF orientation tag (1–8; 1: none), already applied: `stored` is the image as displayed,
-  // turned and mirrored as a phone that stores the tag instead of turning its pixels means it.
+  // The EXIF orientation tag (1–8) that was applied: `stored` is the image as displayed, turned
+  // and mirrored as a phone that writes the tag instead of turning its pixels means it. 1: none,
+  // or read as stored (PixelGrid::kAsStored).
   int orientation = 1;
 };
 
@@ -64,9 +65,12 @@ constexpr std::uint64_t kMaxDecodedBytesPerByte = 4096;
 // header (a 16384-wide RGBA half image in 256-row DWAB chunks needs 32 MiB).
 constexpr double kMaxChunkBytes = double(std::uint64_t(1) << 28);
 
+// Photos and shots are read as displayed (the EXIF orientation applied: ImageFile::orientation);
+// textures as stored, since UVs address the stored grid (as Blender and OBJ viewers read them).
+enum class PixelGrid { kAsDisplayed, kAsStored };
+
 // Refuses (InputError naming the file) a missing, unreadable, oversized, truncated or corrupt image.
-// The EXIF orientation is applied (ImageFile::orientation).
-ImageFile read_image_file(const std::string& path);
+ImageFile read_image_file(const std::string& path, PixelGrid grid = PixelGrid::kAsDisplayed);
 // Width and height from the header alone, as displayed (after the EXIF orientation).
 std::pair<int, int> read_image_size(const std::string& path);
 

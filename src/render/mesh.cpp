@@ -156,7 +156,7 @@ Material convert_material(const tinyobj::material_t& m, const fs::path& base_dir
   if (!m.diffuse_texname.empty()) {
     const std::string tex = (base_dir / m.diffuse_texname).string();
     try {
-      out.map_kd = std::make_shared<Image>(linearize(read_image_file(tex)));
+      out.map_kd = std::make_shared<Image>(linearize(read_image_file(tex, PixelGrid::kAsStored)));
       out.map_kd_path = tex;
     } catch (const InputError& e) {
       throw e.with_context(where + ": map_Kd");
