@@ -75,9 +75,9 @@ struct Fixture {
 };
 
 // A 4 × 2.5 × 4 m room, grey walls (radiance 0.2), a ceiling lamp 50× the clip level 0.5.
-void make_room(Fixture& fx, float lamp = 25.0f) {
+void make_room(Fixture& fx, float lamp = 25.0f, const Rgb& lamp_colour = Rgb::Ones()) {
   fx.truth = test::constant_cube(kFace, Rgb(0.2f, 0.2f, 0.2f));
-  paint_disc(fx.truth, Vec3f(0.2f, 1, 0.1f), std::cos(0.25f), Rgb(lamp, lamp, lamp));
+  paint_disc(fx.truth, Vec3f(0.2f, 1, 0.1f), std::cos(0.25f), lamp * lamp_colour);
   std::tie(fx.clipped, fx.mask) = clip(fx.truth, 0.5f);
   fx.camera = Camera::look_at(Vec3d(1.5, 1.6, 1.5), Vec3d(-1, 0.3, -1), Vec3d(0, 1, 0), 80, 48, 36);
   fx.in.room = RoomBox{Vec3f(-2, 0, -2), Vec3f(2, 2.5f, 2), Vec3f(0, 1, 0), {}};
@@ -135,6 +135,34 @@ TEST(InverseLighting, RecoversAClippedLampInABoxRoom) {
   // Applied: the lamp's texels carry about the true radiance again.
   const CubeMap fitted = r.apply(fx.clipped);
   EXPECT_NEAR(cube_power(fitted), cube_power(fx.truth), 0.1 * cube_power(fx.truth));
+}
+
+// A warm lamp (a 2700 K bulb's orange: all three channels clipped, so the shots keep it white): the
+// light it adds is L_true − L0, whose colour relative to the clipped value, at luminance 1, is
+// (L_true − L0) / Y(L_true − L0). The grey lamp's is 1. Within 3σ or 5 %. The irradiance it gives
+// is the truth's in every channel only if the colour is applied (the grey lamp's needs none).
+TEST(InverseLighting, RecoversTheColourOfAClippedLamp) {
+  for (const Rgb& colour : {Rgb(1.0f, 0.7f, 0.4f), Rgb(1.0f, 1.0f, 1.0f)}) {
+    Fixture fx;
+    make_room(fx, 25.0f, colour);
+    const InverseLightingResult r = recover_clipped_sources(fx.in);
+    ASSERT_EQ(r.sources.size(), 1u);
+    const SourceFit& lamp = r.sources[0];
+    ASSERT_TRUE(lamp.determined) << r.message;
+    ASSERT_TRUE(lamp.colour_determined) << "σ " << lamp.colour_sigma.transpose();
+    // Applied to the orange lamp; the grey one's fitted colour is within noise of the clipped one.
+    EXPECT_EQ(lamp.colour_applied, colour[2] < 1.0f) << lamp.colour.transpose();
+    const Rgb added = 25.0f * colour - Rgb::Constant(0.5f);
+    const Rgb expected = added / luminance(added);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(lamp.colour[c], expected[c], std::max(3 * lamp.colour_sigma[c], 0.05f * expected[c]))
+          << "channel " << c << " of " << colour.transpose() << ", σ " << lamp.colour_sigma.transpose();
+    // Applied: the irradiance of a floor facing up (the lamp's parts may trade light among themselves) is the
+    // true one in each channel, within 10 % as the power is in RecoversAClippedLampInABoxRoom.
+    const Rgb fitted = irradiance_reference(r.apply(fx.clipped), Vec3d(0, 1, 0));
+    const Rgb truth = irradiance_reference(fx.truth, Vec3d(0, 1, 0));
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(fitted[c], truth[c], 0.1f * truth[c]) << "channel " << c;
+  }
 }
 
 // Distant light over an open plane: E_k / E_0 is the same at every pixel, so the source's scale

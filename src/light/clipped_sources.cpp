@@ -98,14 +98,21 @@ CubeMap source_only(const CubeMap& radiance, const ClippedSource& source) {
   return out;
 }
 
-CubeMap with_scaled_sources(const CubeMap& radiance, const std::vector<ClippedSource>& sources,
-                            const std::vector<double>& scales) {
+CubeMap with_scaled_sources_rgb(const CubeMap& radiance, const std::vector<ClippedSource>& sources,
+                                const std::vector<Rgb>& scales) {
   CubeMap out = radiance;
   for (std::size_t k = 0; k < sources.size() && k < scales.size(); ++k)
     for (const auto& t : sources[k].texels)
-      out.set_texel(t[0], t[1], t[2], float(scales[k]) * radiance.texel(t[0], t[1], t[2]));
+      out.set_texel(t[0], t[1], t[2], scales[k] * radiance.texel(t[0], t[1], t[2]));
   out.update_borders();
   return out;
+}
+
+CubeMap with_scaled_sources(const CubeMap& radiance, const std::vector<ClippedSource>& sources,
+                            const std::vector<double>& scales) {
+  std::vector<Rgb> rgb;
+  for (double s : scales) rgb.push_back(Rgb::Constant(float(s)));
+  return with_scaled_sources_rgb(radiance, sources, rgb);
 }
 
 double cube_power(const CubeMap& radiance) {

@@ -31,6 +31,9 @@ std::vector<ClippedSource> split_into_parts(const ClippedSource& source, const C
 CubeMap source_only(const CubeMap& radiance, const ClippedSource& source);
 CubeMap with_scaled_sources(const CubeMap& radiance, const std::vector<ClippedSource>& sources,
                             const std::vector<double>& scales);
+// The same with a factor per channel.
+CubeMap with_scaled_sources_rgb(const CubeMap& radiance, const std::vector<ClippedSource>& sources,
+                                const std::vector<Rgb>& scales);
 
 // Σ Y(L) ΔΩ over the whole cube (the denominator of ClippedSource::power's share).
 double cube_power(const CubeMap& radiance);

@@ -35,6 +35,14 @@
 // magnitude: each source is cut into parts of about (n/16)² texels, each with its own a ≥ 0, and
 // judged by the σ of its total added power (its parts need not be told apart).
 //
+// Colour. A texel that clipped in all three channels kept no colour (white at the clip level),
+// but a warm bulb's light is orange on the walls it lights. With the parts' scales fixed at the
+// luminance fit's, each channel is fitted as the luminance was, one multiplier m_k,c per
+// determined source (its parts at their fitted ratios) and one ρ per surface and channel: the same
+// identifiability per channel. The added light's colour is m_k / Y(m_k), so the luminance fit's
+// energy stays; it is applied where every channel's σ ≤ 0.1 of Y(m_k) and it departs from white
+// by more than max(3σ, 0.1) in some channel (a smaller cast is within the model's own biases).
+//
 // A reference of known mean albedo ρ̄ adds one residual, log(mean_i π P_i / E_i) − log ρ̄ over its
 // pixels, weighted as known to 1 %. A reference in the photo (FitReference: a white sheet, a grey
 // card, drawn as a polygon) is a surface of its own with ρ known: its pixels, sampled more densely
@@ -91,6 +99,12 @@ struct SourceFit {
   double scale = 1, sigma = 0;  // s_k and its standard deviation; 1 and 0 when undetermined
   bool determined = false;
   double added_power = 0;       // (s_k − 1) · power
+  // The colour of the added light relative to the clipped value's, luminance 1, and the fit's σ
+  // per channel (0: not fitted). Determined where each σ ≤ 0.1; applied where it also departs
+  // from 1 by more than max(3σ, 0.1) in a channel (fit_colours); otherwise the added light keeps
+  // the clipped colour.
+  Rgb colour = Rgb::Ones(), colour_sigma = Rgb::Zero();
+  bool colour_determined = false, colour_applied = false;
 };
 
 // A part of a source (split_into_parts): the unit that gets its own scale.
@@ -115,7 +129,7 @@ struct InverseLightingResult {
   std::string status;           // "none" (nothing clipped), "fitted", "partly", "undetermined"
   std::string message;          // one sentence for the user
   bool any_determined() const;
-  CubeMap apply(const CubeMap& radiance) const;  // parts multiplied by their scales
+  CubeMap apply(const CubeMap& radiance) const;  // parts multiplied by their scales, in their colour
 };
 
 InverseLightingResult recover_clipped_sources(const InverseLightingInput& in);

@@ -87,7 +87,11 @@ nlohmann::json light_report(const LoadedScene& s) {
                        {"scale", f.scale},
                        {"scale_sigma", std::isfinite(f.sigma) ? json(f.sigma) : json(nullptr)},
                        {"power_lower_bound", f.source.power},
-                       {"power_added", f.added_power}});
+                       {"power_added", f.added_power},
+                       {"colour", {f.colour[0], f.colour[1], f.colour[2]}},
+                       {"colour_sigma", {f.colour_sigma[0], f.colour_sigma[1], f.colour_sigma[2]}},
+                       {"colour_determined", f.colour_determined},
+                       {"colour_applied", f.colour_applied}});
   }
   json parts = json::array();
   for (const PartFit& p : il->parts) {
