@@ -179,13 +179,13 @@ ImageBuf shown_as_tagged(const ImageBuf& stored, int orientation) {
   }
 }
 
-Image reoriented(Image img, int orientation) {
+Image reoriented(Image img, int orientation, const std::string& path) {
   if (orientation == 1) return img;
   const ImageBuf stored(ImageSpec(img.width, img.height, 3, TypeDesc::FLOAT), img.data.data());  // wraps, no copy
   const ImageBuf shown = shown_as_tagged(stored, orientation);
   Image out(shown.spec().width, shown.spec().height, 3);
   if (shown.has_error() || !shown.get_pixels(shown.roi(), TypeDesc::FLOAT, out.data.data()))
-    throw std::runtime_error("reorienting an image failed: " + shown.geterror());
+    throw InputError(path, "cannot turn the image as its EXIF orientation says: " + one_line(shown.geterror()));
   return out;
 }
 
@@ -212,7 +212,7 @@ ImageFile read_image_file_quietly(const std::string& path, PixelGrid grid) {
   if (iso > 0) file.exposure.iso = iso;
   if (const int f35 = spec.get_int_attribute("Exif:FocalLengthIn35mmFilm", 0); f35 > 0) file.exposure.focal_35mm_mm = f35;
   file.orientation = grid == PixelGrid::kAsDisplayed ? exif_orientation(spec) : 1;
-  file.stored = reoriented(decode_rgb(*in, path), file.orientation);
+  file.stored = reoriented(decode_rgb(*in, path), file.orientation, path);
   in->close();
   return file;
 }
