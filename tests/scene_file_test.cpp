@@ -141,6 +141,30 @@ TEST(SceneFile, ReferencesInThePhoto) {
   expect_error(fx, j, ":$.references[0].polygon_px[2]", "[u, v]");
 }
 
+// A grey ball in the room: its centre and radius as given; a reference is a polygon or a ball, not
+// both and not neither, and a ball has a positive radius.
+TEST(SceneFile, AGreyBallReference) {
+  SceneFixture fx;
+  auto j = fx.scene;
+  j["references"] = {{{"sphere", {{"center", {0.5, 0.15, -1}}, {"radius", 0.15}}}, {"albedo", 0.18}}};
+  const SceneSpec spec = parse_scene_file(fx.write(j));
+  ASSERT_EQ(spec.references.size(), 1u);
+  ASSERT_TRUE(spec.references[0].ball.has_value());
+  EXPECT_EQ(spec.references[0].ball->center_world, Vec3d(0.5, 0.15, -1));
+  EXPECT_EQ(spec.references[0].ball->radius_m, 0.15);
+  EXPECT_TRUE(spec.references[0].polygon_px.empty());
+  j["references"][0]["sphere"]["radius"] = 0;
+  expect_error(fx, j, ":$.references[0].sphere.radius", "");
+  j["references"][0]["sphere"]["radius"] = 0.15;
+  j["references"][0]["polygon_px"] = {{1, 2}, {9.5, 2}, {9.5, 7}};
+  expect_error(fx, j, ":$.references[0].sphere", "not both");
+  j["references"][0].erase("sphere");
+  j["references"][0].erase("polygon_px");
+  expect_error(fx, j, ":$.references[0]", "'polygon_px' (a patch in the photo) or 'sphere'");
+  j["references"][0]["sphere"] = {{"center", {0, 0, 0}}, {"radius", 1}, {"colour", 1}};
+  expect_error(fx, j, ":$.references[0].sphere.colour", "unknown key (expected one of: center, radius)");
+}
+
 TEST(SceneFile, MissingFilesAndKeys) {
   SceneFixture fx;
   auto j = fx.scene;

@@ -43,6 +43,18 @@
 // energy stays; it is applied where every channel's σ ≤ 0.1 of Y(m_k) and it departs from white
 // by more than max(3σ, 0.1) in some channel (a smaller cast is within the model's own biases).
 //
+// A grey ball (FitReference::ball: its centre and radius in the world) is a reference that sees
+// the light from every side the camera sees of it: its pixels (those wholly on it) are surface
+// points of known ρ with as many normals, P_i = ρ/π E(x_i, n_i), E over the normal's whole
+// hemisphere — below the horizon the floor as the shots saw it — estimated pixel by pixel. Over
+// an open plane, where the floor's irradiance is one number, the ball tells an overhead lamp from
+// a window at the side. Floor pixels the ball hides or shades (within 4 radii of its centre) are
+// left out. With a reference the fit starts from a near-least-squares one, weighs the reference's
+// residuals by their own scale, and takes the parts it holds at 0 as known (solve, unpinned).
+//
+// Under distant light the clipped texels that look into a plane of the local scene show the
+// ground, not light, and are no source (light_texels).
+//
 // A reference of known mean albedo ρ̄ adds one residual, log(mean_i π P_i / E_i) − log ρ̄ over its
 // pixels, weighted as known to 1 %. A reference in the photo (FitReference: a white sheet, a grey
 // card, drawn as a polygon) is a surface of its own with ρ known: its pixels, sampled more densely
@@ -66,11 +78,19 @@ struct FitPlane {
   std::optional<float> mean_albedo;  // known on average over its pixels ("the floor's mean is 0.5")
 };
 
-// A patch of known uniform albedo in the photo (a white sheet ≈ 0.8, a grey card 0.18): a polygon
-// in photo pixels (DESIGN.md's pixel convention) on a real surface of the fit.
+// A ball in the room (world frame, metres).
+struct FitBall {
+  Vec3f center = Vec3f::Zero();
+  float radius = 0;
+};
+
+// Something of known uniform albedo in the photo: a patch (a white sheet ≈ 0.8, a grey card 0.18),
+// a polygon in photo pixels (DESIGN.md's pixel convention) on a real surface of the fit; or a grey
+// ball, when `ball` is set (the polygon then unused).
 struct FitReference {
   std::vector<Vec2d> polygon_px;
   float albedo = 0.8f;  // luminance
+  std::optional<FitBall> ball;
 };
 
 // What the fit made of a reference: the photo pixels it sampled inside the polygon, those left out

@@ -26,7 +26,10 @@ InverseLightingInput fit_input(const LoadedScene& s, const Image& photo_clipped)
     if (p.mean_albedo) f.mean_albedo = float(*p.mean_albedo);
     in.planes.push_back(f);
   }
-  for (const ReferenceSpec& r : s.spec.references) in.references.push_back({r.polygon_px, float(r.albedo)});
+  for (const ReferenceSpec& r : s.spec.references) {
+    in.references.push_back({r.polygon_px, float(r.albedo), std::nullopt});
+    if (r.ball) in.references.back().ball = FitBall{r.ball->center_world.cast<float>(), float(r.ball->radius_m)};
+  }
   return in;
 }
 
@@ -102,7 +105,8 @@ nlohmann::json light_report(const LoadedScene& s) {
   json references = json::array();
   for (std::size_t r = 0; r < il->references.size() && r < s.spec.references.size(); ++r) {
     const ReferenceUse& u = il->references[r];
-    references.push_back({{"albedo", s.spec.references[r].albedo}, {"pixels_sampled", u.sampled},
+    references.push_back({{"kind", s.spec.references[r].ball ? "ball" : "polygon"},
+                          {"albedo", s.spec.references[r].albedo}, {"pixels_sampled", u.sampled},
                           {"pixels_clipped", u.clipped}, {"pixels_off_surface", u.off_surface}, {"pixels_used", u.used}});
   }
   out["inverse_lighting"] = {{"status", il->status},       {"message", il->message}, {"parts", parts},

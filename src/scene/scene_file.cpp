@@ -385,26 +385,46 @@ PlaneSpec parse_local_scene_item(JsonObject item, const fs::path& dir) {
   return plane;
 }
 
-// references[i]: {"polygon_px": [[u, v], ...] (3 or more, a simple polygon of positive area),
-// "albedo": a}. The photo's size is checked when it is read (pipeline.cpp).
-ReferenceSpec parse_reference(JsonObject item) {
-  ReferenceSpec ref;
-  ref.where = item.where();
-  const JsonValue poly = item.get("polygon_px");
+// references[i].sphere: {"center": [x, y, z], "radius": r}, in the world frame, metres.
+BallSpec parse_ball(JsonObject sphere) {
+  BallSpec ball;
+  ball.center_world = sphere.get("center").vec3();
+  ball.radius_m = sphere.get("radius").number(1e-6, 1e6);
+  sphere.finish();
+  return ball;
+}
+
+// references[i].polygon_px: [[u, v], ...], 3 or more corners, a simple polygon of positive area.
+std::vector<Vec2d> parse_polygon(const JsonValue& poly) {
   if (poly.size() < 3) poly.fail("a polygon needs 3 or more [u, v] corners");
-  double twice_area = 0;
+  std::vector<Vec2d> polygon_px;
   for (std::size_t i = 0; i < poly.size(); ++i) {
     const JsonValue corner = poly.element(i);
     if (corner.size() != 2) corner.fail("expected [u, v] in pixels");
-    ref.polygon_px.emplace_back(corner.element(0).number(-1e9, 1e9), corner.element(1).number(-1e9, 1e9));
+    polygon_px.emplace_back(corner.element(0).number(-1e9, 1e9), corner.element(1).number(-1e9, 1e9));
   }
   // The shoelace formula: twice the signed area.
-  for (std::size_t i = 0; i < ref.polygon_px.size(); ++i) {
-    const Vec2d& a = ref.polygon_px[i];
-    const Vec2d& b = ref.polygon_px[(i + 1) % ref.polygon_px.size()];
+  double twice_area = 0;
+  for (std::size_t i = 0; i < polygon_px.size(); ++i) {
+    const Vec2d& a = polygon_px[i];
+    const Vec2d& b = polygon_px[(i + 1) % polygon_px.size()];
     twice_area += a.x() * b.y() - b.x() * a.y();
   }
   if (!(std::abs(twice_area) >= 2.0)) poly.fail("the polygon covers less than one pixel");
+  return polygon_px;
+}
+
+// references[i]: {"polygon_px": [...]} or {"sphere": {...}}, and "albedo": a. The photo's size is
+// checked when it is read (pipeline.cpp).
+ReferenceSpec parse_reference(JsonObject item) {
+  ReferenceSpec ref;
+  ref.where = item.where();
+  auto poly = item.find("polygon_px");
+  auto sphere = item.find("sphere");
+  if (poly && sphere) sphere->fail("give 'polygon_px' (a patch in the photo) or 'sphere' (a ball in the room), not both");
+  if (!poly && !sphere) item.fail("expected 'polygon_px' (a patch in the photo) or 'sphere' (a ball in the room)");
+  if (poly) ref.polygon_px = parse_polygon(*poly);
+  if (sphere) ref.ball = parse_ball(JsonObject(*sphere));
   ref.albedo = item.get("albedo").number(0.001, 1.0);
   item.finish();
   return ref;

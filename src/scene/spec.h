@@ -57,12 +57,19 @@ struct PlaneSpec {
   std::optional<double> mean_albedo;
 };
 
-// A patch of known albedo in the photo, inverse lighting's reference (render/inverse_lighting.h):
+// A grey ball in the room, seen in the photo: its centre in the world frame and its radius, metres.
+struct BallSpec {
+  Vec3d center_world = Vec3d::Zero();
+  double radius_m = 0;
+};
+
+// Something of known albedo in the photo, inverse lighting's reference (render/inverse_lighting.h):
 // a white sheet (≈ 0.8) or a grey card (0.18) lying on a real surface, drawn as a polygon in photo
-// pixels (top-left origin).
+// pixels (top-left origin); or a grey ball, which sees the light from many directions.
 struct ReferenceSpec {
   std::string where;  // JSON location, for messages
-  std::vector<Vec2d> polygon_px;
+  std::vector<Vec2d> polygon_px;  // empty for a ball
+  std::optional<BallSpec> ball;
   double albedo = 0;  // luminance
 };
 
