@@ -106,6 +106,7 @@ double objects_brightness(const Image& a, const Image& truth, const Image& cover
 
 // Under AddressSanitizer the scene is loaded and rendered at 4 spp for its memory checks only:
 // the physics is the release build's to check, and 256 spp sanitized would add ten minutes to CI.
+// `goal` 0: the error is reported, not bounded (a goal not yet met, docs/validation.md).
 void check_against_cycles(const std::string& name, double goal, bool jpeg = false) {
   const std::string out = test::source_dir() + "/tools/validate/" + name + "/out";
   if (!std::ifstream(out + "/scene.json")) GTEST_SKIP() << out << " is absent";
@@ -136,7 +137,9 @@ void check_against_cycles(const std::string& name, double goal, bool jpeg = fals
   const double sigma_insitu = std::sqrt(var / t2), sigma_truth = relative_rmse(truth2, truth, mask) / std::sqrt(2.0);
   const double bound = std::sqrt(goal * goal + sigma_insitu * sigma_insitu + sigma_truth * sigma_truth);
   const double error = relative_rmse(r.composite_linear, truth, mask);
-  EXPECT_LT(error, bound) << "σ_insitu " << sigma_insitu << ", σ_truth " << sigma_truth;
+  if (goal > 0) {
+    EXPECT_LT(error, bound) << "σ_insitu " << sigma_insitu << ", σ_truth " << sigma_truth;
+  }
   const double brightness = objects_brightness(r.composite_linear, truth, coverage);
   if (jpeg) {
     EXPECT_NEAR(brightness, 1.0, 0.1);
@@ -158,6 +161,12 @@ TEST(Validation, ClosedRoomAgainstCyclesWithinTheGoal) { check_against_cycles("c
 TEST(Validation, ClosedRoomFromJpegShotsWithinTheGoal) {
   check_against_cycles("closed_room", 1.5 * 0.08, true);
 }
+
+// The open ground with a grey ball in the real scene, given as a reference (issue 13): from clipped
+// JPEG shots the ball tells the ceiling lamps from the windows, and the objects' brightness is
+// within 10 % of the truth (0.67 without it). The error's goal, 1.5 × the HDR shots', is not met
+// (6.0 % against 2.6 %: the shadows' edges), so it is printed, not bounded.
+TEST(Validation, OpenGroundWithAGreyBallFromJpegShots) { check_against_cycles("open_ground_ball", 0.0, true); }
 
 }  // namespace
 }  // namespace insitu

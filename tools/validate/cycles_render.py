@@ -18,7 +18,10 @@
 #    "height": 240}, "insertion": [x,y,z], "samples": {"photo": 1024, "shots": 256},
 #    "shot_size": 128, "seed": 1}
 # A closed room adds "room": {"min": [...], "max": [...], "albedo": [...], "window": {...},
-# "lamp": {...}, "sun": {...}} (make_room below). Paths in it are relative to the file. Every material is made a pure Lambertian (Diffuse BSDF,
+# "lamp": {...}, "sun": {...}} (make_room below). "references": [{"sphere": {"center": [x,y,z],
+# "radius": r}, "albedo": a}] puts a grey ball of albedo a into the real scene (the photo, the
+# truth and the shots; not the objects' coverage), and into the insitu scene as inverse
+# lighting's reference (issue 13). Paths in it are relative to the file. Every material is made a pure Lambertian (Diffuse BSDF,
 # roughness 0) of the MTL's Kd or map_Kd, the reflectance model insitu's MTL reading gives a
 # material without Ks; the pixel filter is a 1-pixel box, insitu's.
 import json
@@ -231,6 +234,22 @@ def make_objects():
     return objects
 
 
+def make_references():
+    """The real grey balls of "references": smooth UV spheres of a grey Lambertian."""
+    balls = []
+    for i, r in enumerate(desc.get("references", [])):
+        sph = r["sphere"]
+        bpy.ops.mesh.primitive_uv_sphere_add(segments=128, ring_count=64, radius=sph["radius"],
+                                             location=to_blender(sph["center"]))
+        ball = bpy.context.active_object
+        bpy.ops.object.shade_smooth()
+        a = r["albedo"]
+        mat, _, _ = diffuse_material("reference%d" % i, colour=(a, a, a))
+        ball.data.materials.append(mat)
+        balls.append(ball)
+    return balls
+
+
 def make_camera(name, eye, forward, up, angle_deg, sensor_fit="HORIZONTAL"):
     data = bpy.data.cameras.new(name)
     data.sensor_fit = sensor_fit
@@ -264,19 +283,21 @@ SHOTS = {
 
 
 def build_scene():
-    """The scene with its objects and the photo's camera: (scene, camera, ground, objects)."""
+    """The scene with its objects and the photo's camera: (scene, camera, real, objects), real the
+    ground and the reference balls (the real scene's objects, hidden for the coverage)."""
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     make_world(scene)
     ground = make_ground() if desc.get("ground") else None
     if desc.get("room"):
         make_room()
+    balls = make_references()
     objects = make_objects()
     c = desc["camera"]
     eye, look = Vector(c["eye"]), Vector(c["look"])
     camera = make_camera("photo", c["eye"], list(look - eye), [0, 1, 0], c["hfov_deg"])
     scene.camera = camera
-    return scene, camera, ground, objects
+    return scene, camera, [g for g in [ground] + balls if g], objects
 
 
 def option(name):
@@ -299,7 +320,7 @@ def ladder(spps, reference):
 
 
 def main():
-    scene, camera, ground, objects = build_scene()
+    scene, camera, real, objects = build_scene()
     c = desc["camera"]
     samples, seed = desc.get("samples", {}), desc.get("seed", 1)
 
@@ -311,13 +332,13 @@ def main():
     setup_render(scene, samples.get("photo", 1024), c["width"], c["height"], seed + 1)
     render_to(os.path.join(out_dir, "truth2.exr"))
     # The objects' coverage: only they are seen, over a transparent film.
-    if ground:
-        ground.visible_camera = False
+    for obj in real:
+        obj.visible_camera = False
     scene.render.film_transparent = True
     setup_render(scene, 16, c["width"], c["height"], seed)
     render_to(os.path.join(out_dir, "coverage.exr"))
-    if ground:
-        ground.visible_camera = True
+    for obj in real:
+        obj.visible_camera = True
     scene.render.film_transparent = False
     # The empty room: the photo, and the six shots from the insertion point.
     for obj in objects:
@@ -379,6 +400,8 @@ def write_insitu_scene(shots):
         "render": {"integrator": "path", "spp": 64},
         "output": {"image": "insitu.exr", "layers": "insitu.layers.exr"},
     }
+    if desc.get("references"):
+        scene["references"] = desc["references"]
     with open(os.path.join(out_dir, "scene.json"), "w") as f:
         json.dump(scene, f, indent=2)
     print("validate: wrote", os.path.join(out_dir, "scene.json"), flush=True)
