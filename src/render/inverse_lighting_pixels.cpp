@@ -1,0 +1,255 @@
+#include "render/inverse_lighting_pixels.h"
+
+#include <tbb/parallel_for.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "core/colour.h"
+#include "render/plane_irradiance.h"
+
+namespace insitu {
+namespace inverse_lighting_detail {
+
+namespace {
+
+constexpr float kNoHit = INFINITY;
+
+// The nearest real surface along the ray: a local-scene plane (inside the box, when there is
+// one), or the box's face it leaves through (surface planes.size() + 2·axis + side). False for
+// nothing, or an opening.
+bool hit_surface(const Ray& ray, const InverseLightingInput& in, const RoomLight& room, FitPixel& px) {
+  float best = kNoHit;
+  for (std::size_t p = 0; p < in.planes.size(); ++p) {
+    const FitPlane& pl = in.planes[p];
+    const float dn = ray.dir.dot(pl.normal);
+    if (std::abs(dn) < 1e-6f) continue;
+    const float t = (pl.point - ray.origin).dot(pl.normal) / dn;
+    const Vec3f x = ray.origin + t * ray.dir;
+    if (t <= 0 || t >= best) continue;
+    if (in.room && ((x - in.room->min).minCoeff() < -1e-4f * t || (in.room->max - x).minCoeff() < -1e-4f * t)) continue;
+    best = t;
+    px.surface = int(p);
+    px.n = dn < 0 ? pl.normal : Vec3f(-pl.normal);
+  }
+  float t_box = 0;
+  int axis = 0;
+  if (in.room && room.inside(ray.origin) && room.exit(ray.origin, ray.dir, &t_box, &axis) && t_box < best * (1 - 1e-4f)) {
+    const Vec3f q = ray.origin + t_box * ray.dir;
+    if (room.openings_at(q, axis) > 0) return false;
+    best = t_box;
+    px.surface = int(in.planes.size()) + 2 * axis + (ray.dir[axis] > 0 ? 1 : 0);
+    px.n = Vec3f::Zero();
+    px.n[axis] = ray.dir[axis] > 0 ? -1.0f : 1.0f;
+  }
+  if (best == kNoHit) return false;
+  px.x = ray.origin + best * ray.dir;
+  return true;
+}
+
+// The nearer intersection t > 0 of a ray with a ball, or kNoHit. |o + t d − c|² = r² with d unit:
+// t = −b ∓ √(r² − |q|²), b = (o − c)·d, q = (o − c) − b d the centre's offset from the ray, the form
+// that keeps its digits when the ball is small and far (pbrt-v4's sphere, "Intersection tests").
+float hit_ball(const Ray& ray, const FitBall& ball) {
+  const Vec3d oc = (ray.origin - ball.center).cast<double>(), d = ray.dir.cast<double>();
+  const double b = oc.dot(d), disc = double(ball.radius) * ball.radius - (oc - b * d).squaredNorm();
+  if (!(disc >= 0)) return kNoHit;
+  const double root = std::sqrt(disc), t = -b - root > 0 ? -b - root : -b + root;
+  return t > 0 ? float(t) : kNoHit;
+}
+
+// The pixels of a reference: inside its polygon (the pixel's centre, x + ½, y + ½, DESIGN.md,
+// strictly inside, OpenCV's pointPolygonTest), or wholly on its ball (the rays through the pixel's
+// four corners all hit it: no pixel that mixes the ball with what lies behind), tested within
+// `box`, its bounds in the photo.
+struct ReferenceMask {
+  std::vector<cv::Point2f> polygon;
+  std::optional<FitBall> ball;
+  const Camera* camera = nullptr;
+  cv::Rect box;
+  double area_px = 0;
+  bool contains(int x, int y) const {
+    if (!box.contains({x, y})) return false;
+    if (!ball) return cv::pointPolygonTest(polygon, cv::Point2f(float(x) + 0.5f, float(y) + 0.5f), false) > 0;
+    for (int c = 0; c < 4; ++c)
+      if (hit_ball(camera->ray(Vec2d(x + (c & 1), y + (c >> 1))), *ball) == kNoHit) return false;
+    return true;
+  }
+};
+
+// A ball's bounds in the photo: those of its bounding cube's corners, or the whole photo when one
+// lies behind the camera. Its area is taken as the inscribed ellipse's.
+void ball_bounds(const FitBall& ball, const Camera& camera, ReferenceMask& m) {
+  Vec2d lo = Vec2d::Constant(INFINITY), hi = -lo;
+  for (int c = 0; c < 8; ++c) {
+    const Vec3f corner = ball.center + ball.radius * Vec3f(c & 1 ? 1 : -1, c & 2 ? 1 : -1, c & 4 ? 1 : -1);
+    double depth = 0;
+    const Vec2d uv = camera.project(corner.cast<double>(), &depth);
+    if (!(depth > 0)) lo = Vec2d::Zero(), hi = Vec2d(camera.width, camera.height), c = 8;
+    else lo = lo.cwiseMin(uv), hi = hi.cwiseMax(uv);
+  }
+  lo = lo.cwiseMax(-1.0), hi = hi.cwiseMin(Vec2d(camera.width, camera.height) + Vec2d::Ones());
+  const int x0 = int(std::floor(lo.x())), y0 = int(std::floor(lo.y()));
+  m.box = cv::Rect(x0, y0, int(std::ceil(hi.x())) - x0 + 1, int(std::ceil(hi.y())) - y0 + 1);
+  m.area_px = kPi / 4 * m.box.area();
+}
+
+ReferenceMask reference_mask(const FitReference& ref, const Camera& camera, int width, int height) {
+  ReferenceMask m;
+  m.ball = ref.ball;
+  m.camera = &camera;
+  if (ref.ball) ball_bounds(*ref.ball, camera, m);
+  if (ref.ball || ref.polygon_px.empty()) {
+    m.box &= cv::Rect(0, 0, width, height);
+    return m;
+  }
+  for (const Vec2d& p : ref.polygon_px) m.polygon.emplace_back(float(p.x()), float(p.y()));
+  // Pixels whose centres lie within the polygon's bounds, clipped to the photo.
+  Vec2d lo = ref.polygon_px.front(), hi = lo;
+  for (const Vec2d& p : ref.polygon_px) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const int x0 = int(std::floor(lo.x() - 0.5)), y0 = int(std::floor(lo.y() - 0.5));
+  const int x1 = int(std::ceil(hi.x() - 0.5)), y1 = int(std::ceil(hi.y() - 0.5));
+  m.box = cv::Rect(x0, y0, x1 - x0 + 1, y1 - y0 + 1) & cv::Rect(0, 0, width, height);
+  m.area_px = std::abs(cv::contourArea(m.polygon));
+  return m;
+}
+
+enum class PixelUse { kUsed, kClipped, kOffSurface };
+
+// Pixel (x, y) of the photo as the fit uses it: not clipped, lit, on a real surface — the ball's
+// near side when `ball` is given.
+PixelUse sample_pixel(const InverseLightingInput& in, const RoomLight& room, int x, int y, FitPixel& px,
+                      const FitBall* ball = nullptr) {
+  if (in.photo_clipped && in.photo_clipped->rgb(x, y).maxCoeff() > 0) return PixelUse::kClipped;
+  const Rgb rgb = in.photo_linear->rgb(x, y);
+  const double p = luminance(rgb);
+  const Ray ray = in.camera->ray(Vec2d(x + 0.5, y + 0.5));
+  if (!(p > 0)) return PixelUse::kOffSurface;
+  if (ball) {
+    px.x = ray.origin + hit_ball(ray, *ball) * ray.dir;
+    px.n = (px.x - ball->center).normalized();
+    px.on_ball = true;
+  } else if (!hit_surface(ray, in, room, px)) {
+    return PixelUse::kOffSurface;
+  }
+  px.log_p = std::log(p);
+  px.p_rgb = rgb;
+  return PixelUse::kUsed;
+}
+
+// A pixel of a real surface left out because a ball changes its light: the ball hides it, or the
+// surface point lies within 4 radii of the ball's centre, where the ball's own shadow falls for
+// every light above 28° of elevation (a ball resting on the floor shades it out to r / tan(e/2)
+// from its foot). Lower light's longer shadows are few pixels, left to the robust loss.
+bool near_a_ball(const InverseLightingInput& in, const Ray& ray, const FitPixel& px) {
+  for (const FitReference& r : in.references)
+    if (r.ball && (hit_ball(ray, *r.ball) != kNoHit || (px.x - r.ball->center).norm() < 4 * r.ball->radius)) return true;
+  return false;
+}
+
+// Each reference's pixels, on a grid of about in.reference_pixels inside it: surface planes + 6 + r,
+// whatever real surface they lie on.
+void gather_reference_pixels(const InverseLightingInput& in, const RoomLight& room, const std::vector<ReferenceMask>& masks,
+                             std::vector<FitPixel>& out, std::vector<ReferenceUse>& uses) {
+  for (std::size_t r = 0; r < masks.size(); ++r) {
+    const ReferenceMask& m = masks[r];
+    const FitBall* ball = m.ball ? &*m.ball : nullptr;
+    const int step = std::max(1, int(std::sqrt(m.area_px / std::max(1, in.reference_pixels))));
+    for (int y = m.box.y + step / 2; y < m.box.br().y; y += step)
+      for (int x = m.box.x + step / 2; x < m.box.br().x; x += step) {
+        if (!m.contains(x, y)) continue;
+        FitPixel px;
+        ++uses[r].sampled;
+        const PixelUse use = sample_pixel(in, room, x, y, px, ball);
+        if (use != PixelUse::kUsed) {
+          ++(use == PixelUse::kClipped ? uses[r].clipped : uses[r].off_surface);
+          continue;
+        }
+        px.surface = int(in.planes.size() + 6 + r);
+        out.push_back(px);
+      }
+  }
+}
+
+// E0 and every Ek at a point, by the renderer's estimator; `scale` multiplies the sample counts.
+// E0 = E_rest + Σ_k Ek with E_rest that of the cube without the clipped texels (room0): the parts'
+// own estimates in both, so that where the clipped light is all there is (everything clipped)
+// E = E_rest + Σ (1 + a_k) Ek trades against ρ exactly, as it does in truth, instead of through
+// two independent noises that the fit would take for information.
+void estimate_at(FitPixel& p, const Vec3f& x, const RoomLight& room0, const std::vector<std::unique_ptr<RoomLight>>& parts,
+                 const InverseLightingInput& in, int scale, std::uint64_t key) {
+  p.e0_rgb = PlaneIrradiance::estimate(room0, x, p.n, scale * in.samples, 2 * key);
+  p.ek_rgb.clear();
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    p.ek_rgb.push_back(PlaneIrradiance::estimate(*parts[k], x, p.n, scale * in.part_samples, 2 * key + 1 + (k << 40)));
+    p.e0_rgb += p.ek_rgb.back();
+  }
+  p.e0 = luminance(p.e0_rgb);
+  p.ek.clear();
+  for (const Rgb& e : p.ek_rgb) p.ek.push_back(luminance(e));
+}
+
+}  // namespace
+
+// Photo pixels on a regular grid that see a real surface and are neither clipped nor dark
+// (outside the references and the balls' reach), and the references' own.
+std::vector<FitPixel> gather_pixels(const InverseLightingInput& in, const RoomLight& room, std::vector<ReferenceUse>& uses) {
+  const Image& photo = *in.photo_linear;
+  std::vector<ReferenceMask> masks;
+  for (const FitReference& r : in.references) masks.push_back(reference_mask(r, *in.camera, photo.width, photo.height));
+  uses.assign(masks.size(), {});
+  const int step = std::max(1, int(std::sqrt(double(photo.width) * photo.height / std::max(1, in.max_pixels))));
+  std::vector<FitPixel> out;
+  for (int y = step / 2; y < photo.height; y += step)
+    for (int x = step / 2; x < photo.width; x += step) {
+      FitPixel px;
+      if (std::any_of(masks.begin(), masks.end(), [&](const ReferenceMask& m) { return m.contains(x, y); })) continue;
+      if (sample_pixel(in, room, x, y, px) == PixelUse::kUsed &&
+          !near_a_ball(in, in.camera->ray(Vec2d(x + 0.5, y + 0.5)), px))
+        out.push_back(px);
+    }
+  gather_reference_pixels(in, room, masks, out, uses);
+  if (out.empty()) return out;
+  std::vector<double> log_p;
+  for (const FitPixel& p : out) log_p.push_back(p.log_p);
+  std::nth_element(log_p.begin(), log_p.begin() + std::ptrdiff_t(log_p.size() / 2), log_p.end());
+  const double dark = std::log(0.01) + log_p[log_p.size() / 2];
+  out.erase(std::remove_if(out.begin(), out.end(), [&](const FitPixel& p) { return p.log_p < dark; }), out.end());
+  return out;
+}
+
+// E0 and every Ek at each pixel. Without a room box the light is distant and E depends on the
+// normal alone: one estimate per plane, with 16× the samples, shared by its pixels — the same
+// estimate everywhere, so no noise poses as a difference between pixels that the fit would
+// take for information (over an open plane there is none). A ball's pixels each have their own
+// normal and their own estimate, with 4× the samples. E at a point of a ball is the room light's
+// over the normal's whole hemisphere: below the horizon that is the floor as the shots saw it
+// (the cube's lower half), not the floor beside the ball, which its own shadow darkens a little.
+void estimate_irradiance(std::vector<FitPixel>& pixels, const RoomLight& room0,
+                         const std::vector<std::unique_ptr<RoomLight>>& parts, const InverseLightingInput& in) {
+  const float lift = in.room ? 1e-4f * Vec3f(in.room->max - in.room->min).maxCoeff() : 0.0f;
+  std::map<int, FitPixel> by_surface;
+  std::vector<FitPixel*> todo;
+  for (FitPixel& p : pixels)
+    if (p.on_ball || in.room) todo.push_back(&p);
+    else by_surface.emplace(p.surface, p);
+  for (auto& [surface, p] : by_surface) todo.push_back(&p);
+  tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {
+    FitPixel& p = *todo[i];
+    const int scale = p.on_ball ? 4 : in.room ? 1 : 16;
+    const std::uint64_t key = in.room ? i : p.on_ball ? (std::uint64_t(1) << 32) + i : std::uint64_t(p.surface);
+    estimate_at(p, p.x + lift * p.n, room0, parts, in, scale, key);
+  });
+  for (FitPixel& p : pixels) {
+    if (p.on_ball || in.room) continue;
+    const FitPixel& e = by_surface.at(p.surface);
+    p.e0 = e.e0, p.ek = e.ek, p.e0_rgb = e.e0_rgb, p.ek_rgb = e.ek_rgb;
+  }
+  pixels.erase(std::remove_if(pixels.begin(), pixels.end(), [](const FitPixel& p) { return !(p.e0 > 0); }), pixels.end());
+}
+
+}  // namespace inverse_lighting_detail
+}  // namespace insitu

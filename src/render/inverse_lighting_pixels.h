@@ -1,0 +1,38 @@
+// The photo pixels inverse lighting fits (inverse_lighting.h), and the irradiance at each: which
+// pixels see a real surface (a local-scene plane, the room box's faces, a reference's patch or
+// ball) and are neither clipped nor dark, where they see it and with which normal; and E0 and
+// each part's Ek there, by the renderer's own estimator.
+#pragma once
+#include <memory>
+#include <vector>
+
+#include "render/inverse_lighting.h"
+
+namespace insitu {
+namespace inverse_lighting_detail {
+
+// A photo pixel that sees a real surface, with the irradiance there of the cube (E0) and of each
+// source alone (Ek).
+struct FitPixel {
+  Vec3f x = Vec3f::Zero(), n = Vec3f::Zero();
+  int surface = 0;
+  bool on_ball = false;  // a reference ball's: E differs at every pixel, with the normal
+  double log_p = 0;
+  double e0 = 0;
+  std::vector<double> ek;
+  // The same per channel, for the sources' colour (fit_colours): P, E0 and each Ek in RGB.
+  Rgb p_rgb = Rgb::Zero(), e0_rgb = Rgb::Zero();
+  std::vector<Rgb> ek_rgb;
+};
+
+// Photo pixels on a regular grid that see a real surface and are neither clipped nor dark
+// (outside the references and the balls' reach), and the references' own; `uses` counts each
+// reference's pixels.
+std::vector<FitPixel> gather_pixels(const InverseLightingInput& in, const RoomLight& room, std::vector<ReferenceUse>& uses);
+
+// E0 and every Ek at each pixel (`parts`: each part's texels alone); pixels whose E0 is 0 dropped.
+void estimate_irradiance(std::vector<FitPixel>& pixels, const RoomLight& room0,
+                         const std::vector<std::unique_ptr<RoomLight>>& parts, const InverseLightingInput& in);
+
+}  // namespace inverse_lighting_detail
+}  // namespace insitu
