@@ -297,6 +297,83 @@ TEST(InverseLighting, ClippedGroundBelowTheHorizonIsNoSource) {
   EXPECT_EQ(r.status, "fitted");
 }
 
+// Two lamps over an open floor, one overhead (50× the clip level) and one low at the side (20×): the
+// floor (albedo 0.3, unknown) says nothing of either, even with its mean albedo given it says only
+// how much light is missing. A grey ball of albedo 0.18 in the photo sees them from every side
+// and tells them apart: each is recovered within 3σ or 10 %.
+struct TwoLamps {
+  Fixture fx;
+  TwoLamps() {
+    fx.truth = test::constant_cube(kFace, Rgb(0.2f, 0.2f, 0.2f));
+    paint_disc(fx.truth, Vec3f(0.2f, 1, 0.1f), std::cos(0.2f), Rgb(25, 25, 25));
+    paint_disc(fx.truth, Vec3f(1, 0.25f, 0.6f), std::cos(0.2f), Rgb(10, 10, 10));
+    std::tie(fx.clipped, fx.mask) = clip(fx.truth, 0.5f);
+    fx.camera = Camera::look_at(Vec3d(1.5, 1.2, 1.5), Vec3d(0, 0.3, 0), Vec3d(0, 1, 0), 40, 96, 72);
+    fx.in.radiance = &fx.clipped;
+    fx.in.clipped = &fx.mask;
+    fx.in.camera = &fx.camera;
+    fx.in.planes.push_back({Vec3f::Zero(), Vec3f(0, 1, 0), std::nullopt, std::nullopt});
+    fx.in.max_pixels = 600;
+    fx.in.references.push_back({{}, 0.18f, FitBall{Vec3f(0, 0.3f, 0), 0.3f}});
+    fx.photo = photo_of(fx.in, fx.truth, 0.3f);
+    fx.in.photo_linear = &fx.photo;
+  }
+  // The overhead lamp's fit and the side lamp's (by their directions).
+  static std::pair<const SourceFit*, const SourceFit*> lamps(const InverseLightingResult& r) {
+    if (r.sources.size() != 2) return {nullptr, nullptr};
+    const bool first_is_up = r.sources[0].source.dir_world.y() > r.sources[1].source.dir_world.y();
+    return {&r.sources[first_is_up ? 0 : 1], &r.sources[first_is_up ? 1 : 0]};
+  }
+  // Both recovered: determined, each within 3σ or 10 % of its true scale.
+  static void expect_recovered(const InverseLightingResult& r) {
+    const auto [up, side] = lamps(r);
+    ASSERT_TRUE(up && side);
+    ASSERT_EQ(r.references.size(), 1u);
+    EXPECT_GT(r.references[0].used, 200) << "the ball's pixels";
+    ASSERT_TRUE(up->determined && side->determined) << r.message;
+    EXPECT_NEAR(up->scale, 50.0, std::max(3 * up->sigma, 5.0));
+    EXPECT_NEAR(side->scale, 20.0, std::max(3 * side->sigma, 2.0));
+  }
+};
+
+TEST(InverseLighting, AGreyBallTellsALampOverheadFromOneAtTheSide) {
+  TwoLamps t;
+  TwoLamps::expect_recovered(recover_clipped_sources(t.fx.in));
+}
+
+// The ball on a plate of its own: the photo is clean (the floor where the ball stood), the plate
+// the same view with the ball; the lamps are recovered as when the ball is in the photo. Read
+// from the clean photo instead, the ball's pixels show the floor, and the fit goes wrong.
+TEST(InverseLighting, AGreyBallOnAPlateOfItsOwn) {
+  TwoLamps t;
+  const Image plate = t.fx.photo, no_clip(plate.width, plate.height, 3);
+  InverseLightingInput clean = t.fx.in;
+  clean.references.clear();
+  t.fx.photo = photo_of(clean, t.fx.truth, 0.3f);
+  t.fx.in.references[0].plate_linear = &plate;
+  t.fx.in.references[0].plate_clipped = &no_clip;
+  TwoLamps::expect_recovered(recover_clipped_sources(t.fx.in));
+  t.fx.in.references[0].plate_linear = nullptr;
+  const InverseLightingResult wrong = recover_clipped_sources(t.fx.in);
+  const auto [up, side] = TwoLamps::lamps(wrong);
+  ASSERT_TRUE(up && side);
+  const bool right = up->determined && side->determined && std::abs(up->scale - 50) < 5 && std::abs(side->scale - 20) < 2;
+  EXPECT_FALSE(right) << up->scale << " " << side->scale;
+}
+
+// Without the ball, the floor's mean albedo gives the missing light but not its direction.
+TEST(InverseLighting, WithoutTheBallTheTwoLampsAreNotDetermined) {
+  TwoLamps t;
+  t.fx.in.references.clear();
+  t.fx.photo = photo_of(t.fx.in, t.fx.truth, 0.3f);
+  t.fx.in.planes[0].mean_albedo = 0.3f;
+  const InverseLightingResult r = recover_clipped_sources(t.fx.in);
+  const auto [up, side] = TwoLamps::lamps(r);
+  ASSERT_TRUE(up && side);
+  EXPECT_FALSE(up->determined || side->determined) << r.message;
+  EXPECT_TRUE(r.missing_irradiance.has_value()) << r.message;
+}
+
 TEST(InverseLighting, EverythingClippedStaysFinite) {
   Fixture fx;
   make_room(fx);

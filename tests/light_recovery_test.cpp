@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_util.h"
+#include "core/image.h"
 #include "light/cubemap.h"
 #include "scene_fixture.h"
 
@@ -112,6 +113,28 @@ TEST(LightRecovery, AReferenceOutsideThePhotoIsRefusedAndOneNotNeededIsWarnedOf)
   ASSERT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_NE(ok.err.find("$.references: nothing clipped in the environment: the references are not needed"), std::string::npos)
       << ok.err;
+}
+
+// A reference plate (the reference photographed apart, so the photo stays clean) is read as the
+// photo is; one of another size is refused where it is named, and nothing is written.
+TEST(LightRecovery, AReferencePlateIsReadAndOneOfAnotherSizeIsRefused) {
+  SceneFixture fx;
+  auto j = clipped_shots_scene(fx);
+  fs::copy_file(fx.dir.file("photo.png"), fx.dir.file("plate.png"));
+  j["references"] = {{{"sphere", {{"center", {0.5, 0.2, -0.5}}, {"radius", 0.2}}}, {"albedo", 0.18}, {"photo", "plate.png"}}};
+  const CliRun ok = run_insitu(fx.dir, "render " + fx.write(j) + " -o " + fx.dir.file("out.exr") + " --layers none");
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  const auto light = light_of(fx, "out.exr.report.json");
+  const auto& refs = light["inverse_lighting"]["references"];
+  ASSERT_EQ(refs.size(), 1u) << light.dump();
+  EXPECT_EQ(refs[0]["kind"], "ball");
+  write_image(fx.dir.file("small.png"), Image(24, 16, 3));
+  j["references"][0]["photo"] = "small.png";
+  const CliRun bad = run_insitu(fx.dir, "render " + fx.write(j) + " -o " + fx.dir.file("bad.exr") + " --layers none");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("$.references[0].photo: "), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("24 x 16 pixels, the photo 48 x 32: a plate is the photo's view"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(fx.dir.file("bad.exr")));
 }
 
 }  // namespace

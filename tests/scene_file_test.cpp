@@ -142,7 +142,7 @@ TEST(SceneFile, ReferencesInThePhoto) {
 }
 
 // A grey ball in the room: its centre and radius as given; a reference is a polygon or a ball, not
-// both and not neither, and a ball has a positive radius.
+// both and not neither, a ball has a positive radius, and a reference plate must exist.
 TEST(SceneFile, AGreyBallReference) {
   SceneFixture fx;
   auto j = fx.scene;
@@ -163,6 +163,9 @@ TEST(SceneFile, AGreyBallReference) {
   expect_error(fx, j, ":$.references[0]", "'polygon_px' (a patch in the photo) or 'sphere'");
   j["references"][0]["sphere"] = {{"center", {0, 0, 0}}, {"radius", 1}, {"colour", 1}};
   expect_error(fx, j, ":$.references[0].sphere.colour", "unknown key (expected one of: center, radius)");
+  j["references"][0]["sphere"] = {{"center", {0, 0, 0}}, {"radius", 1}};
+  j["references"][0]["photo"] = "plate.jpg";
+  expect_error(fx, j, ":$.references[0].photo", "file not found");
 }
 
 TEST(SceneFile, MissingFilesAndKeys) {

@@ -91,6 +91,10 @@ struct FitReference {
   std::vector<Vec2d> polygon_px;
   float albedo = 0.8f;  // luminance
   std::optional<FitBall> ball;
+  // A reference plate: the same view with the reference in it, linear, and its clipped mask; its
+  // pixels are read from it, and the photo's need not avoid the reference. Null: the photo.
+  const Image* plate_linear = nullptr;
+  const Image* plate_clipped = nullptr;
 };
 
 // What the fit made of a reference: the photo pixels it sampled inside the polygon, those left out

@@ -68,6 +68,7 @@ float hit_ball(const Ray& ray, const FitBall& ball) {
 struct ReferenceMask {
   std::vector<cv::Point2f> polygon;
   std::optional<FitBall> ball;
+  bool on_plate = false;  // the reference is on a plate of its own, not in the photo
   const Camera* camera = nullptr;
   cv::Rect box;
   double area_px = 0;
@@ -100,6 +101,7 @@ void ball_bounds(const FitBall& ball, const Camera& camera, ReferenceMask& m) {
 ReferenceMask reference_mask(const FitReference& ref, const Camera& camera, int width, int height) {
   ReferenceMask m;
   m.ball = ref.ball;
+  m.on_plate = ref.plate_linear != nullptr;
   m.camera = &camera;
   if (ref.ball) ball_bounds(*ref.ball, camera, m);
   if (ref.ball || ref.polygon_px.empty()) {
@@ -119,12 +121,16 @@ ReferenceMask reference_mask(const FitReference& ref, const Camera& camera, int 
 
 enum class PixelUse { kUsed, kClipped, kOffSurface };
 
-// Pixel (x, y) of the photo as the fit uses it: not clipped, lit, on a real surface — the ball's
-// near side when `ball` is given.
+// Pixel (x, y) of the photo as the fit uses it: not clipped, lit, on a real surface. For a
+// reference's pixel (`ref`), read from its plate if it has one, and on the ball's near side if it
+// is a ball.
 PixelUse sample_pixel(const InverseLightingInput& in, const RoomLight& room, int x, int y, FitPixel& px,
-                      const FitBall* ball = nullptr) {
-  if (in.photo_clipped && in.photo_clipped->rgb(x, y).maxCoeff() > 0) return PixelUse::kClipped;
-  const Rgb rgb = in.photo_linear->rgb(x, y);
+                      const FitReference* ref = nullptr) {
+  const bool plate = ref && ref->plate_linear;
+  const Image* clipped = plate ? ref->plate_clipped : in.photo_clipped;
+  const FitBall* ball = ref && ref->ball ? &*ref->ball : nullptr;
+  if (clipped && clipped->rgb(x, y).maxCoeff() > 0) return PixelUse::kClipped;
+  const Rgb rgb = (plate ? ref->plate_linear : in.photo_linear)->rgb(x, y);
   const double p = luminance(rgb);
   const Ray ray = in.camera->ray(Vec2d(x + 0.5, y + 0.5));
   if (!(p > 0)) return PixelUse::kOffSurface;
@@ -144,9 +150,11 @@ PixelUse sample_pixel(const InverseLightingInput& in, const RoomLight& room, int
 // surface point lies within 4 radii of the ball's centre, where the ball's own shadow falls for
 // every light above 28° of elevation (a ball resting on the floor shades it out to r / tan(e/2)
 // from its foot). Lower light's longer shadows are few pixels, left to the robust loss.
+// A ball on a plate of its own is not in the photo.
 bool near_a_ball(const InverseLightingInput& in, const Ray& ray, const FitPixel& px) {
   for (const FitReference& r : in.references)
-    if (r.ball && (hit_ball(ray, *r.ball) != kNoHit || (px.x - r.ball->center).norm() < 4 * r.ball->radius)) return true;
+    if (r.ball && !r.plate_linear && (hit_ball(ray, *r.ball) != kNoHit || (px.x - r.ball->center).norm() < 4 * r.ball->radius))
+      return true;
   return false;
 }
 
@@ -156,14 +164,13 @@ void gather_reference_pixels(const InverseLightingInput& in, const RoomLight& ro
                              std::vector<FitPixel>& out, std::vector<ReferenceUse>& uses) {
   for (std::size_t r = 0; r < masks.size(); ++r) {
     const ReferenceMask& m = masks[r];
-    const FitBall* ball = m.ball ? &*m.ball : nullptr;
     const int step = std::max(1, int(std::sqrt(m.area_px / std::max(1, in.reference_pixels))));
     for (int y = m.box.y + step / 2; y < m.box.br().y; y += step)
       for (int x = m.box.x + step / 2; x < m.box.br().x; x += step) {
         if (!m.contains(x, y)) continue;
         FitPixel px;
         ++uses[r].sampled;
-        const PixelUse use = sample_pixel(in, room, x, y, px, ball);
+        const PixelUse use = sample_pixel(in, room, x, y, px, &in.references[r]);
         if (use != PixelUse::kUsed) {
           ++(use == PixelUse::kClipped ? uses[r].clipped : uses[r].off_surface);
           continue;
@@ -206,7 +213,8 @@ std::vector<FitPixel> gather_pixels(const InverseLightingInput& in, const RoomLi
   for (int y = step / 2; y < photo.height; y += step)
     for (int x = step / 2; x < photo.width; x += step) {
       FitPixel px;
-      if (std::any_of(masks.begin(), masks.end(), [&](const ReferenceMask& m) { return m.contains(x, y); })) continue;
+      if (std::any_of(masks.begin(), masks.end(), [&](const ReferenceMask& m) { return !m.on_plate && m.contains(x, y); }))
+        continue;
       if (sample_pixel(in, room, x, y, px) == PixelUse::kUsed &&
           !near_a_ball(in, in.camera->ray(Vec2d(x + 0.5, y + 0.5)), px))
         out.push_back(px);

@@ -11,7 +11,36 @@ namespace insitu {
 
 namespace {
 
-InverseLightingInput fit_input(const LoadedScene& s, const Image& photo_clipped) {
+// The references' plates, read and linearized as the photo is (its response and exposure), with
+// their clipped masks; a plate of another size than the photo is an InputError naming it.
+struct Plates {
+  std::vector<Image> linear, clipped;  // per reference; empty images where it has no plate
+};
+
+Plates read_plates(LoadedScene& s) {
+  Plates p;
+  for (const ReferenceSpec& r : s.spec.references) {
+    p.linear.emplace_back(), p.clipped.emplace_back();
+    if (r.photo.empty()) continue;
+    ImageFile plate;
+    try {
+      plate = read_image_file(r.photo);
+    } catch (const InputError& e) {
+      throw e.with_context(r.where + ".photo");
+    }
+    if (plate.stored.width != s.photo.stored.width || plate.stored.height != s.photo.stored.height)
+      throw InputError(r.where + ".photo", fmt::format("{}: {} x {} pixels, the photo {} x {}: a plate is the photo's view",
+                                                       r.photo, plate.stored.width, plate.stored.height,
+                                                       s.photo.stored.width, s.photo.stored.height));
+    std::size_t clamped = 0;
+    p.linear.back() = linearize_photo(plate, s.environment_info, &clamped);
+    p.clipped.back() = clipped_mask(plate);
+    if (clamped > 0) s.warnings.add(r.photo, fmt::format("{} negative or non-finite values clamped to 0", clamped));
+  }
+  return p;
+}
+
+InverseLightingInput fit_input(const LoadedScene& s, const Image& photo_clipped, const Plates& plates) {
   InverseLightingInput in;
   in.radiance = &s.environment;
   in.clipped = &*s.environment_info.clipped_cube;
@@ -26,9 +55,11 @@ InverseLightingInput fit_input(const LoadedScene& s, const Image& photo_clipped)
     if (p.mean_albedo) f.mean_albedo = float(*p.mean_albedo);
     in.planes.push_back(f);
   }
-  for (const ReferenceSpec& r : s.spec.references) {
-    in.references.push_back({r.polygon_px, float(r.albedo), std::nullopt});
-    if (r.ball) in.references.back().ball = FitBall{r.ball->center_world.cast<float>(), float(r.ball->radius_m)};
+  for (std::size_t i = 0; i < s.spec.references.size(); ++i) {
+    const ReferenceSpec& r = s.spec.references[i];
+    FitReference& f = in.references.emplace_back(FitReference{r.polygon_px, float(r.albedo), std::nullopt});
+    if (r.ball) f.ball = FitBall{r.ball->center_world.cast<float>(), float(r.ball->radius_m)};
+    if (!r.photo.empty()) f.plate_linear = &plates.linear[i], f.plate_clipped = &plates.clipped[i];
   }
   return in;
 }
@@ -57,7 +88,8 @@ void warn_of_references(LoadedScene& s) {
 void recover_clipped_light(LoadedScene& s) {
   if (!s.environment_info.clipped_cube || !s.spec.environment.inverse_lighting) return warn_of_references(s);
   const Image photo_clipped = clipped_mask(s.photo);
-  s.inverse_lighting = recover_clipped_sources(fit_input(s, photo_clipped));
+  const Plates plates = read_plates(s);
+  s.inverse_lighting = recover_clipped_sources(fit_input(s, photo_clipped, plates));
   if (s.inverse_lighting->any_determined()) s.environment = s.inverse_lighting->apply(s.environment);
   warn_of_references(s);
   if (s.inverse_lighting->status != "fitted" && s.inverse_lighting->status != "none")

@@ -414,9 +414,10 @@ std::vector<Vec2d> parse_polygon(const JsonValue& poly) {
   return polygon_px;
 }
 
-// references[i]: {"polygon_px": [...]} or {"sphere": {...}}, and "albedo": a. The photo's size is
-// checked when it is read (pipeline.cpp).
-ReferenceSpec parse_reference(JsonObject item) {
+// references[i]: {"polygon_px": [...]} or {"sphere": {...}}, "albedo": a, and optionally "photo":
+// a reference plate. The photo's size is checked when it is read (pipeline.cpp), the plate's when
+// inverse lighting reads it (light_recovery.cpp).
+ReferenceSpec parse_reference(JsonObject item, const fs::path& dir) {
   ReferenceSpec ref;
   ref.where = item.where();
   auto poly = item.find("polygon_px");
@@ -425,6 +426,7 @@ ReferenceSpec parse_reference(JsonObject item) {
   if (!poly && !sphere) item.fail("expected 'polygon_px' (a patch in the photo) or 'sphere' (a ball in the room)");
   if (poly) ref.polygon_px = parse_polygon(*poly);
   if (sphere) ref.ball = parse_ball(JsonObject(*sphere));
+  if (auto plate = item.find("photo")) ref.photo = existing_file(*plate, dir);
   ref.albedo = item.get("albedo").number(0.001, 1.0);
   item.finish();
   return ref;
@@ -490,7 +492,7 @@ SceneSpec parse_scene_json(const json& doc, const std::string& path, const std::
   if (auto ls = root.find("local_scene"))
     for (std::size_t i = 0; i < ls->size(); ++i) scene.local_scene.push_back(parse_local_scene_item(JsonObject(ls->element(i)), dir));
   if (auto refs = root.find("references"))
-    for (std::size_t i = 0; i < refs->size(); ++i) scene.references.push_back(parse_reference(JsonObject(refs->element(i))));
+    for (std::size_t i = 0; i < refs->size(); ++i) scene.references.push_back(parse_reference(JsonObject(refs->element(i)), dir));
   if (auto objs = root.find("objects"))
     for (std::size_t i = 0; i < objs->size(); ++i) scene.objects.push_back(parse_object(JsonObject(objs->element(i)), dir));
   if (auto r = root.find("render")) parse_render(*r, scene.render);

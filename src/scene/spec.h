@@ -71,6 +71,9 @@ struct ReferenceSpec {
   std::vector<Vec2d> polygon_px;  // empty for a ball
   std::optional<BallSpec> ball;
   double albedo = 0;  // luminance
+  // A reference plate: the reference photographed from the photo's camera, with the same exposure,
+  // so that the photo itself can stay clean (a ball taken away before the photo). Empty: the photo.
+  std::string photo;
 };
 
 struct OutputSpec {
