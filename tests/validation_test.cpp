@@ -166,7 +166,14 @@ TEST(Validation, ClosedRoomFromJpegShotsWithinTheGoal) {
 // JPEG shots the ball tells the ceiling lamps from the windows, and the objects' brightness is
 // within 10 % of the truth (0.67 without it). The error's goal, 1.5 × the HDR shots', is not met
 // (6.0 % against 2.6 %: the shadows' edges), so it is printed, not bounded.
-TEST(Validation, OpenGroundWithAGreyBallFromJpegShots) { check_against_cycles("open_ground_ball", 0.0, true); }
+// Not under AddressSanitizer: with it and the ball's unit tests, their shard took 824 s there
+// instead of 51 s, near CI's budget; the ball's code paths run sanitized in InverseLighting's tests.
+TEST(Validation, OpenGroundWithAGreyBallFromJpegShots) {
+#ifdef INSITU_UNDER_ASAN
+  GTEST_SKIP() << "the ball's fit runs sanitized in InverseLighting.AGreyBall*";
+#endif
+  check_against_cycles("open_ground_ball", 0.0, true);
+}
 
 }  // namespace
 }  // namespace insitu
