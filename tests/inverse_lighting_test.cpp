@@ -9,7 +9,9 @@
 #include "cube_fixture.h"
 #include "light/clipped_sources.h"
 #include "light/irradiance.h"
+#include "light/texel_geometry.h"
 #include "render/inverse_lighting.h"
+#include "render/inverse_lighting_pixels.h"
 #include "render/plane_irradiance.h"
 
 namespace insitu {
@@ -41,9 +43,30 @@ void paint_disc(CubeMap& cube, const Vec3f& dir, float cos_radius, const Rgb& va
   cube.update_borders();
 }
 
+// The light a ball in the photo takes from floor point p under distant light (no room box): every
+// texel of the true cube whose ray from p meets the ball, L cos θ ΔΩ (by rays, not by the fit's
+// cone of directions).
+Rgb ball_shadow(const InverseLightingInput& in, const CubeMap& truth, const Vec3f& p) {
+  Rgb taken = Rgb::Zero();
+  if (in.room) return taken;
+  for (const FitReference& ref : in.references) {
+    if (!ref.ball || ref.plate_linear) continue;
+    for (int f = 0; f < 6; ++f)
+      for (int j = 0; j < truth.size(); ++j)
+        for (int i = 0; i < truth.size(); ++i) {
+          const Vec3f d = texel_direction(f, i, j, truth.size()), oc = p - ref.ball->center;
+          const float b = oc.dot(d), disc = b * b - oc.squaredNorm() + ref.ball->radius * ref.ball->radius;
+          if (d.y() > 0 && disc >= 0 && -b - std::sqrt(disc) > 0)
+            taken += truth.texel(f, i, j) * float(d.y() * texel_solid_angle(i, j, truth.size()));
+        }
+  }
+  return taken;
+}
+
 // The photo of the empty scene: P = ρ/π · E_true at the surface each pixel sees (the fit's own
-// hit test, so only the irradiance is checked), E_true by 1024 samples of the true room light; a
-// reference ball's pixels ρ_ball/π · E_true over its normal's hemisphere.
+// hit test, so only the irradiance is checked), E_true by 1024 samples of the true room light,
+// less a ball's shadow on the floor (ball_shadow); a reference ball's pixels ρ_ball/π · E_true over
+// its normal's hemisphere.
 Image photo_of(const InverseLightingInput& in, const CubeMap& truth, float albedo) {
   RoomLight room(truth, in.room);
   Image img(in.camera->width, in.camera->height, 3);
@@ -74,7 +97,9 @@ Image photo_of(const InverseLightingInput& in, const CubeMap& truth, float albed
       }
       if (!std::isfinite(t)) continue;
       const Vec3f p = r.origin + t * r.dir + 1e-4f * n;
-      img.set_rgb(x, y, rho / kPiF * PlaneIrradiance::estimate(room, p, n, 1024, std::uint64_t(y) * img.width + x));
+      Rgb e = PlaneIrradiance::estimate(room, p, n, 1024, std::uint64_t(y) * img.width + x);
+      if (rho == albedo && n.y() == 1) e = (e - ball_shadow(in, truth, p)).cwiseMax(0.0f);
+      img.set_rgb(x, y, rho / kPiF * e);
     }
   return img;
 }
@@ -324,12 +349,15 @@ struct TwoLamps {
     const bool first_is_up = r.sources[0].source.dir_world.y() > r.sources[1].source.dir_world.y();
     return {&r.sources[first_is_up ? 0 : 1], &r.sources[first_is_up ? 1 : 0]};
   }
-  // Both recovered: determined, each within 3σ or 10 % of its true scale.
-  static void expect_recovered(const InverseLightingResult& r) {
+  // Both recovered: determined, each within 3σ or 10 % of its true scale; the floor around the ball
+  // fitted with its shadow where the ball is in the photo.
+  static void expect_recovered(const InverseLightingResult& r, bool in_photo = true) {
     const auto [up, side] = lamps(r);
     ASSERT_TRUE(up && side);
     ASSERT_EQ(r.references.size(), 1u);
     EXPECT_GT(r.references[0].used, 200) << "the ball's pixels";
+    if (in_photo) EXPECT_GT(r.references[0].shadow, 50) << "the floor's pixels in the ball's shadow zone";
+    else EXPECT_EQ(r.references[0].shadow, 0) << "a ball on a plate casts no shadow in the photo";
     ASSERT_TRUE(up->determined && side->determined) << r.message;
     EXPECT_NEAR(up->scale, 50.0, std::max(3 * up->sigma, 5.0));
     EXPECT_NEAR(side->scale, 20.0, std::max(3 * side->sigma, 2.0));
@@ -352,13 +380,49 @@ TEST(InverseLighting, AGreyBallOnAPlateOfItsOwn) {
   t.fx.photo = photo_of(clean, t.fx.truth, 0.3f);
   t.fx.in.references[0].plate_linear = &plate;
   t.fx.in.references[0].plate_clipped = &no_clip;
-  TwoLamps::expect_recovered(recover_clipped_sources(t.fx.in));
+  TwoLamps::expect_recovered(recover_clipped_sources(t.fx.in), false);
   t.fx.in.references[0].plate_linear = nullptr;
   const InverseLightingResult wrong = recover_clipped_sources(t.fx.in);
   const auto [up, side] = TwoLamps::lamps(wrong);
   ASSERT_TRUE(up && side);
   const bool right = up->determined && side->determined && std::abs(up->scale - 50) < 5 && std::abs(side->scale - 20) < 2;
   EXPECT_FALSE(right) << up->scale << " " << side->scale;
+}
+
+// Under distant light the ball's shadow on the floor is part of the model (shade_by_balls): a floor
+// pixel in its shadow zone loses, from E0 and from each part's Ek, what the ball takes by the
+// cone of directions it covers, the same as the rays from the point that meet it (ball_shadow).
+// At the side lamp's shadow centre (4.8 radii from the ball) the side lamp is wholly hidden.
+TEST(InverseLighting, ABallsShadowIsWhatItsRaysMeet) {
+  TwoLamps t;
+  const std::vector<ClippedSource> sources = find_clipped_sources(t.fx.mask, t.fx.clipped);
+  ASSERT_EQ(sources.size(), 2u);
+  const int side = sources[0].dir_world.y() < sources[1].dir_world.y() ? 0 : 1;
+  const CubeMap rest = with_scaled_sources(t.fx.clipped, sources, {0.0, 0.0});
+  const Vec3f c = t.fx.in.references[0].ball->center, d = Vec3f(1, 0.25f, 0.6f).normalized();
+  inverse_lighting_detail::FitPixel px;
+  px.x = c - (c.y() / d.y()) * d;
+  px.n = Vec3f(0, 1, 0);
+  px.surface = int(t.fx.in.planes.size() + 6 + t.fx.in.references.size());  // the ball's shadow zone
+  px.shadow_ball = 0;
+  px.log_p = 0;
+  std::vector<Rgb> unshaded;
+  px.e0_rgb = irradiance_reference(rest, Vec3d(0, 1, 0));
+  for (const ClippedSource& s : sources) {
+    px.ek_rgb.push_back(irradiance_reference(source_only(t.fx.clipped, s), Vec3d(0, 1, 0)));
+    px.ek.push_back(luminance(px.ek_rgb.back()));
+    px.e0_rgb += px.ek_rgb.back();
+    unshaded.push_back(px.ek_rgb.back());
+  }
+  px.e0 = luminance(px.e0_rgb);
+  const Rgb expected_e0 = px.e0_rgb - ball_shadow(t.fx.in, t.fx.clipped, px.x);
+  std::vector<inverse_lighting_detail::FitPixel> pixels{px};
+  inverse_lighting_detail::shade_by_balls(pixels, rest, t.fx.clipped, {&sources[0], &sources[1]}, t.fx.in);
+  ASSERT_EQ(pixels.size(), 1u);
+  EXPECT_NEAR(pixels[0].e0, luminance(expected_e0), 1e-4 * luminance(expected_e0));
+  EXPECT_LT(pixels[0].ek[std::size_t(side)], 1e-6 * luminance(unshaded[std::size_t(side)])) << "the side lamp, hidden";
+  EXPECT_NEAR(pixels[0].ek[std::size_t(1 - side)], luminance(unshaded[std::size_t(1 - side)]), 1e-6) << "the lamp overhead";
+  EXPECT_GT(luminance(unshaded[std::size_t(side)]), 0.01 * px.e0) << "a side lamp that lights the point unshaded";
 }
 
 // Without the ball, the floor's mean albedo gives the missing light but not its direction.

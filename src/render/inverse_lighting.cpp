@@ -223,7 +223,7 @@ Fit solve(const std::vector<FitPixel>& pixels, const Columns& columns, const Alb
 // The unknown ρ start at π · median(P/E0) of their surface; known ones at their value.
 Albedos initial_albedos(const std::vector<FitPixel>& pixels, const InverseLightingInput& in) {
   Albedos a;
-  const std::size_t n = in.planes.size() + 6 + in.references.size();
+  const std::size_t n = in.planes.size() + 6 + 2 * in.references.size();  // and each ball's shadow zone
   a.log_rho.assign(n, 0.0);
   a.known.assign(n, false);
   a.mean.assign(n, std::nullopt);
@@ -236,13 +236,13 @@ Albedos initial_albedos(const std::vector<FitPixel>& pixels, const InverseLighti
     a.log_rho[s] = ratio[s][ratio[s].size() / 2];
     std::optional<float> known;
     if (s < in.planes.size()) known = in.planes[s].albedo;
-    if (s >= in.planes.size() + 6) known = in.references[s - in.planes.size() - 6].albedo, a.reference[s] = true;
+    if (s >= in.planes.size() + 6 && s < in.planes.size() + 6 + in.references.size()) known = in.references[s - in.planes.size() - 6].albedo, a.reference[s] = true;
     if (known) {
       a.known[s] = true;
       a.log_rho[s] = std::log(std::max(1e-6f, *known));
     }
     if (s < in.planes.size() && in.planes[s].mean_albedo) a.mean[s] = std::max(1e-6f, *in.planes[s].mean_albedo);
-    ++a.surfaces;
+    if (s < in.planes.size() + 6 + in.references.size()) ++a.surfaces;  // a ball's shadow zone is its floor
     a.references += (a.known[s] || a.mean[s]) ? 1 : 0;
   }
   return a;
@@ -492,6 +492,16 @@ CubeMap light_texels(const CubeMap& clipped, const InverseLightingInput& in) {
   return out;
 }
 
+// The pixels fitted, and each reference's own and in its shadow.
+void count_pixels(const std::vector<FitPixel>& pixels, const InverseLightingInput& in, InverseLightingResult& res) {
+  res.pixels = int(pixels.size());
+  const int first = int(in.planes.size() + 6), last = first + int(in.references.size());
+  for (const FitPixel& p : pixels) {
+    if (p.surface >= first && p.surface < last) ++res.references[std::size_t(p.surface - first)].used;
+    if (p.shadow_ball >= 0) ++res.references[std::size_t(p.shadow_ball)].shadow;
+  }
+}
+
 }  // namespace
 
 InverseLightingResult recover_clipped_sources(const InverseLightingInput& in) {
@@ -527,9 +537,10 @@ InverseLightingResult recover_clipped_sources(const InverseLightingInput& in) {
   });
   std::vector<FitPixel> pixels = gather_pixels(in, room0, res.references);
   estimate_irradiance(pixels, room0, lights, in);
-  res.pixels = int(pixels.size());
-  for (const FitPixel& p : pixels)
-    if (p.surface >= int(in.planes.size() + 6)) ++res.references[std::size_t(p.surface) - in.planes.size() - 6].used;
+  std::vector<const ClippedSource*> part_texels;
+  for (const PartFit& p : res.parts) part_texels.push_back(&p.texels);
+  inverse_lighting_detail::shade_by_balls(pixels, rest, *in.radiance, part_texels, in);
+  count_pixels(pixels, in, res);
   const Albedos albedos = initial_albedos(pixels, in);
   res.surfaces = albedos.surfaces;
   res.reference_surfaces = albedos.references;

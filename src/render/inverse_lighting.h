@@ -48,9 +48,15 @@
 // points of known ρ with as many normals, P_i = ρ/π E(x_i, n_i), E over the normal's whole
 // hemisphere — below the horizon the floor as the shots saw it — estimated pixel by pixel. Over
 // an open plane, where the floor's irradiance is one number, the ball tells an overhead lamp from
-// a window at the side. Floor pixels the ball hides or shades (within 4 radii of its centre) are
-// left out. With a reference the fit starts from a near-least-squares one, weighs the reference's
-// residuals by their own scale, and takes the parts it holds at 0 as known (solve, unpinned).
+// a window at the side — but only broadly: a matt convex object's shading keeps the light's first
+// nine spherical-harmonic coefficients (Ramamoorthi & Hanrahan 2001), and allocations of the
+// missing light with the same nine shade it alike. Its shadow tells where a light is: under
+// distant light the floor pixels from 2 to 8 radii of its centre are fitted with it
+// (inverse_lighting_pixels.h, shade_by_balls), with an albedo of their own; those it hides, or
+// within 2 radii (its reflection onto the floor is not modelled), are left out, and in a room box
+// all within 4 radii. With a reference the fit starts from a near-least-squares one, weighs the
+// reference's residuals by their own scale, and takes the parts it holds at 0 as known (solve,
+// unpinned).
 //
 // Under distant light the clipped texels that look into a plane of the local scene show the
 // ground, not light, and are no source (light_texels).
@@ -101,6 +107,7 @@ struct FitReference {
 // because the photo clipped there, those on no real surface (an opening, the sky), and those used.
 struct ReferenceUse {
   int sampled = 0, clipped = 0, off_surface = 0, used = 0;
+  int shadow = 0;  // a ball's: pixels of the surface around it fitted with its shadow
 };
 
 struct InverseLightingInput {

@@ -9,6 +9,7 @@
 #include <map>
 
 #include "core/colour.h"
+#include "light/texel_geometry.h"
 #include "render/plane_irradiance.h"
 
 namespace insitu {
@@ -146,16 +147,33 @@ PixelUse sample_pixel(const InverseLightingInput& in, const RoomLight& room, int
   return PixelUse::kUsed;
 }
 
-// A pixel of a real surface left out because a ball changes its light: the ball hides it, or the
-// surface point lies within 4 radii of the ball's centre, where the ball's own shadow falls for
-// every light above 28° of elevation (a ball resting on the floor shades it out to r / tan(e/2)
-// from its foot). Lower light's longer shadows are few pixels, left to the robust loss.
-// A ball on a plate of its own is not in the photo.
-bool near_a_ball(const InverseLightingInput& in, const Ray& ray, const FitPixel& px) {
-  for (const FitReference& r : in.references)
-    if (r.ball && !r.plate_linear && (hit_ball(ray, *r.ball) != kNoHit || (px.x - r.ball->center).norm() < 4 * r.ball->radius))
-      return true;
-  return false;
+// How a ball in the photo changes a real surface pixel's light. It hides the pixels behind it
+// (kHidden); it lights the surface near its foot by its own reflection, up to about ρ_ball (1 − cos α)
+// of what it blocks (α its half-angle: 3 % at 2 radii from its centre), which the fit does not
+// model (kHidden within 2 radii); and it shades the surface around it. Under distant light that
+// shadow is modelled (shade_by_balls) out to kShadowZone radii, the pixels there fitted with an
+// albedo of their own (the zone's, not the whole surface's: a floor's texture is not light); in a
+// room box, whose light depends on the point, all within 4 radii are left out, where its shadow
+// falls for every light above 28° of elevation (a ball resting on the floor shades it out to
+// r / tan(e/2) from its foot), lower light's longer shadows left to the robust loss. A ball on a
+// plate of its own is not in the photo and changes nothing.
+constexpr float kShadowZone = 8.0f;
+enum class BallEffect { kNone, kHidden, kShadow };
+
+BallEffect ball_effect(const InverseLightingInput& in, const Ray& ray, FitPixel& px) {
+  for (std::size_t r = 0; r < in.references.size(); ++r) {
+    const FitReference& ref = in.references[r];
+    if (!ref.ball || ref.plate_linear) continue;
+    const float d = (px.x - ref.ball->center).norm() / ref.ball->radius;
+    if (hit_ball(ray, *ref.ball) != kNoHit || d < (in.room ? 4.0f : 2.0f)) return BallEffect::kHidden;
+    if (!in.room && d < kShadowZone) {
+      px.shadow_ball = int(r);
+      if (px.surface < int(in.planes.size()) && !in.planes[std::size_t(px.surface)].albedo)
+        px.surface = int(in.planes.size() + 6 + in.references.size() + r);
+      return BallEffect::kShadow;
+    }
+  }
+  return BallEffect::kNone;
 }
 
 // Each reference's pixels, on a grid of about in.reference_pixels inside it: surface planes + 6 + r,
@@ -216,7 +234,7 @@ std::vector<FitPixel> gather_pixels(const InverseLightingInput& in, const RoomLi
       if (std::any_of(masks.begin(), masks.end(), [&](const ReferenceMask& m) { return !m.on_plate && m.contains(x, y); }))
         continue;
       if (sample_pixel(in, room, x, y, px) == PixelUse::kUsed &&
-          !near_a_ball(in, in.camera->ray(Vec2d(x + 0.5, y + 0.5)), px))
+          ball_effect(in, in.camera->ray(Vec2d(x + 0.5, y + 0.5)), px) != BallEffect::kHidden)
         out.push_back(px);
     }
   gather_reference_pixels(in, room, masks, out, uses);
@@ -257,6 +275,96 @@ void estimate_irradiance(std::vector<FitPixel>& pixels, const RoomLight& room0,
     p.e0 = e.e0, p.ek = e.ek, p.e0_rgb = e.e0_rgb, p.ek_rgb = e.ek_rgb;
   }
   pixels.erase(std::remove_if(pixels.begin(), pixels.end(), [](const FitPixel& p) { return !(p.e0 > 0); }), pixels.end());
+}
+
+namespace {
+
+// Every texel of a cube as light from a direction: its unit direction, solid angle and radiance.
+struct TexelLight {
+  Vec3f dir;
+  float d_omega;
+  Rgb radiance;
+};
+
+std::vector<TexelLight> texel_lights(const CubeMap& cube, const std::vector<std::array<int, 3>>* only = nullptr) {
+  const int n = cube.size();
+  const std::vector<double> omega = face_solid_angles(n);
+  std::vector<TexelLight> out;
+  auto add = [&](int f, int i, int j) {
+    const Rgb l = cube.texel(f, i, j);
+    if (l.maxCoeff() > 0) out.push_back({texel_direction(f, i, j, n), float(omega[std::size_t(j) * n + i]), l});
+  };
+  if (only) {
+    for (const auto& t : *only) add(t[0], t[1], t[2]);
+    return out;
+  }
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) add(f, i, j);
+  return out;
+}
+
+// ∫ over the ball's cone from x of L(ω) cos θ dω: the light the ball takes from x, by texels
+// (their centres inside the cone, ω · axis ≥ cos α, sin α = r / |c − x|).
+Rgb blocked(const std::vector<TexelLight>& light, const Vec3f& x, const Vec3f& n, const FitBall& ball) {
+  const Vec3f to_c = ball.center - x;
+  const float d = to_c.norm();
+  if (!(d > ball.radius)) return Rgb::Zero();
+  const Vec3f axis = to_c / d;
+  const float sin_a = ball.radius / d, cos_a = std::sqrt(std::max(0.0f, 1 - sin_a * sin_a));
+  Rgb sum = Rgb::Zero();
+  for (const TexelLight& t : light)
+    if (t.dir.dot(axis) >= cos_a) sum += t.radiance * (std::max(0.0f, t.dir.dot(n)) * t.d_omega);
+  return sum;
+}
+
+// A shadow zone is taken as one material: its pixels whose albedo at the lower bound, P / E0, is
+// more than 3× from the zone's median are another (a tile, a rug's edge) and left out, as are
+// pixels without light. (A shadow that deep, the ball taking ⅔ of the light, is left out with
+// them: the fit sees less of it, not something wrong.)
+void leave_out_other_materials(std::vector<FitPixel>& pixels) {
+  std::map<int, std::vector<double>> log_rho;
+  for (const FitPixel& p : pixels)
+    if (p.shadow_ball >= 0 && p.e0 > 0) log_rho[p.shadow_ball].push_back(p.log_p - std::log(p.e0));
+  std::map<int, double> median;
+  for (auto& [zone, v] : log_rho) {
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+    median[zone] = v[v.size() / 2];
+  }
+  const auto other = [&](const FitPixel& p) {
+    return !(p.e0 > 0) || (p.shadow_ball >= 0 && std::abs(p.log_p - std::log(p.e0) - median[p.shadow_ball]) > std::log(3.0));
+  };
+  pixels.erase(std::remove_if(pixels.begin(), pixels.end(), other), pixels.end());
+}
+
+}  // namespace
+
+// Under distant light a ball in the photo shades the surface around it: at x, the light from the
+// directions in its cone is missing. Each shadow-zone pixel's E0 and Ek lose what the ball takes
+// of the cube without the clipped texels (`rest`) and of each part (L0 on its texels), computed
+// by texels, so the shadow is exact and the pixels' shared estimate keeps no noise between them.
+// A pixel is in one ball's zone (the first's it lies near) and shaded by that ball alone.
+void shade_by_balls(std::vector<FitPixel>& pixels, const CubeMap& rest, const CubeMap& radiance,
+                    const std::vector<const ClippedSource*>& parts, const InverseLightingInput& in) {
+  if (in.room || std::none_of(pixels.begin(), pixels.end(), [](const FitPixel& p) { return p.shadow_ball >= 0; })) return;
+  const std::vector<TexelLight> rest_light = texel_lights(rest);
+  std::vector<std::vector<TexelLight>> part_light;
+  for (const ClippedSource* p : parts) part_light.push_back(texel_lights(radiance, &p->texels));
+  tbb::parallel_for(std::size_t(0), pixels.size(), [&](std::size_t i) {
+    FitPixel& p = pixels[i];
+    if (p.shadow_ball < 0) return;
+    const FitBall& ball = *in.references[std::size_t(p.shadow_ball)].ball;
+    Rgb taken = blocked(rest_light, p.x, p.n, ball);
+    for (std::size_t k = 0; k < part_light.size() && k < p.ek_rgb.size(); ++k) {
+      const Rgb b = blocked(part_light[k], p.x, p.n, ball);
+      p.ek_rgb[k] = (p.ek_rgb[k] - b).cwiseMax(0.0f);
+      p.ek[k] = luminance(p.ek_rgb[k]);
+      taken += b;
+    }
+    p.e0_rgb = (p.e0_rgb - taken).cwiseMax(0.0f);
+    p.e0 = luminance(p.e0_rgb);
+  });
+  leave_out_other_materials(pixels);
 }
 
 }  // namespace inverse_lighting_detail

@@ -17,6 +17,7 @@ struct FitPixel {
   Vec3f x = Vec3f::Zero(), n = Vec3f::Zero();
   int surface = 0;
   bool on_ball = false;  // a reference ball's: E differs at every pixel, with the normal
+  int shadow_ball = -1;  // the reference ball in whose shadow zone it lies (shade_by_balls)
   double log_p = 0;
   double e0 = 0;
   std::vector<double> ek;
@@ -33,6 +34,13 @@ std::vector<FitPixel> gather_pixels(const InverseLightingInput& in, const RoomLi
 // E0 and every Ek at each pixel (`parts`: each part's texels alone); pixels whose E0 is 0 dropped.
 void estimate_irradiance(std::vector<FitPixel>& pixels, const RoomLight& room0,
                          const std::vector<std::unique_ptr<RoomLight>>& parts, const InverseLightingInput& in);
+
+// Under distant light, the E0 and Ek of each pixel in a ball's shadow zone (shadow_ball; its surface
+// planes + 6 + references + the ball's index where the plane's albedo is unknown) less what the
+// ball takes from it (`rest` the cube without the
+// clipped texels, `parts` each part's texels of `radiance`); pixels whose E0 is then 0 dropped.
+void shade_by_balls(std::vector<FitPixel>& pixels, const CubeMap& rest, const CubeMap& radiance,
+                    const std::vector<const ClippedSource*>& parts, const InverseLightingInput& in);
 
 }  // namespace inverse_lighting_detail
 }  // namespace insitu

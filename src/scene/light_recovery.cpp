@@ -139,7 +139,8 @@ nlohmann::json light_report(const LoadedScene& s) {
     const ReferenceUse& u = il->references[r];
     references.push_back({{"kind", s.spec.references[r].ball ? "ball" : "polygon"},
                           {"albedo", s.spec.references[r].albedo}, {"pixels_sampled", u.sampled},
-                          {"pixels_clipped", u.clipped}, {"pixels_off_surface", u.off_surface}, {"pixels_used", u.used}});
+                          {"pixels_clipped", u.clipped}, {"pixels_off_surface", u.off_surface}, {"pixels_used", u.used},
+                          {"pixels_in_its_shadow", u.shadow}});
   }
   out["inverse_lighting"] = {{"status", il->status},       {"message", il->message}, {"parts", parts},
                              {"references", references},
