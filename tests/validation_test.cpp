@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 
 #include "core/colour.h"
@@ -107,10 +108,16 @@ double objects_brightness(const Image& a, const Image& truth, const Image& cover
 // Under AddressSanitizer the scene is loaded and rendered at 4 spp for its memory checks only:
 // the physics is the release build's to check, and 256 spp sanitized would add ten minutes to CI.
 // `goal` 0: the error is reported, not bounded (a goal not yet met, docs/validation.md).
-void check_against_cycles(const std::string& name, double goal, bool jpeg = false) {
+// Returns the error (−1 when skipped); `edit` changes the scene first.
+double check_against_cycles(const std::string& name, double goal, bool jpeg = false,
+                            const std::function<void(SceneSpec&)>& edit = {}) {
   const std::string out = test::source_dir() + "/tools/validate/" + name + "/out";
-  if (!std::ifstream(out + "/scene.json")) GTEST_SKIP() << out << " is absent";
+  if (!std::ifstream(out + "/scene.json")) {
+    [&] { GTEST_SKIP() << out << " is absent"; }();
+    return -1;
+  }
   SceneSpec spec = parse_scene_file(out + "/scene.json");
+  if (edit) edit(spec);
   spec.render.spp = 256;
 #ifdef INSITU_UNDER_ASAN
   spec.render.spp = 4;
@@ -120,13 +127,16 @@ void check_against_cycles(const std::string& name, double goal, bool jpeg = fals
   const LoadedScene scene = load_scene(spec);
   const RenderResult r = render_scene(scene);
 #ifdef INSITU_UNDER_ASAN
-  ASSERT_EQ(r.layers.nonfinite_samples, 0u);
-  GTEST_SKIP() << "the error bound is checked in the release build, not under AddressSanitizer";
+  EXPECT_EQ(r.layers.nonfinite_samples, 0u);
+  [] { GTEST_SKIP() << "the error bound is checked in the release build, not under AddressSanitizer"; }();
+  return -1;
 #endif
   const Image truth = read_all_channels(out + "/truth.exr"), truth2 = read_all_channels(out + "/truth2.exr");
   const Image photo = read_all_channels(out + "/photo.exr"), coverage = read_all_channels(out + "/coverage.exr");
-  ASSERT_EQ(truth.width, r.composite_linear.width);
-  ASSERT_EQ(coverage.channels, 4);
+  if (truth.width != r.composite_linear.width || coverage.channels != 4) {
+    ADD_FAILURE() << out << ": the truth is " << truth.width << " wide, the render " << r.composite_linear.width;
+    return -1;
+  }
   const std::vector<bool> mask = objects_and_changed(truth, photo, coverage);
   double var = 0, t2 = 0;
   for (std::size_t i = 0; i < mask.size(); ++i)
@@ -147,6 +157,7 @@ void check_against_cycles(const std::string& name, double goal, bool jpeg = fals
   std::printf("validation: %s%s, 256 spp: %.2f %% (bound %.2f %%: σ_insitu %.2f %%, σ_truth %.2f %%), objects' brightness %.3f\n",
               name.c_str(), jpeg ? " (JPEG shots)" : "", 100 * error, 100 * bound, 100 * sigma_insitu, 100 * sigma_truth,
               brightness);
+  return error;
 }
 
 TEST(Validation, OpenGroundAgainstCyclesWithinTheGoal) { check_against_cycles("open_ground", 0.03); }
@@ -165,7 +176,7 @@ TEST(Validation, ClosedRoomFromJpegShotsWithinTheGoal) {
 // The open ground with a grey ball in the real scene, given as a reference (issue 13): from clipped
 // JPEG shots the ball tells the ceiling lamps from the windows, and the objects' brightness is
 // within 10 % of the truth (0.67 without it). The error's goal, 1.5 × the HDR shots', is not met
-// (6.0 % against 2.6 %: the shadows' edges), so it is printed, not bounded.
+// (4.9 % against 2.6 %: the shadows' edges), so it is printed, not bounded.
 // Not under AddressSanitizer: with it and the ball's unit tests, their shard took 824 s there
 // instead of 51 s, near CI's budget; the ball's code paths run sanitized in InverseLighting's tests.
 TEST(Validation, OpenGroundWithAGreyBallFromJpegShots) {
@@ -173,6 +184,30 @@ TEST(Validation, OpenGroundWithAGreyBallFromJpegShots) {
   GTEST_SKIP() << "the ball's fit runs sanitized in InverseLighting.AGreyBall*";
 #endif
   check_against_cycles("open_ground_ball", 0.0, true);
+}
+
+// The same ball on a plate of its own (issue 13): the photo and the truth are the open ground's,
+// without the ball; the plate is the ball scene's photo, the same view with the ball and its
+// shadow. The plate holds what the ball in the photo held, so the error must be the same: within
+// 1.3× the error with the ball in the photo (measured 4.85 % against 4.86 %; from the CLI's JPEG
+// shots 33 % before the plate's shadow zone was read and the floor's uninformative pixels left
+// the fit, the ceiling lamps then undetermined).
+TEST(Validation, OpenGroundWithAGreyBallOnAPlate) {
+#ifdef INSITU_UNDER_ASAN
+  GTEST_SKIP() << "the ball's fit runs sanitized in InverseLighting.AGreyBall*";
+#endif
+  const std::string plate = test::source_dir() + "/tools/validate/open_ground_ball/out/photo.exr";
+  const double on_plate = check_against_cycles("open_ground", 0.0, true, [&](SceneSpec& spec) {
+    ReferenceSpec ball;
+    ball.ball = BallSpec{Vec3d(-0.6, 0.15, 1.6), 0.15};
+    ball.albedo = 0.18;
+    ball.photo = plate;
+    spec.references.push_back(ball);
+  });
+  const double in_photo = check_against_cycles("open_ground_ball", 0.0, true);
+  if (on_plate >= 0 && in_photo >= 0) {
+    EXPECT_LT(on_plate, 1.3 * in_photo);
+  }
 }
 
 }  // namespace

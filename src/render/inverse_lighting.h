@@ -54,9 +54,10 @@
 // distant light the floor pixels from 2 to 8 radii of its centre are fitted with it
 // (inverse_lighting_pixels.h, shade_by_balls), with an albedo of their own; those it hides, or
 // within 2 radii (its reflection onto the floor is not modelled), are left out, and in a room box
-// all within 4 radii. With a reference the fit starts from a near-least-squares one, weighs the
-// reference's residuals by their own scale, and takes the parts it holds at 0 as known (solve,
-// unpinned).
+// all within 4 radii. With a reference the fit leaves out the pixels that cannot inform the light
+// (a surface of unknown albedo whose pixels all see one E), starts from the convex fit of the
+// known-albedo pixels and then a near-least-squares one, weighs the reference's residuals by their
+// own scale, and takes the parts it holds at 0 as known (solve, unpinned).
 //
 // Under distant light the clipped texels that look into a plane of the local scene show the
 // ground, not light, and are no source (light_texels).

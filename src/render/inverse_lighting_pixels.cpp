@@ -160,10 +160,12 @@ PixelUse sample_pixel(const InverseLightingInput& in, const RoomLight& room, int
 constexpr float kShadowZone = 8.0f;
 enum class BallEffect { kNone, kHidden, kShadow };
 
-BallEffect ball_effect(const InverseLightingInput& in, const Ray& ray, FitPixel& px) {
+// The effect on px of the balls in the photo, or with `plate` of reference `plate` alone (the
+// plate shows that ball and its shadow).
+BallEffect ball_effect(const InverseLightingInput& in, const Ray& ray, FitPixel& px, int plate = -1) {
   for (std::size_t r = 0; r < in.references.size(); ++r) {
     const FitReference& ref = in.references[r];
-    if (!ref.ball || ref.plate_linear) continue;
+    if (!ref.ball || (plate < 0 ? ref.plate_linear != nullptr : int(r) != plate)) continue;
     const float d = (px.x - ref.ball->center).norm() / ref.ball->radius;
     if (hit_ball(ray, *ref.ball) != kNoHit || d < (in.room ? 4.0f : 2.0f)) return BallEffect::kHidden;
     if (!in.room && d < kShadowZone) {
@@ -174,6 +176,24 @@ BallEffect ball_effect(const InverseLightingInput& in, const Ray& ray, FitPixel&
     }
   }
   return BallEffect::kNone;
+}
+
+// A ball on a plate of its own casts its shadow on the plate: under distant light its shadow
+// zone's pixels are read from the plate (the photo's, clean, are fitted as the rest of the floor).
+void gather_plate_shadows(const InverseLightingInput& in, const RoomLight& room, int step, std::vector<FitPixel>& out) {
+  if (in.room) return;
+  for (std::size_t r = 0; r < in.references.size(); ++r) {
+    if (!in.references[r].ball || !in.references[r].plate_linear) continue;
+    FitReference surface_view = in.references[r];  // the plate's pixels, as surfaces
+    surface_view.ball.reset();
+    for (int y = step / 2; y < in.photo_linear->height; y += step)
+      for (int x = step / 2; x < in.photo_linear->width; x += step) {
+        FitPixel px;
+        if (sample_pixel(in, room, x, y, px, &surface_view) == PixelUse::kUsed &&
+            ball_effect(in, in.camera->ray(Vec2d(x + 0.5, y + 0.5)), px, int(r)) == BallEffect::kShadow)
+          out.push_back(px);
+      }
+  }
 }
 
 // Each reference's pixels, on a grid of about in.reference_pixels inside it: surface planes + 6 + r,
@@ -237,6 +257,7 @@ std::vector<FitPixel> gather_pixels(const InverseLightingInput& in, const RoomLi
           ball_effect(in, in.camera->ray(Vec2d(x + 0.5, y + 0.5)), px) != BallEffect::kHidden)
         out.push_back(px);
     }
+  gather_plate_shadows(in, room, step, out);
   gather_reference_pixels(in, room, masks, out, uses);
   if (out.empty()) return out;
   std::vector<double> log_p;
