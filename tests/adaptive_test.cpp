@@ -12,6 +12,7 @@
 #include "cli_util.h"
 #include "render/adaptive.h"
 #include "render/checkpoint.h"
+#include "render/pixel_blocks.h"
 #include "scene/pipeline.h"
 #include "scene_fixture.h"
 
@@ -28,6 +29,25 @@ TEST(Adaptive, VarianceBoundIsTheChiSquareQuantile) {
   EXPECT_EQ(variance_upper_bound_factor(2), INFINITY);
 }
 
+// An adaptive render's passes (render_state.h): from 0 to n, increasing, each but the last
+// ending on a multiple of 16 (whole batches), the first of max(16, n/16), the rest of
+// max(16, n/64) rounded up to 16.
+TEST(Adaptive, PassesAreShortAndEndOnWholeBatches) {
+  for (int n : {1, 10, 16, 17, 100, 256, 512, 1000, 1024, 4096, 100000}) {
+    const int passes = adaptive_passes(n);
+    EXPECT_EQ(adaptive_pass_start(n, 0), 0);
+    EXPECT_EQ(adaptive_pass_start(n, passes), n) << n;
+    EXPECT_EQ(adaptive_pass_start(n, 1), std::min(n, std::max(16, (n / 16 + 15) / 16 * 16))) << n;
+    for (int k = 1; k <= passes; ++k) {
+      const int a = adaptive_pass_start(n, k - 1), b = adaptive_pass_start(n, k);
+      EXPECT_GT(b, a) << n << " pass " << k;
+      if (k < passes) EXPECT_EQ(b % 16, 0) << n << " pass " << k;
+      if (k > 1 && k < passes) EXPECT_EQ(b - a, std::max(16, (n / 64 + 15) / 16 * 16)) << n;
+    }
+  }
+  EXPECT_EQ(adaptive_passes(1024), 61);  // 64, then 60 of 16
+}
+
 // A pixel's sums over samples of luminance `y` (all on the catcher: with = y, without = 0).
 void add_sample(PixelSums& p, double y) {
   p.with += Rgb::Constant(float(y));
@@ -40,12 +60,24 @@ TEST(Adaptive, ErrorPoolsTheChangedNeighbours) {
   for (int k = 0; k < 32; ++k)
     for (std::size_t i = 0; i < sums.size(); ++i) add_sample(sums[i], i == 0 ? 1.0 : (k % 2 ? 2.0 : 0.0));
   // Pixel 0 (value 1) has no variance of its own. Its 3 × 3 window, at the corner, holds pixels
-  // 0, 1, 3 and 4, all changed; the other three have s² = 32/31, each raised by the bound.
-  const double pooled = 3.0 / 4.0 * 32.0 / 31.0 * variance_upper_bound_factor(32);
+  // 0, 1, 3 and 4, all changed; the other three have s² = 32/31. The mean over the four is raised
+  // by the bound of 4 × 31 degrees of freedom.
+  const double pooled = 3.0 / 4.0 * 32.0 / 31.0 * variance_upper_bound_factor(4 * 31 + 1);
   EXPECT_NEAR(honest_relative_error(sums, 3, 3, 0), std::sqrt(pooled / 32), 1e-9);
-  // The centre sees all nine: 8 noisy of 9.
-  const double centre = 8.0 / 9.0 * 32.0 / 31.0 * variance_upper_bound_factor(32);
-  EXPECT_NEAR(honest_relative_error(sums, 3, 3, 4), std::sqrt(std::max(centre, 32.0 / 31.0 * variance_upper_bound_factor(32)) / 32), 1e-9);
+  // The centre sees all nine, 8 noisy, 9 × 31 degrees of freedom; its own s², bounded with its 31,
+  // if that is more.
+  const double centre = 8.0 / 9.0 * 32.0 / 31.0 * variance_upper_bound_factor(9 * 31 + 1);
+  const double centre_own = 32.0 / 31.0 * variance_upper_bound_factor(32);
+  EXPECT_NEAR(honest_relative_error(sums, 3, 3, 4), std::sqrt(std::max(centre, centre_own) / 32), 1e-9);
+  // A pixel noisier than its neighbourhood keeps its own variance: pixel 4 of nine whose others
+  // are noiseless but changed.
+  std::vector<PixelSums> lone(9);
+  for (int k = 0; k < 32; ++k)
+    for (std::size_t i = 0; i < lone.size(); ++i) add_sample(lone[i], i == 4 ? (k % 2 ? 2.0 : 0.0) : 1.0);
+  const double own = 32.0 / 31.0 * variance_upper_bound_factor(32);
+  const double lone_pool = 32.0 / 31.0 / 9 * variance_upper_bound_factor(9 * 31 + 1);
+  EXPECT_NEAR(honest_relative_error(lone, 3, 3, 4), std::sqrt(std::max(own, lone_pool) / 32), 1e-9);
+  EXPECT_GT(own, lone_pool);
   // Unchanged everywhere: nothing to judge, error 0; noise over a value of 0: infinite.
   std::vector<PixelSums> calm(4);
   for (PixelSums& p : calm) p.samples = 16;
@@ -64,17 +96,28 @@ struct Outcome {
   double rms_over_target = 0, far_off = 0;  // RMS of error/τ; share with |error| > 3τ
 };
 
+// A sample of luminance y as the renderer stacks it: a leaf pushed onto the pixel's blocks
+// (render/pixel_blocks.h), so that from 128 samples on the rule reads batch means.
+void push_sample(PixelBlocks& blocks, double y) {
+  PixelSums leaf;
+  add_sample(leaf, y);
+  push_block(blocks, 0, leaf);
+}
+
 template <class Stop>
 Outcome simulate(Stop stop, std::uint32_t seed) {
   const int w = 64, h = 64;
   const double tau = 0.1, truth = 1 + 20 * 0.05;
   std::mt19937 rng(seed);
   std::bernoulli_distribution bright(0.05);
-  std::vector<PixelSums> sums(std::size_t(w * h));
+  std::vector<PixelBlocks> blocks(std::size_t(w * h));
+  std::vector<PixelSums> sums(blocks.size());
   std::vector<std::uint8_t> stopped(sums.size(), 0);
   for (int pass = 0; pass < 64; ++pass) {
-    for (std::size_t i = 0; i < sums.size(); ++i)
-      for (int k = 0; k < 16 && !stopped[i]; ++k) add_sample(sums[i], bright(rng) ? 21.0 : 1.0);
+    for (std::size_t i = 0; i < sums.size(); ++i) {
+      for (int k = 0; k < 16 && !stopped[i]; ++k) push_sample(blocks[i], bright(rng) ? 21.0 : 1.0);
+      sums[i] = fold_blocks(blocks[i]);
+    }
     stop(sums, w, h, tau, stopped);
   }
   Outcome o;
@@ -160,9 +203,9 @@ TEST(AdaptiveRender, ReachesTheTargetAgainstAReference) {
 }
 
 // Without a catcher, what the objects do not cover cannot change: those pixels stop at the first
-// judgement (the first pass, 64 of 512 samples), and so does every pixel of the realtime path
-// that no object's edge crosses within a pixel (its only noise is an edge's coverage, which the
-// pooled variance of render/adaptive.h passes on to the neighbours).
+// judgement (the first pass: 32 of 512 samples, render_state.h), and so does every pixel of the
+// realtime path that no object's edge crosses within a pixel (its only noise is an edge's
+// coverage, which the pooled variance of render/adaptive.h passes on to the neighbours).
 bool near_an_edge(const RenderLayers& l, int x, int y) {
   for (int ny = std::max(0, y - 1); ny <= std::min(l.alpha.height - 1, y + 1); ++ny)
     for (int nx = std::max(0, x - 1); nx <= std::min(l.alpha.width - 1, x + 1); ++nx)
@@ -178,11 +221,11 @@ TEST(AdaptiveRender, UnchangedAndNoiselessPixelsStopAtTheFirstPass) {
   for (int y = 0; y < fx.height; ++y)
     for (int x = 0; x < fx.width; ++x) {
       if (!near_an_edge(realtime.layers, x, y)) {
-        EXPECT_EQ(*realtime.layers.samples.at(x, y), 64.0f) << x << "," << y;
+        EXPECT_EQ(*realtime.layers.samples.at(x, y), float(adaptive_first_pass(512))) << x << "," << y;
       }
       inside += *realtime.layers.alpha.at(x, y) == 1 && !near_an_edge(realtime.layers, x, y);
       if (*path.layers.alpha.at(x, y) > 0) continue;
-      EXPECT_EQ(*path.layers.samples.at(x, y), 64.0f) << x << "," << y;
+      EXPECT_EQ(*path.layers.samples.at(x, y), float(adaptive_first_pass(512))) << x << "," << y;
       ++background;
     }
   EXPECT_GT(background, 100);

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "render/pixel_blocks.h"
+#include "render/pixel_variance.h"
 
 namespace insitu {
 namespace {
@@ -22,12 +23,14 @@ PixelSums leaf(int s) {
   return p;
 }
 
-// The definition, slowly: an aligned block is its left half plus its right half; a range is its
-// maximal aligned blocks from the left, added left to right.
+// The definition, slowly: an aligned block is its left half plus its right half (and a batch of its
+// own when it has kBatchSamples samples); a range is its maximal aligned blocks from the left,
+// added left to right.
 PixelSums block_value(int start, int size) {
   if (size == 1) return leaf(start);
   PixelSums left = block_value(start, size / 2);
   add_sums(left, block_value(start + size / 2, size / 2));
+  if (size == kBatchSamples) start_batch(left);  // a batch: its own sum, squared
   return left;
 }
 
@@ -50,7 +53,7 @@ PixelBlocks counted(int a, int b) {
 
 bool same(const PixelSums& a, const PixelSums& b) {
   return (a.objects == b.objects).all() && a.y == b.y && a.y2 == b.y2 && a.w == b.w && a.wn == b.wn &&
-         a.samples == b.samples;
+         a.samples == b.samples && a.batch_y == b.batch_y && a.batch_y2 == b.batch_y2 && a.batches == b.batches;
 }
 
 bool same(const PixelBlocks& a, const PixelBlocks& b) {

@@ -141,13 +141,14 @@ TEST(Render, EveryLayerIsFiniteAtTheExtremes) {
 }
 
 // The variance layer predicts the spread between renders with different seeds: for independent
-// estimates a and b of one pixel, E[(a − b)²] = 2·Var(mean); averaged over the changed pixels. The
-// layer treats the samples as independent, but their pixel positions are stratified, which makes
-// the true variance smaller: the layer is conservative (ratio ≈ 0.75 here), never optimistic.
+// estimates a and b of one pixel, E[(a − b)²] = 2·Var(mean); averaged over the changed pixels. At
+// 256 spp the layer is batch means over blocks of 16 samples (render/pixel_variance.h), an upper
+// bound for scrambled Sobol points that errs high by less than the estimate of independent
+// samples (0.24 of it already at 64 spp).
 TEST(Layers, VariancePredictsTheSpreadAcrossSeeds) {
   test::SceneFixture fx;
   auto j = fx.scene;
-  j["render"] = {{"integrator", "path"}, {"spp", 64}};
+  j["render"] = {{"integrator", "path"}, {"spp", 256}};
   j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
   j["objects"] = {{{"mesh", "good_quad.obj"}, {"translate", {0, 0.3, 0}}}};
   SceneSpec spec = parse_scene_file(fx.write(j));
@@ -173,11 +174,10 @@ TEST(Layers, VariancePredictsTheSpreadAcrossSeeds) {
   ASSERT_GT(n, 100);
   // Never optimistic: the ratio of the observed spread to the predicted one may exceed 1 only by
   // its own sampling error, about √(2/n) relative for n pixels (a χ² with n degrees of freedom);
-  // 4 of those. Not absurdly conservative either: the variance layer is that of independent
-  // samples, and a pixel's scrambled Sobol points (core/sampler.h) err less than that says (0.28 of
-  // it here at 64 spp, 1.0 with independent numbers), so only an estimate off by an order of
-  // magnitude fails.
-  EXPECT_GT(diff2 / var, 0.1);
+  // 4 of those. Not wasteful either: the estimate of independent samples, 0.24 of the spread at 64
+  // spp and less at 256, fails the lower bound.
+  std::printf("observed / predicted spread %.3f over %d pixels\n", diff2 / var, n);
+  EXPECT_GT(diff2 / var, 0.4);
   EXPECT_LT(diff2 / var, 1 + 4 * std::sqrt(2.0 / n)) << "n = " << n;
   // Where the camera met the object: its normal (+Y, the quad faces up) and albedo in the layers.
   const Vec2d uv = s.camera.project({0.5, 0.3, -0.5});

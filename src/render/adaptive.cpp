@@ -1,25 +1,11 @@
 #include "render/adaptive.h"
 
+#include "render/pixel_variance.h"
+
 #include <algorithm>
 #include <cmath>
 
 namespace insitu {
-
-namespace {
-
-// The per-sample variance s² of y over the pixel's n samples: (Σy² − (Σy)²/n) / (n − 1).
-double sample_variance(const PixelSums& p) {
-  const int n = p.samples;
-  return n > 1 ? std::max(0.0, (p.y2 - p.y * p.y / n) / double(n - 1)) : 0.0;
-}
-
-// s² raised to its upper confidence bound (0 stays 0).
-double bounded_variance(const PixelSums& p) {
-  const double s2 = sample_variance(p);
-  return s2 > 0 ? s2 * variance_upper_bound_factor(p.samples) : 0.0;
-}
-
-}  // namespace
 
 // s² (n − 1) / χ²_0.05(n − 1), χ²_p(k) ≈ k (1 − 2/(9k) + z_p √(2/(9k)))³ (Wilson & Hilferty
 // 1931), z_0.05 = −1.645. Below k = 3 the approximation's cube goes negative: infinite there.
@@ -35,15 +21,20 @@ double honest_relative_error(const std::vector<PixelSums>& sums, int w, int h, s
   if (p.samples < 2) return INFINITY;
   const int x = int(i % std::size_t(w)), y = int(i / std::size_t(w));
   double pooled = 0;
-  int count = 0;
+  int count = 0, dof = 0;
   for (int ny = std::max(0, y - 1); ny <= std::min(h - 1, y + 1); ++ny)
     for (int nx = std::max(0, x - 1); nx <= std::min(w - 1, x + 1); ++nx) {
       const PixelSums& q = sums[std::size_t(ny) * std::size_t(w) + std::size_t(nx)];
       if (!changed_pixel(q) || q.samples < 2) continue;
-      pooled += bounded_variance(q);
-      ++count;
+      const SampleVariance v = sample_variance(q);
+      pooled += v.per_sample, dof += v.dof, ++count;
     }
-  const double variance = std::max(bounded_variance(p), count > 0 ? pooled / count : 0.0);
+  // Each estimate raised to its bound: the pooled mean over `count` pixels with about Σ dof
+  // degrees of freedom, the pixel's own with its own.
+  const double pooled_bound = count > 0 && pooled > 0 ? pooled / count * variance_upper_bound_factor(dof + 1) : 0.0;
+  const SampleVariance own = sample_variance(p);
+  const double own_bound = own.per_sample > 0 ? own.per_sample * variance_upper_bound_factor(own.dof + 1) : 0.0;
+  const double variance = std::max(own_bound, pooled_bound);
   if (variance == 0) return 0;
   const double value = pixel_value(p);
   return value > 0 ? std::sqrt(variance / p.samples) / value : INFINITY;

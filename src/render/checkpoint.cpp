@@ -15,7 +15,7 @@ namespace insitu {
 namespace {
 
 constexpr char kMagic[8] = {'I', 'N', 'S', 'I', 'T', 'U', 'C', 'K'};
-constexpr std::uint32_t kVersion = 4;
+constexpr std::uint32_t kVersion = 5;
 
 template <class T>
 void put(std::string& out, T v) {
@@ -31,16 +31,17 @@ T get(const std::string& in, std::size_t& at, const std::string& path) {
   return v;
 }
 
-// One pixel's sums, field by field (Eigen's types are not trivially copyable): 15 floats, 9
-// doubles, 3 int32.
-constexpr std::uint32_t kPixelBytes = 15 * 4 + 9 * 8 + 3 * 4;
+// One pixel's sums, field by field (Eigen's types are not trivially copyable): 15 floats, 11
+// doubles, 4 int32.
+constexpr std::uint32_t kPixelBytes = 15 * 4 + 11 * 8 + 4 * 4;
 
 void put_sums(std::string& out, const PixelSums& p) {
   for (const Rgb* c : {&p.objects, &p.with, &p.without, &p.albedo})
     for (int k = 0; k < 3; ++k) put(out, (*c)[k]);
   for (int k = 0; k < 3; ++k) put(out, p.normal[k]);
-  for (double d : {p.coverage, p.depth, p.y, p.y2, p.w, p.n, p.w2, p.n2, p.wn}) put(out, d);
+  for (double d : {p.coverage, p.depth, p.y, p.y2, p.w, p.n, p.w2, p.n2, p.wn, p.batch_y, p.batch_y2}) put(out, d);
   put(out, std::int32_t(p.met)), put(out, std::int32_t(p.catcher)), put(out, std::int32_t(p.samples));
+  put(out, std::int32_t(p.batches));
 }
 
 PixelSums get_sums(const std::string& in, std::size_t& at, const std::string& path) {
@@ -48,30 +49,32 @@ PixelSums get_sums(const std::string& in, std::size_t& at, const std::string& pa
   for (Rgb* c : {&p.objects, &p.with, &p.without, &p.albedo})
     for (int k = 0; k < 3; ++k) (*c)[k] = get<float>(in, at, path);
   for (int k = 0; k < 3; ++k) p.normal[k] = get<float>(in, at, path);
-  for (double* d : {&p.coverage, &p.depth, &p.y, &p.y2, &p.w, &p.n, &p.w2, &p.n2, &p.wn}) *d = get<double>(in, at, path);
+  for (double* d : {&p.coverage, &p.depth, &p.y, &p.y2, &p.w, &p.n, &p.w2, &p.n2, &p.wn, &p.batch_y, &p.batch_y2})
+    *d = get<double>(in, at, path);
   p.met = get<std::int32_t>(in, at, path), p.catcher = get<std::int32_t>(in, at, path);
   p.samples = get<std::int32_t>(in, at, path);
+  p.batches = get<std::int32_t>(in, at, path);
   return p;
 }
 
 // A pixel that adaptive sampling stopped holds the samples of the first k ≥ 1 passes, k ≤ passes done.
-bool stopped_at_pass_end(int n, int begin, int end, int passes_done) {
-  for (int k = 1; k <= passes_done; ++k)
-    if (n == pass_start(begin, end, k) - begin) return true;
+bool stopped_at_pass_end(const RenderState& st, int n) {
+  for (int k = 1; k <= st.passes_done; ++k)
+    if (n == plan_pass_start(st, k) - st.sample_begin) return true;
   return false;
 }
 
 // Each pixel holds the canonical blocks of [begin, begin + n) with n the samples of the passes
 // done, plus the pass under way for the tiles before tiles_done.
 void check_pixels(const RenderState& st, const std::string& path) {
-  const int begin = st.sample_begin, end = st.sample_end;
-  const int done = pass_start(begin, end, st.passes_done) - begin;
-  const int next = st.passes_done < render_passes(end - begin) ? pass_start(begin, end, st.passes_done + 1) - begin : done;
+  const int begin = st.sample_begin;
+  const int done = plan_pass_start(st, st.passes_done) - begin;
+  const int next = st.passes_done < plan_passes(st) ? plan_pass_start(st, st.passes_done + 1) - begin : done;
   if (st.spp_done != done) throw InputError(path, "inconsistent checkpoint (samples done)");
   for (std::size_t i = 0; i < st.pixels.size(); ++i) {
     const int n = block_samples(st.pixels[i]);
     const bool stopped = !st.stopped.empty() && st.stopped[i];
-    if ((stopped ? !stopped_at_pass_end(n, begin, end, st.passes_done) : n != done && n != next) ||
+    if ((stopped ? !stopped_at_pass_end(st, n) : n != done && n != next) ||
         !canonical_blocks(st.pixels[i], begin))
       throw InputError(path, fmt::format("inconsistent checkpoint (pixel {})", i));
   }
@@ -80,7 +83,7 @@ void check_pixels(const RenderState& st, const std::string& path) {
 // The header's plan: a size, a sample range within spp, passes and tiles within it.
 void check_plan(const RenderState& st, const std::string& path) {
   const bool ok = st.width > 0 && st.height > 0 && st.spp > 0 && st.sample_begin >= 0 && st.sample_begin < st.sample_end &&
-                  st.sample_end <= st.spp && st.passes_done >= 0 && st.passes_done <= render_passes(st.sample_end - st.sample_begin) &&
+                  st.sample_end <= st.spp && st.passes_done >= 0 && st.passes_done <= plan_passes(st) &&
                   st.tiles_done >= 0 && st.tiles_done < long(tiles_across(st.width)) * long(tiles_across(st.height));
   if (!ok) throw InputError(path, "inconsistent checkpoint (size, samples or passes)");
 }

@@ -4,12 +4,12 @@
 // of one. A checkpoint lies beside the output, OUT.checkpoint; a part is the state of a finished
 // render of a sample range, which `insitu merge` adds to the others.
 //
-// Layout (little-endian): "INSITUCK", u32 version (4), u32 bytes per block (144), u64
+// Layout (little-endian): "INSITUCK", u32 version (5), u32 bytes per block (164), u64
 // fingerprint, i32 width, height, spp, sample_begin, sample_end, passes_done, tiles_done, spp_done,
 // u64 nonfinite, f64 noise target (0: not adaptive), u32 length and the text of the settings (what
 // `insitu merge` needs to load the scene again: JSON, may be empty), then per pixel an i32 count
 // of blocks and the blocks (render/pixel_blocks.h), each a PixelSums field by field (4 RGB and the
-// normal as float32, 9 float64 sums, 3 int32 counts); with a noise target, then one u8 per pixel:
+// normal as float32, 11 float64 sums, 4 int32 counts); with a noise target, then one u8 per pixel:
 // 1 where adaptive sampling stopped it (render/adaptive.h).
 // The fingerprint names the scene and settings it belongs to (scene/pipeline.h,
 // render_fingerprint): a checkpoint of another scene, other inputs or other settings is refused.

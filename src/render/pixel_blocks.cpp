@@ -1,5 +1,7 @@
 #include "render/pixel_blocks.h"
 
+#include "render/pixel_variance.h"
+
 namespace insitu {
 
 void add_sums(PixelSums& into, const PixelSums& b) {
@@ -7,6 +9,7 @@ void add_sums(PixelSums& into, const PixelSums& b) {
   into.normal += b.normal;
   into.coverage += b.coverage, into.depth += b.depth, into.y += b.y, into.y2 += b.y2;
   into.w += b.w, into.n += b.n, into.w2 += b.w2, into.n2 += b.n2, into.wn += b.wn;
+  into.batch_y += b.batch_y, into.batch_y2 += b.batch_y2, into.batches += b.batches;
   into.met += b.met, into.catcher += b.catcher, into.samples += b.samples;
 }
 
@@ -27,6 +30,7 @@ void push_block(PixelBlocks& blocks, int first, const PixelSums& block) {
     const int size = right.samples, left_start = top_start - left.samples;
     if (left.samples != size || !siblings(left_start, size)) break;
     add_sums(left, right);
+    if (left.samples == kBatchSamples) start_batch(left);
     blocks.pop_back();
     top_start = left_start;
   }
@@ -63,6 +67,7 @@ bool canonical_blocks(const PixelBlocks& blocks, int first) {
     const int size = blocks[i].samples;
     if (size <= 0 || (size & (size - 1)) != 0 || start % size != 0) return false;
     if (i > 0 && blocks[i - 1].samples == size && siblings(start - size, size)) return false;
+    if (blocks[i].batches != (size >= kBatchSamples ? size / kBatchSamples : 0)) return false;
     start += size;
   }
   return true;

@@ -28,7 +28,8 @@ namespace insitu {
 void add_sums(PixelSums& into, const PixelSums& b);
 
 // Pushes `block`, the aligned block that follows `blocks` (which start at sample `first`), and
-// merges siblings on top.
+// merges siblings on top; a block merged to kBatchSamples samples becomes a batch
+// (render/pixel_variance.h).
 void push_block(PixelBlocks& blocks, int first, const PixelSums& block);
 
 // The pixel's sum over its whole range: its blocks added left to right (zero when empty).
@@ -41,7 +42,8 @@ int block_samples(const PixelBlocks& blocks);
 int canonical_count(int first, int end);
 
 // Whether `blocks`, starting at sample `first`, is a canonical decomposition: each block an
-// aligned power of two, no two adjacent siblings (what a part file read from disk must be).
+// aligned power of two, no two adjacent siblings, holding its whole batches (render/pixel_variance.h)
+// and no others (what a part file read from disk must be).
 bool canonical_blocks(const PixelBlocks& blocks, int first);
 
 }  // namespace insitu

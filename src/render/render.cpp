@@ -2,6 +2,7 @@
 
 #include "render/adaptive.h"
 #include "render/pixel_blocks.h"
+#include "render/pixel_variance.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -31,11 +32,6 @@ double difference_variance(const PixelSums& p, int k) {
   return std::max(0.0, (s2 - s * s / k) / (double(k) * (k - 1)));
 }
 
-// Variance of the mean after n samples: (Σy² − (Σy)²/n) / (n (n − 1)).
-double variance_of_mean(const PixelSums& p, int n) {
-  return n > 1 ? std::max(0.0, (p.y2 - p.y * p.y / n) / (double(n) * (n - 1))) : 0.0;
-}
-
 // Mean over pixels the render changed (an object covers them or the catcher's estimates differ)
 // of √variance relative to the pixel's value. Changed pixels of variance 0 count as 0, so that the
 // set of pixels, and with it the figure, does not jump from pass to pass. A pixel adds its
@@ -43,7 +39,7 @@ double variance_of_mean(const PixelSums& p, int n) {
 void add_relative_noise(const PixelSums& p, double& noise, long& changed) {
   const int n = p.samples;
   if (n == 0 || !changed_pixel(p)) return;
-  const double v = variance_of_mean(p, n);
+  const double v = variance_of_mean(p);
   const double value = pixel_value(p);
   if (value <= 0) return;
   noise += std::sqrt(v) / value;
@@ -123,7 +119,7 @@ void set_pixel_layers(RenderLayers& out, int x, int y, const PixelSums& p) {
     out.albedo.set_rgb(x, y, p.albedo / float(p.met));
     *out.depth.at(x, y) = float(p.depth / p.met);
   }
-  *out.variance.at(x, y) = float(variance_of_mean(p, spp));
+  *out.variance.at(x, y) = float(variance_of_mean(p));
   *out.ratio_variance.at(x, y) = float(ratio_variance(p, spp));
   *out.difference_variance.at(x, y) = float(difference_variance(p, spp));
   *out.catcher_samples.at(x, y) = float(p.catcher);
@@ -234,8 +230,7 @@ bool run_pass(const PassContext& c, int s0, int s1, int& tiles_done) {
 // that pass anyway, taken once rather than reallocated pass after pass.
 void reserve_blocks(RenderState& st) {
   int most = 1;
-  for (int k = 1; k <= render_passes(st.sample_end - st.sample_begin); ++k)
-    most = std::max(most, canonical_count(st.sample_begin, pass_start(st.sample_begin, st.sample_end, k)));
+  for (int k = 1; k <= plan_passes(st); ++k) most = std::max(most, canonical_count(st.sample_begin, plan_pass_start(st, k)));
   tbb::parallel_for(std::size_t(0), st.pixels.size(), [&](std::size_t i) { st.pixels[i].reserve(std::size_t(most)); });
 }
 
@@ -251,7 +246,7 @@ void start_state(RenderState& st, int w, int h, int spp, int begin, int end, dou
   if (st.noise_target != noise_target || st.stopped.size() != (noise_target > 0 ? n : 0))
     throw std::invalid_argument("render: the state to resume is of another noise target");
   if (st.width != w || st.height != h || st.spp != spp || st.sample_begin != begin || st.sample_end != end ||
-      st.pixels.size() != std::size_t(w) * h || st.passes_done < 0 || st.passes_done > render_passes(end - begin) ||
+      st.pixels.size() != std::size_t(w) * h || st.passes_done < 0 || st.passes_done > plan_passes(st) ||
       st.tiles_done < 0 || st.tiles_done >= tiles_across(w) * tiles_across(h))
     throw std::invalid_argument("render: the state to resume is of another image size, spp or sample range");
 }
@@ -284,9 +279,9 @@ namespace {
 
 // The passes over [st.sample_begin, st.sample_end), from where the state is.
 void run_passes(const PassContext& c, RenderState& st) {
-  const int begin = st.sample_begin, end = st.sample_end, passes = render_passes(end - begin);
+  const int begin = st.sample_begin, end = st.sample_end, passes = plan_passes(st);
   for (; st.passes_done < passes; ++st.passes_done) {
-    const int s0 = pass_start(begin, end, st.passes_done), s1 = pass_start(begin, end, st.passes_done + 1);
+    const int s0 = plan_pass_start(st, st.passes_done), s1 = plan_pass_start(st, st.passes_done + 1);
     if (!run_pass(c, s0, s1, st.tiles_done)) break;  // stopped
     st.spp_done = s1 - begin;
     if (st.noise_target > 0) stop_converged(pixel_totals(st), st.width, st.height, st.noise_target, st.stopped);
@@ -313,9 +308,9 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
   std::atomic<std::size_t> nonfinite{st.nonfinite};
   std::mutex progress_mutex;
   // Passes of samples over the whole image, so that progress can report samples per pixel done
-  // and the noise reached: 8 passes (fewer when there are fewer samples), area-weighted progress
-  // within.
-  const int done = pass_start(begin, end, st.passes_done) - begin;
+  // and the noise reached: 8 passes (fewer when there are fewer samples; an adaptive render's are
+  // shorter, render_state.h), area-weighted progress within.
+  const int done = plan_pass_start(st, st.passes_done) - begin;
   std::atomic<long> area_done{long(w) * h * done};  // (a cancelled pass's tiles aside)
   const PassContext c{camera, integrator, settings, progress, spp, begin,
                       camera.R_cam_from_world.row(2).transpose().cast<float>(),  // the optical axis

@@ -5,6 +5,7 @@
 // its samples over a tree of sample indices that no pass, thread or split changes
 // (render/pixel_blocks.h).
 #pragma once
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -23,6 +24,10 @@ struct PixelSums {
   double w = 0, n = 0, w2 = 0, n2 = 0, wn = 0;
   int met = 0, catcher = 0;
   int samples = 0;  // taken (a non-finite one counts, as zero): a cancelled pass leaves pixels unequal
+  // Batch means of y (render/pixel_variance.h): over the aligned blocks of kBatchSamples samples
+  // this sum holds whole, how many (batches), Σ of their sums of y, and Σ of those sums squared.
+  double batch_y = 0, batch_y2 = 0;
+  int batches = 0;
 };
 
 // A pixel's sums over the samples [first, first + n) it has, as the canonical aligned blocks of
@@ -66,6 +71,31 @@ inline int render_passes(int n) { return n < 8 ? n : 8; }
 // The first sample of pass `pass` of the samples [begin, end) (pass = passes: end).
 inline int pass_start(int begin, int end, int pass) {
   return begin + int(long(end - begin) * pass / render_passes(end - begin));
+}
+
+// An adaptive render of n samples (render/adaptive.h) judges its pixels between passes, so its
+// passes are short: a first of max(16, n/16) samples, the fewest a pixel takes (what an unchanged
+// pixel costs), then passes of max(16, n/64), each a multiple of 16 so that every judgement sees
+// whole batches (render/pixel_variance.h). 1024 spp: 64, then 16 at a time (61 passes).
+inline int round_up_16(int n) { return (n + 15) / 16 * 16; }
+inline int adaptive_first_pass(int n) { return std::min(n, round_up_16(std::max(16, n / 16))); }
+inline int adaptive_pass(int n) { return round_up_16(std::max(16, n / 64)); }
+inline int adaptive_passes(int n) {
+  const int first = adaptive_first_pass(n);
+  return 1 + (n - first + adaptive_pass(n) - 1) / adaptive_pass(n);
+}
+inline int adaptive_pass_start(int n, int pass) {
+  return pass == 0 ? 0 : int(std::min<long>(n, adaptive_first_pass(n) + long(pass - 1) * adaptive_pass(n)));
+}
+
+// The passes of the state's plan, and where pass `pass` starts: adaptive with a noise target.
+inline int plan_passes(const RenderState& st) {
+  const int n = st.sample_end - st.sample_begin;
+  return st.noise_target > 0 ? adaptive_passes(n) : render_passes(n);
+}
+inline int plan_pass_start(const RenderState& st, int pass) {
+  const int n = st.sample_end - st.sample_begin;
+  return st.noise_target > 0 ? st.sample_begin + adaptive_pass_start(n, pass) : pass_start(st.sample_begin, st.sample_end, pass);
 }
 
 }  // namespace insitu
