@@ -11,6 +11,7 @@
 
 #include "cli_util.h"
 #include "render/render_state.h"
+#include "studio/render_job.h"
 #include "studio_fixture.h"
 
 namespace insitu {
@@ -111,6 +112,26 @@ TEST(StudioRender, StreamsEveryPassToTheEndAndRemapsWithoutRendering) {
   EXPECT_EQ(ab["slots"]["realtime"]["spp_done"], 2);
   EXPECT_EQ(ab["slots"]["path"]["spp_done"], 2);
   EXPECT_EQ(get_png(studio, "/api/render/realtime.png?tonemap=photo").cols, 640);
+}
+
+// Every pass of a fixed render publishes its image; an adaptive render's many short passes publish
+// after the first and at each new eighth of the plan: 9 images of its 61 passes at 1024 spp.
+TEST(StudioRender, PublishesEveryFixedPassAndEachEighthOfAnAdaptiveRender) {
+  for (int spp : {1, 2, 7, 8, 64, 1000}) {
+    int shown = 0, published = 0;
+    for (int k = 1; k <= render_passes(spp); ++k) {
+      const int done = pass_start(0, spp, k);
+      EXPECT_TRUE(publish_after_pass(done, shown, spp)) << spp << " pass " << k;
+      shown = done, ++published;
+    }
+    EXPECT_EQ(published, render_passes(spp));
+  }
+  int shown = 0, published = 0;
+  for (int k = 1; k <= adaptive_passes(1024); ++k) {
+    const int done = adaptive_pass_start(1024, k);
+    if (publish_after_pass(done, shown, 1024)) shown = done, ++published;
+  }
+  EXPECT_EQ(published, 9);  // 64, 128, 256, ..., 1024
 }
 
 TEST(StudioRender, StopsAfterThePassUnderWayAndReportsTheLibrarysErrors) {

@@ -71,10 +71,12 @@ void RenderJob::run(const std::string& integrator, int spp) {
     }
     RenderState state;
     const RenderControl control{&stop_, &state};
-    int passes = 0;
+    int passes = 0, shown = 0;  // images published, and the samples of the last
     const auto progress = [&](const RenderProgress& p) {
       { const std::lock_guard<std::mutex> lock(mutex_); fraction_ = p.fraction; }
       if (p.noise < 0) return;  // within a pass, from the rendering threads
+      if (!publish_after_pass(p.spp_done, shown, spec.render.spp)) return;
+      shown = p.spp_done;
       // Between passes: the threads are idle and the state holds the samples so far.
       RenderResult r = finish_render(scene, layers_from_state(state));
       publish(name, {std::move(r.composite_linear), std::move(r.composite_encoded), p.spp_done, spec.render.spp, ++passes, p.noise,

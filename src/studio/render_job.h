@@ -7,7 +7,10 @@
 // back between passes, its threads idle; the composite of the samples so far
 // (layers_from_state + finish_render) is published then, with the noise figure the loop reports
 // (mean relative standard error over the pixels the render changes). So the page sees the render
-// converge pass by pass, and the last image is the one `insitu render` would write.
+// converge pass by pass, and the last image is the one `insitu render` would write. An adaptive
+// render's passes are short (61 at 1024 spp, render/render_state.h), and a composite costs about
+// a pass at catalogue size: an image is published after the first pass and after each pass that
+// reaches a new eighth of the planned samples (every pass of a fixed render), and at the end.
 //
 // Each integrator's latest image is kept in its own slot ("path", "realtime", ...), linear and
 // photo-encoded, so the page can tone map either again (adaptive_log's key and bias) without
@@ -27,6 +30,12 @@
 #include "output/settings.h"
 
 namespace insitu {
+
+// Whether the image after a pass that reached `spp_done` of `spp` samples is published, the last
+// one published being at `shown` samples (0: none yet).
+inline bool publish_after_pass(int spp_done, int shown, int spp) {
+  return shown == 0 || long(spp_done) * 8 / spp > long(shown) * 8 / spp;
+}
 
 class RenderJob {
  public:
