@@ -141,6 +141,25 @@ TEST(Resume, CheckpointRoundTripAndRefusals) {
   EXPECT_THROW(read_checkpoint(fx.dir.file("none.checkpoint"), 42), InputError);
 }
 
+// A pixel's block sizes come from the file: two whose sum passes INT_MAX (the fuzzer's find,
+// 2071690107 + 575230798) are refused as an inconsistent checkpoint, without overflowing the sum
+// (the sanitizer leg traps signed overflow), as is a block of no samples.
+TEST(Resume, SampleCountsBeyondTheRenderAreRefused) {
+  SceneFixture fx;
+  const LoadedScene s = fixture_scene(fx, 8);
+  std::atomic<bool> stop{false};
+  RenderState state;
+  render_scene(s, [&](const RenderProgress& p) { stop = stop || p.spp_done >= 1; }, {&stop, &state});
+  for (const auto& sizes : {std::vector<int>{2071690107, 575230798}, std::vector<int>{0}, std::vector<int>{9}}) {
+    RenderState bad = state;
+    bad.pixels[0].assign(sizes.size(), PixelSums{});
+    for (std::size_t k = 0; k < sizes.size(); ++k) bad.pixels[0][k].samples = sizes[k];
+    const std::string path = fx.dir.file("bad.checkpoint");
+    write_checkpoint(path, bad, 42);
+    EXPECT_THROW(read_checkpoint(path, 42), InputError) << sizes.front();
+  }
+}
+
 // The fuzz target's seeds (tests/fuzz/corpus/fuzz_checkpoint, written by hand to the layout of
 // render/checkpoint.h) are consistent states, so that fuzzing starts past the header's checks: a
 // finished part, and an adaptive render's checkpoint with a pixel stopped after its first pass.

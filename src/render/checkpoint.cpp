@@ -1,6 +1,7 @@
 #include "render/checkpoint.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <fmt/format.h>
 #include <fstream>
@@ -99,17 +100,29 @@ RenderState read_header(const std::string& in, std::size_t& at, const std::strin
   return st;
 }
 
+// One pixel's blocks. Their samples lie within the part's range [sample_begin, sample_end), summed
+// in 64 bits: the file's counts are not trusted to fit an int's sum.
+PixelBlocks read_blocks(const RenderState& st, const std::string& in, std::size_t& at, const std::string& path) {
+  const std::int32_t count = get<std::int32_t>(in, at, path);
+  if (count < 0 || count > 64 || (in.size() - at) / kPixelBytes < std::size_t(count))
+    throw InputError(path, "truncated checkpoint");
+  PixelBlocks blocks;
+  blocks.reserve(std::size_t(count));
+  std::int64_t samples = 0;
+  for (int k = 0; k < count; ++k) {
+    blocks.push_back(get_sums(in, at, path));
+    samples += blocks.back().samples;
+    if (blocks.back().samples < 1 || samples > st.sample_end - st.sample_begin)
+      throw InputError(path, "inconsistent checkpoint (samples in a pixel)");
+  }
+  return blocks;
+}
+
 void read_pixels(RenderState& st, const std::string& in, std::size_t& at, const std::string& path) {
   const std::size_t n = std::size_t(st.width) * std::size_t(st.height);
   if ((in.size() - at) / 4 < n) throw InputError(path, "truncated checkpoint");
   st.pixels.resize(n);
-  for (PixelBlocks& blocks : st.pixels) {
-    const std::int32_t count = get<std::int32_t>(in, at, path);
-    if (count < 0 || count > 64 || (in.size() - at) / kPixelBytes < std::size_t(count))
-      throw InputError(path, "truncated checkpoint");
-    blocks.reserve(std::size_t(count));
-    for (int k = 0; k < count; ++k) blocks.push_back(get_sums(in, at, path));
-  }
+  for (PixelBlocks& blocks : st.pixels) blocks = read_blocks(st, in, at, path);
   if (st.noise_target > 0) {
     if (in.size() - at < n) throw InputError(path, "truncated checkpoint");
     st.stopped.assign(in.begin() + std::ptrdiff_t(at), in.begin() + std::ptrdiff_t(at + n));
