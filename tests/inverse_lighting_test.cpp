@@ -147,6 +147,24 @@ TEST(ClippedSources, RegionsJoinAcrossFaceEdgesAndSortByPower) {
   EXPECT_EQ(texels, sources[0].texels.size());
 }
 
+// Each connected region is a source of its own by default, whatever its power at the clip level
+// (a lamp clips in fewer texels than a window's edge); only past max_sources are the weakest merged.
+TEST(ClippedSources, EveryRegionIsItsOwnSourceUpToTheLimit) {
+  CubeMap radiance = test::constant_cube(32, Rgb(0.1f, 0.1f, 0.1f));
+  CubeMap mask(32);
+  const std::vector<Vec3f> centres{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, -1}, {1, 1, 1}};
+  for (std::size_t k = 0; k < centres.size(); ++k)
+    paint_disc(mask, centres[k].normalized(), std::cos(0.08f + 0.03f * float(k)), Rgb(1, 1, 1));
+  std::size_t texels = 0;
+  for (const ClippedSource& s : find_clipped_sources(mask, radiance)) texels += s.texels.size();
+  EXPECT_EQ(find_clipped_sources(mask, radiance).size(), centres.size());
+  const auto four = find_clipped_sources(mask, radiance, 4);
+  ASSERT_EQ(four.size(), 4u);
+  std::size_t merged = 0;
+  for (const ClippedSource& s : four) merged += s.texels.size();
+  EXPECT_EQ(merged, texels);
+}
+
 TEST(InverseLighting, NothingClippedLeavesTheCube) {
   Fixture fx;
   make_room(fx, 0.4f);  // the lamp below the clip level

@@ -176,7 +176,8 @@ TEST(Validation, ClosedRoomFromJpegShotsWithinTheGoal) {
 // The open ground with a grey ball in the real scene, given as a reference (issue 13): from clipped
 // JPEG shots the ball tells the ceiling lamps from the windows, and the objects' brightness is
 // within 10 % of the truth (0.67 without it). The error's goal, 1.5 × the HDR shots', is not met
-// (4.9 % against 2.6 %: the shadows' edges), so it is printed, not bounded.
+// (here 5.1 %, from the CLI's JPEG shots 5.8 %, against 2.6 %: the shadows' edges), so it is
+// printed, not bounded.
 // Not under AddressSanitizer: with it and the ball's unit tests, their shard took 824 s there
 // instead of 51 s, near CI's budget; the ball's code paths run sanitized in InverseLighting's tests.
 TEST(Validation, OpenGroundWithAGreyBallFromJpegShots) {
@@ -186,10 +187,24 @@ TEST(Validation, OpenGroundWithAGreyBallFromJpegShots) {
   check_against_cycles("open_ground_ball", 0.0, true);
 }
 
+// The grey ball raised on a rod, beside the orange ball (tools/validate/open_ground_raised_ball,
+// docs/validation.md "A raised ball"): the ceiling lamps' shadows fall clear of its foot. With the
+// clipped regions beyond the fourth merged into one source, the lamps (15 texels each, the least
+// power at the clip level) shared one scale with the windows' edges and the specks, and the fit
+// sent the missing light to the windows: the objects 1.53× too bright, 57 % error (from the CLI's
+// JPEG shots). Every region its own source and σ in scaled units: 13.3 %, brightness 1.03. The
+// objects' brightness is held within 10 % (jpeg); the error is printed.
+TEST(Validation, OpenGroundWithARaisedGreyBallFromJpegShots) {
+#ifdef INSITU_UNDER_ASAN
+  GTEST_SKIP() << "the ball's fit runs sanitized in InverseLighting.AGreyBall*";
+#endif
+  check_against_cycles("open_ground_raised_ball", 0.0, true);
+}
+
 // The same ball on a plate of its own (issue 13): the photo and the truth are the open ground's,
 // without the ball; the plate is the ball scene's photo, the same view with the ball and its
 // shadow. The plate holds what the ball in the photo held, so the error must be the same: within
-// 1.3× the error with the ball in the photo (measured 4.85 % against 4.86 %; from the CLI's JPEG
+// 1.3× the error with the ball in the photo (measured 5.22 % against 5.13 %; from the CLI's JPEG
 // shots 33 % before the plate's shadow zone was read and the floor's uninformative pixels left
 // the fit, the ceiling lamps then undetermined).
 TEST(Validation, OpenGroundWithAGreyBallOnAPlate) {

@@ -17,9 +17,16 @@ struct ClippedSource {
   double power = 0;                        // Σ Y(L0) ΔΩ: its share of c's irradiance-like power
 };
 
-// Largest power first. Regions beyond `max_sources` are merged into the last one kept (one scale for
-// the small remainder: a fit determines only what its data supports).
-std::vector<ClippedSource> find_clipped_sources(const CubeMap& clipped, const CubeMap& radiance, int max_sources = 4);
+// Largest power (at the lower bound) first. Every region is its own source, up to `max_sources`;
+// only beyond that are the rest merged into the last one kept (a bound on the fit's unknowns for a
+// cube of many specks). The lower bound does not rank the true power: a lamp clips in fewer texels
+// than a window's edge, and is brighter by ×100 where the edge is by ×1.5. With four sources the
+// two ceiling lamps of docs/validation.md (15 texels each) were merged with the windows' edges and
+// eight specks into one scale, which the fit could only leave at 1 (the raised grey ball's
+// objects 1.5× too bright). Regions the photo cannot tell stay at the lower bound (inverse_lighting.h).
+constexpr int kMaxClippedSources = 32;
+std::vector<ClippedSource> find_clipped_sources(const CubeMap& clipped, const CubeMap& radiance,
+                                                int max_sources = kMaxClippedSources);
 
 // A source cut into parts of at most block × block texels of a face: a clipped window holds the
 // sky and the sun, whose true radiances differ by orders of magnitude, so one scale cannot

@@ -1,7 +1,6 @@
 #include "render/inverse_lighting.h"
 
 #include <ceres/ceres.h>
-#include <Eigen/Eigenvalues>
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
@@ -12,6 +11,7 @@
 
 #include "core/colour.h"
 #include "render/inverse_lighting_pixels.h"
+#include "render/linear_variance.h"
 
 namespace insitu {
 
@@ -92,24 +92,6 @@ double robust_sigma(std::vector<double> r) {
   for (double& v : r) v = std::abs(v);
   std::nth_element(r.begin(), r.begin() + std::ptrdiff_t(r.size() / 2), r.end());
   return 1.4826 * r[r.size() / 2];
-}
-
-// σ² · gᵀ (JᵀJ)⁺ g = σ² Σ_i (v_iᵀ g)² / λ_i over the eigenpairs of JᵀJ: the variance of the linear
-// combination g of the parameters. Infinite when g has a part in the null space (the data say
-// nothing about it); a nearly null direction gives a huge value by itself.
-double variance_along(const Eigen::MatrixXd& jtj, const Eigen::VectorXd& g, double sigma_r) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(jtj);
-  const double lambda_max = std::max(1e-300, eig.eigenvalues().maxCoeff());
-  double var = 0;
-  for (int i = 0; i < int(g.size()); ++i) {
-    const double c = eig.eigenvectors().col(i).dot(g), lambda = eig.eigenvalues()[i];
-    if (lambda <= 1e-14 * lambda_max) {
-      if (c * c > 1e-12 * g.squaredNorm()) return INFINITY;
-      continue;
-    }
-    var += c * c / lambda;
-  }
-  return sigma_r * sigma_r * var;
 }
 
 // JᵀJ of the robustified residuals over `blocks` (their columns in order).

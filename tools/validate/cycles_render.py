@@ -19,7 +19,8 @@
 #    "shot_size": 128, "seed": 1}
 # A closed room adds "room": {"min": [...], "max": [...], "albedo": [...], "window": {...},
 # "lamp": {...}, "sun": {...}} (make_room below). "references": [{"sphere": {"center": [x,y,z],
-# "radius": r}, "albedo": a}] puts a grey ball of albedo a into the real scene (the photo, the
+# "radius": r}, "albedo": a, "stand": r_rod}] puts a grey ball of albedo a (on a rod of radius r_rod from the floor,
+# if "stand" is given) into the real scene (the photo, the
 # truth and the shots; not the objects' coverage), and into the insitu scene as inverse
 # lighting's reference (issue 13). Paths in it are relative to the file. Every material is made a pure Lambertian (Diffuse BSDF,
 # roughness 0) of the MTL's Kd or map_Kd, the reflectance model insitu's MTL reading gives a
@@ -247,6 +248,13 @@ def make_references():
         mat, _, _ = diffuse_material("reference%d" % i, colour=(a, a, a))
         ball.data.materials.append(mat)
         balls.append(ball)
+        if r.get("stand"):  # a rod of this radius from the floor to the ball, of the ball's grey
+            height = sph["center"][1] - sph["radius"]
+            foot = [sph["center"][0], height / 2, sph["center"][2]]
+            bpy.ops.mesh.primitive_cylinder_add(vertices=32, radius=r["stand"], depth=height,
+                                                location=to_blender(foot))  # along Blender Z, up
+            bpy.context.active_object.data.materials.append(mat)
+            balls.append(bpy.context.active_object)
     return balls
 
 
@@ -400,8 +408,8 @@ def write_insitu_scene(shots):
         "render": {"integrator": "path", "spp": 64},
         "output": {"image": "insitu.exr", "layers": "insitu.layers.exr"},
     }
-    if desc.get("references"):
-        scene["references"] = desc["references"]
+    if desc.get("references"):  # the stand is the real scene's, not insitu's to know
+        scene["references"] = [{k: v for k, v in r.items() if k != "stand"} for r in desc["references"]]
     with open(os.path.join(out_dir, "scene.json"), "w") as f:
         json.dump(scene, f, indent=2)
     print("validate: wrote", os.path.join(out_dir, "scene.json"), flush=True)
