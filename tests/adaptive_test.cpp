@@ -41,8 +41,12 @@ TEST(Adaptive, PassesAreShortAndEndOnWholeBatches) {
     for (int k = 1; k <= passes; ++k) {
       const int a = adaptive_pass_start(n, k - 1), b = adaptive_pass_start(n, k);
       EXPECT_GT(b, a) << n << " pass " << k;
-      if (k < passes) EXPECT_EQ(b % 16, 0) << n << " pass " << k;
-      if (k > 1 && k < passes) EXPECT_EQ(b - a, std::max(16, (n / 64 + 15) / 16 * 16)) << n;
+      if (k < passes) {
+        EXPECT_EQ(b % 16, 0) << n << " pass " << k;
+      }
+      if (k > 1 && k < passes) {
+        EXPECT_EQ(b - a, std::max(16, (n / 64 + 15) / 16 * 16)) << n;
+      }
     }
   }
   EXPECT_EQ(adaptive_passes(1024), 61);  // 64, then 60 of 16
