@@ -165,6 +165,23 @@ TEST(ClippedSources, EveryRegionIsItsOwnSourceUpToTheLimit) {
   EXPECT_EQ(merged, texels);
 }
 
+// Regions whose gap is within the reach are one source (the fit resolves nothing finer than a
+// part): two runs of texels on one face, three texels apart, are two sources with a reach of 0 or
+// 2 and one with a reach of 3 (cv::dilate by ⌈3/2⌉ = 2 on each side: the gap closes), which holds
+// only the clipped texels of both.
+TEST(ClippedSources, RegionsWithinTheReachAreOneSource) {
+  CubeMap radiance = test::constant_cube(16, Rgb(0.1f, 0.1f, 0.1f));
+  CubeMap mask(16);
+  for (int i : {4, 5, 6, 10, 11}) mask.set_texel(kPosX, i, 8, Rgb(1, 1, 1));  // gap: i = 7, 8, 9
+  mask.update_borders();
+  EXPECT_EQ(find_clipped_sources(mask, radiance, kMaxClippedSources, 0).size(), 2u);
+  EXPECT_EQ(find_clipped_sources(mask, radiance, kMaxClippedSources, 2).size(), 2u);
+  const auto joined = find_clipped_sources(mask, radiance, kMaxClippedSources, 3);
+  ASSERT_EQ(joined.size(), 1u);
+  EXPECT_EQ(joined[0].texels.size(), 5u);
+  for (const auto& t : joined[0].texels) EXPECT_TRUE(mask.texel(t[0], t[1], t[2]).maxCoeff() == 1.0f);
+}
+
 TEST(InverseLighting, NothingClippedLeavesTheCube) {
   Fixture fx;
   make_room(fx, 0.4f);  // the lamp below the clip level

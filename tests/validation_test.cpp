@@ -168,7 +168,8 @@ TEST(Validation, ClosedRoomAgainstCyclesWithinTheGoal) { check_against_cycles("c
 
 // The same room from single clipped JPEG shots (issue 13): the sun, the lamp and the bright sky
 // recovered by inverse lighting against the photo, within 1.5 × the HDR goal and the objects'
-// brightness within 10 %.
+// brightness within 10 %. A six-texel speck beside the window (true added power 0) is one source
+// with it, and must be held at the lower bound, not fitted with it whole: 33.4 % without that.
 TEST(Validation, ClosedRoomFromJpegShotsWithinTheGoal) {
   check_against_cycles("closed_room", 1.5 * 0.08, true);
 }
@@ -192,8 +193,10 @@ TEST(Validation, OpenGroundWithAGreyBallFromJpegShots) {
 // clipped regions beyond the fourth merged into one source, the lamps (15 texels each, the least
 // power at the clip level) shared one scale with the windows' edges and the specks, and the fit
 // sent the missing light to the windows: the objects 1.53× too bright, 57 % error (from the CLI's
-// JPEG shots). Every region its own source and σ in scaled units: 13.3 %, brightness 1.03. The
-// objects' brightness is held within 10 % (jpeg); the error is printed.
+// JPEG shots). Every region its own source and σ in scaled units: 13.3 %, brightness 1.03 (here
+// 10.0 %, 1.079); regions closer than a part's width one source, with the parts the photo cannot
+// tell held at the lower bound: 7.0 %, 1.023 (here 6.55 %, 1.037). The objects' brightness is held
+// within 10 % (jpeg); the error is printed.
 TEST(Validation, OpenGroundWithARaisedGreyBallFromJpegShots) {
 #ifdef INSITU_UNDER_ASAN
   GTEST_SKIP() << "the ball's fit runs sanitized in InverseLighting.AGreyBall*";
@@ -204,7 +207,7 @@ TEST(Validation, OpenGroundWithARaisedGreyBallFromJpegShots) {
 // The same ball on a plate of its own (issue 13): the photo and the truth are the open ground's,
 // without the ball; the plate is the ball scene's photo, the same view with the ball and its
 // shadow. The plate holds what the ball in the photo held, so the error must be the same: within
-// 1.3× the error with the ball in the photo (measured 5.22 % against 5.13 %; from the CLI's JPEG
+// 1.3× the error with the ball in the photo (measured 5.25 % against 5.21 %; from the CLI's JPEG
 // shots 33 % before the plate's shadow zone was read and the floor's uninformative pixels left
 // the fit, the ceiling lamps then undetermined).
 TEST(Validation, OpenGroundWithAGreyBallOnAPlate) {

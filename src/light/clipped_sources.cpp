@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
+#include <opencv2/imgproc.hpp>
 
 #include "core/colour.h"
 #include "light/texel_geometry.h"
@@ -35,9 +37,30 @@ ClippedSource summarize(std::vector<std::array<int, 3>> texels, const CubeMap& r
   return s;
 }
 
-// Flood fill of one region from a seed; `label` marks visited texels.
-ClippedSource grow(const CubeMap& clipped, const CubeMap& radiance, std::vector<int>& label, int id,
-                   std::array<int, 3> seed) {
+bool is_clipped(const CubeMap& clipped, const std::array<int, 3>& t) {
+  return clipped.texel(t[0], t[1], t[2]).maxCoeff() >= 0.5f;
+}
+
+// The texels a region may grow through, indexed (f·n + j)·n + i: the clipped ones, each face's
+// dilated by a square of half-width ⌈reach/2⌉ (cv::dilate), so that two regions of a face whose
+// gap is at most 2⌈reach/2⌉ texels touch. The fill's step crosses face edges.
+std::vector<std::uint8_t> passable(const CubeMap& clipped, int reach) {
+  const int n = clipped.size();
+  std::vector<std::uint8_t> out(std::size_t(6) * n * n);
+  for (int f = 0; f < 6; ++f) {
+    cv::Mat face(n, n, CV_8U, out.data() + std::size_t(f) * n * n);
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) face.at<std::uint8_t>(j, i) = is_clipped(clipped, {f, i, j}) ? 1 : 0;
+    const int r = (std::max(0, reach) + 1) / 2;
+    if (r > 0) cv::dilate(face, face, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * r + 1, 2 * r + 1)));
+  }
+  return out;
+}
+
+// Flood fill of one region from a seed through passable texels (4-neighbourhood); `label` marks
+// visited texels; the region holds the clipped ones.
+ClippedSource grow(const CubeMap& clipped, const CubeMap& radiance, const std::vector<std::uint8_t>& pass,
+                   std::vector<int>& label, int id, std::array<int, 3> seed) {
   const int n = clipped.size();
   auto index = [n](const std::array<int, 3>& t) { return (std::size_t(t[0]) * n + t[2]) * n + t[1]; };
   std::vector<std::array<int, 3>> texels, stack{seed};
@@ -45,10 +68,10 @@ ClippedSource grow(const CubeMap& clipped, const CubeMap& radiance, std::vector<
   while (!stack.empty()) {
     const auto t = stack.back();
     stack.pop_back();
-    texels.push_back(t);
+    if (is_clipped(clipped, t)) texels.push_back(t);
     for (const auto& [di, dj] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
       const auto u = neighbour(t[0], t[1], t[2], di, dj, n);
-      if (label[index(u)] >= 0 || clipped.texel(u[0], u[1], u[2]).maxCoeff() < 0.5f) continue;
+      if (label[index(u)] >= 0 || !pass[index(u)]) continue;
       label[index(u)] = id;
       stack.push_back(u);
     }
@@ -58,15 +81,17 @@ ClippedSource grow(const CubeMap& clipped, const CubeMap& radiance, std::vector<
 
 }  // namespace
 
-std::vector<ClippedSource> find_clipped_sources(const CubeMap& clipped, const CubeMap& radiance, int max_sources) {
+std::vector<ClippedSource> find_clipped_sources(const CubeMap& clipped, const CubeMap& radiance, int max_sources,
+                                                int reach_texels) {
   const int n = clipped.size();
+  const std::vector<std::uint8_t> pass = passable(clipped, reach_texels);
   std::vector<int> label(std::size_t(6) * n * n, -1);
   std::vector<ClippedSource> all;
   for (int f = 0; f < 6; ++f)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
-        if (label[(std::size_t(f) * n + j) * n + i] < 0 && clipped.texel(f, i, j).maxCoeff() >= 0.5f)
-          all.push_back(grow(clipped, radiance, label, int(all.size()), {f, i, j}));
+        if (label[(std::size_t(f) * n + j) * n + i] < 0 && is_clipped(clipped, {f, i, j}))
+          all.push_back(grow(clipped, radiance, pass, label, int(all.size()), {f, i, j}));
   std::sort(all.begin(), all.end(), [](const ClippedSource& a, const ClippedSource& b) { return a.power > b.power; });
   // The remainder joins the last source kept.
   while (int(all.size()) > std::max(1, max_sources)) {

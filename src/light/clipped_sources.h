@@ -1,7 +1,8 @@
 // The light sources that clipped in the shots (issue 13): the texels of the cube whose clipped
 // fraction (EnvironmentInfo::clipped_cube) is at least ½, grouped into regions connected across
-// face edges (4-neighbourhood). Each region is one source whose radiance is known only from below:
-// the clipped value L0 is a lower bound, and the true radiance is L0 · s with s ≥ 1 unknown.
+// face edges (4-neighbourhood, or within a reach: find_clipped_sources). Each region is one source
+// whose radiance is known only from below: the clipped value L0 is a lower bound, and the true
+// radiance is L0 · s with s ≥ 1 unknown.
 #pragma once
 #include <array>
 #include <vector>
@@ -24,9 +25,13 @@ struct ClippedSource {
 // two ceiling lamps of docs/validation.md (15 texels each) were merged with the windows' edges and
 // eight specks into one scale, which the fit could only leave at 1 (the raised grey ball's
 // objects 1.5× too bright). Regions the photo cannot tell stay at the lower bound (inverse_lighting.h).
+// `reach_texels` > 0 joins regions of one face whose gap in i or j is at most 2⌈reach/2⌉ texels
+// (each dilated by ⌈reach/2⌉): one source, whose parts (split_into_parts) the fit still tells
+// apart where the photo can. The dilation stops at a face's edge (the fill crosses it between
+// texels either side that it reached). 0 joins 4-neighbours.
 constexpr int kMaxClippedSources = 32;
 std::vector<ClippedSource> find_clipped_sources(const CubeMap& clipped, const CubeMap& radiance,
-                                                int max_sources = kMaxClippedSources);
+                                                int max_sources = kMaxClippedSources, int reach_texels = 0);
 
 // A source cut into parts of at most block × block texels of a face: a clipped window holds the
 // sky and the sun, whose true radiances differ by orders of magnitude, so one scale cannot

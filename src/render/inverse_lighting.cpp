@@ -306,7 +306,8 @@ enum class Mode { kFree, kWhole, kTied, kDropped };
 // The tied sources' column holds the parts of the one among them that delivers the most
 // irradiance to the photo's pixels per unit of power (`efficiency`): the least added light that
 // explains what the photo shows (a minimum-power solution; the others stay at the lower bound).
-Columns make_columns(const InverseLightingResult& res, const std::vector<Mode>& mode, const std::vector<double>& efficiency) {
+Columns make_columns(const InverseLightingResult& res, const std::vector<Mode>& mode, const std::vector<double>& efficiency,
+                     const std::vector<bool>& held) {
   Columns columns;
   int best = -1;
   for (std::size_t k = 0; k < mode.size(); ++k)
@@ -315,6 +316,7 @@ Columns make_columns(const InverseLightingResult& res, const std::vector<Mode>& 
   std::vector<int> tied;
   for (std::size_t j = 0; j < res.parts.size(); ++j) {
     const int k = res.parts[j].source;
+    if (held[j]) continue;
     if (mode[std::size_t(k)] == Mode::kFree) columns.push_back({int(j)});
     if (mode[std::size_t(k)] == Mode::kWhole) whole[std::size_t(k)].push_back(int(j));
     if (k == best) tied.push_back(int(j));
@@ -382,6 +384,30 @@ double missing_share(const std::vector<FitPixel>& pixels, const std::vector<int>
   return added / std::max(1e-300, base);
 }
 
+// A free source k whose added power is undetermined: its parts whose own added power is so
+// undetermined that alone they would fail the source's test (σ_j > ½ scale · power_k) are held at
+// the lower bound, if some but not all are. Returns whether any was held.
+bool hold_unknown_parts(const Fit& fit, const Columns& columns, std::size_t k, double scale, InverseLightingResult& res,
+                        std::vector<bool>& held) {
+  const std::vector<int> free = unpinned(fit);
+  const double power = res.sources[k].source.power;
+  std::vector<int> hold;
+  int mine = 0;
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    if (columns[c].size() != 1 || res.parts[std::size_t(columns[c][0])].source != int(k)) continue;
+    ++mine;
+    const auto at = std::find(free.begin(), free.end(), int(c));
+    if (at == free.end()) continue;  // pinned at 0: held there already
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(Eigen::Index(free.size()));
+    g[at - free.begin()] = res.parts[std::size_t(columns[c][0])].texels.power;
+    const double sigma = std::sqrt(variance_along(fit.jtj(free, free), g, fit.sigma_r));
+    if (!(sigma <= 0.5 * scale * power)) hold.push_back(columns[c][0]);
+  }
+  if (hold.empty() || int(hold.size()) == mine) return false;
+  for (int j : hold) held[std::size_t(j)] = true;
+  return true;
+}
+
 // Fits the free sources' parts, each source judged by the σ of its added power (the sum over its
 // parts: determined even where its parts are not told apart). A source so undetermined is fitted
 // again whole, one scale for all its parts (where the photo gives only the irradiance its parts
@@ -392,9 +418,10 @@ double missing_share(const std::vector<FitPixel>& pixels, const std::vector<int>
 void fit_sources(const std::vector<FitPixel>& pixels, const Albedos& albedos, InverseLightingResult& res) {
   std::vector<Mode> mode(res.sources.size(), Mode::kFree);
   const std::vector<double> efficiency = efficiencies(pixels, res);
+  std::vector<bool> held(res.parts.size(), false);
   for (bool changed = true; changed;) {
     changed = false;
-    const Columns columns = make_columns(res, mode, efficiency);
+    const Columns columns = make_columns(res, mode, efficiency, held);
     if (columns.empty()) break;
     const Fit fit = solve(pixels, columns, albedos);
     res.residual_rms = fit.sigma_r;
@@ -407,6 +434,10 @@ void fit_sources(const std::vector<FitPixel>& pixels, const Albedos& albedos, In
       SourceFit& s = res.sources[k];
       std::tie(s.scale, s.sigma) = judge(fit, columns, one, res);
       s.determined = s.sigma <= 0.5 * s.scale;
+      if (!s.determined && mode[k] == Mode::kFree && hold_unknown_parts(fit, columns, k, s.scale, res, held)) {
+        changed = true;
+        continue;
+      }
       if (!s.determined) mode[k] = mode[k] == Mode::kFree ? Mode::kWhole : Mode::kTied, changed = true;
     }
     if (changed || std::none_of(tied.begin(), tied.end(), [](bool t) { return t; })) continue;
@@ -422,7 +453,8 @@ void fit_sources(const std::vector<FitPixel>& pixels, const Albedos& albedos, In
   for (std::size_t k = 0; k < res.sources.size(); ++k) {
     SourceFit& s = res.sources[k];
     if (mode[k] == Mode::kDropped) s.scale = 1, s.determined = false;
-    for (PartFit& part : res.parts) part.scale = (part.source == int(k) && !s.determined) ? 1.0 : part.scale;
+    for (std::size_t j = 0; j < res.parts.size(); ++j)
+      if (res.parts[j].source == int(k) && (!s.determined || held[j])) res.parts[j].scale = 1.0;
     s.added_power = (s.scale - 1) * s.source.power;
   }
 }
@@ -553,12 +585,29 @@ void count_pixels(const std::vector<FitPixel>& pixels, const InverseLightingInpu
   }
 }
 
+// Each source's parts: blocks of base_block² texels, coarser when the clipped area is large (at
+// most ~48 unknowns).
+std::vector<PartFit> make_parts(const std::vector<ClippedSource>& sources, const CubeMap& radiance, int base_block) {
+  std::size_t clipped_texels = 0;
+  for (const ClippedSource& s : sources) clipped_texels += s.texels.size();
+  const int block = std::max(base_block, int(std::ceil(std::sqrt(double(clipped_texels) / 48.0))));
+  std::vector<PartFit> parts;
+  for (std::size_t k = 0; k < sources.size(); ++k)
+    for (ClippedSource& part : split_into_parts(sources[k], radiance, block)) parts.push_back({std::move(part), int(k)});
+  return parts;
+}
+
 }  // namespace
 
 InverseLightingResult recover_clipped_sources(const InverseLightingInput& in) {
   InverseLightingResult res;
   std::vector<ClippedSource> sources;
-  if (in.clipped) sources = find_clipped_sources(light_texels(*in.clipped, in), *in.radiance);
+  // Parts of about (n/16)² texels (at least 2²; make_parts). Regions closer than a part's width
+  // are one source: the fit resolves nothing finer, and a speck beside a window's edge (JPEG
+  // ringing, texture at the clip level) would otherwise be a source of its own, free to take what
+  // the fit leaves (raised grey ball: a one-texel speck ×2769, docs/validation.md).
+  const int base_block = std::max(2, in.radiance->size() / 16);
+  if (in.clipped) sources = find_clipped_sources(light_texels(*in.clipped, in), *in.radiance, kMaxClippedSources, base_block);
   const double total = cube_power(*in.radiance);
   for (const ClippedSource& s : sources) {
     res.sources.push_back({s});
@@ -570,12 +619,7 @@ InverseLightingResult recover_clipped_sources(const InverseLightingInput& in) {
     res.message = "no light clipped in the shots";
     return res;
   }
-  // Parts of about (n/16)² texels, coarser when the clipped area is large: at most ~48 unknowns.
-  std::size_t clipped_texels = 0;
-  for (const ClippedSource& s : sources) clipped_texels += s.texels.size();
-  const int block = std::max({2, in.radiance->size() / 16, int(std::ceil(std::sqrt(double(clipped_texels) / 48.0)))});
-  for (std::size_t k = 0; k < sources.size(); ++k)
-    for (ClippedSource& part : split_into_parts(sources[k], *in.radiance, block)) res.parts.push_back({std::move(part), int(k)});
+  res.parts = make_parts(sources, *in.radiance, base_block);
   const CubeMap rest = with_scaled_sources(*in.radiance, sources, std::vector<double>(sources.size(), 0.0));
   RoomLight room0(rest, in.room);
   // Each part's cube (its texels alone) and the RoomLight that refers to it: full-size samplers,

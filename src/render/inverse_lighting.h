@@ -33,7 +33,12 @@
 //
 // Parts. A clipped window holds the sky and the sun, whose true radiances differ by orders of
 // magnitude: each source is cut into parts of about (n/16)² texels, each with its own a ≥ 0, and
-// judged by the σ of its total added power (its parts need not be told apart).
+// judged by the σ of its total added power (its parts need not be told apart). Clipped regions
+// closer than a part's width are one source (the fit resolves nothing finer): alone, a speck
+// beside a window's edge — JPEG ringing, texture at the clip level — was free to take what the
+// fit left (docs/validation.md, "A raised ball"). A source whose total is undetermined first holds
+// at the lower bound the parts that alone would fail its test (hold_unknown_parts: a speck beside
+// a window, out of the photo's view), and only if that is all or none of them is fitted whole.
 //
 // Colour. A texel that clipped in all three channels kept no colour (white at the clip level),
 // but a warm bulb's light is orange on the walls it lights. With the parts' scales fixed at the
