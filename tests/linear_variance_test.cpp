@@ -57,6 +57,11 @@ TEST(LinearVariance, NullDirectionsAreInfiniteOnlyWhereTheCombinationHasThem) {
   const Eigen::Matrix2d sum_only = Eigen::Matrix2d::Ones();
   EXPECT_NEAR(variance_along(sum_only, Eigen::Vector2d(1, 1), 1.0), 1.0, 1e-9);  // (1,1)ᵀ(JᵀJ)⁺(1,1) = 4/2/2
   EXPECT_TRUE(std::isinf(variance_along(sum_only, Eigen::Vector2d(1, -1), 1.0)));
+  // No information at all: the zero combination has variance 0, any other is infinite (and an
+  // empty eigenproblem is never solved: its largest eigenvalue does not exist).
+  const Eigen::Matrix2d none = Eigen::Matrix2d::Zero();
+  EXPECT_EQ(variance_along(none, Eigen::Vector2d(0, 0), 1.0), 0.0);
+  EXPECT_TRUE(std::isinf(variance_along(none, Eigen::Vector2d(0, 1), 1.0)));
 }
 
 }  // namespace

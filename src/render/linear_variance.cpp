@@ -14,6 +14,7 @@ double variance_along(const Eigen::MatrixXd& jtj, const Eigen::VectorXd& g, doub
     if (jtj(i, i) > 0 && std::isfinite(jtj(i, i))) kept.push_back(i);  // else null: no information (or not a number)
     else if (g[i] != 0) return INFINITY;
   }
+  if (kept.empty()) return 0;  // no parameter has information, and g has no part in any: g = 0
   Eigen::VectorXd d(Eigen::Index(kept.size())), dg(Eigen::Index(kept.size()));
   for (std::size_t i = 0; i < kept.size(); ++i) {
     d[Eigen::Index(i)] = 1 / std::sqrt(jtj(kept[i], kept[i]));
