@@ -112,14 +112,20 @@ TEST(Resume, StoppedBetweenTilesIsBitIdentical) {
   }
 }
 
-// The checkpoint file: read back as written; refused for another fingerprint, when truncated, and
-// when it is not a checkpoint.
-TEST(Resume, CheckpointRoundTripAndRefusals) {
-  SceneFixture fx;
+// The state of an 8-spp render of the fixture stopped once a pass is done.
+RenderState stopped_after_first_pass(SceneFixture& fx) {
   const LoadedScene s = fixture_scene(fx, 8);
   std::atomic<bool> stop{false};
   RenderState state;
   render_scene(s, [&](const RenderProgress& p) { stop = stop || p.spp_done >= 1; }, {&stop, &state});
+  return state;
+}
+
+// The checkpoint file: read back as written; refused for another fingerprint, when truncated, and
+// when it is not a checkpoint.
+TEST(Resume, CheckpointRoundTripAndRefusals) {
+  SceneFixture fx;
+  const RenderState state = stopped_after_first_pass(fx);
   const std::string path = fx.dir.file("c.checkpoint");
   write_checkpoint(path, state, 42);
   const RenderState back = read_checkpoint(path, 42);
@@ -146,10 +152,7 @@ TEST(Resume, CheckpointRoundTripAndRefusals) {
 // (the sanitizer leg traps signed overflow), as is a block of no samples.
 TEST(Resume, SampleCountsBeyondTheRenderAreRefused) {
   SceneFixture fx;
-  const LoadedScene s = fixture_scene(fx, 8);
-  std::atomic<bool> stop{false};
-  RenderState state;
-  render_scene(s, [&](const RenderProgress& p) { stop = stop || p.spp_done >= 1; }, {&stop, &state});
+  const RenderState state = stopped_after_first_pass(fx);
   for (const auto& sizes : {std::vector<int>{2071690107, 575230798}, std::vector<int>{0}, std::vector<int>{9}}) {
     RenderState bad = state;
     bad.pixels[0].assign(sizes.size(), PixelSums{});
