@@ -18,9 +18,13 @@ It writes two cubes to render in place of the recovered one, each with OUT/scene
 
 - texels: the JPEG cube with the HDR cube's values in the clipped texels (the light recovered
   perfectly: what is left is the JPEG itself);
-- power: the JPEG cube with each clipped region scaled by one factor to the HDR cube's added power
-  (the right energy per region, spread evenly over it: what placement within a region costs);
-- parts: the same for each part as inverse lighting cuts them (a region's texels in one block of
+- power: the JPEG cube with each clipped region given the HDR cube's added power, spread evenly
+  over it in the added light's own colour (the right energy and colour per region: what placement
+  within a region costs);
+- power_white: the same in the clipped value's colour (white where all channels clipped): what
+  the colour costs. Until 2026-11-25 this was the "power" oracle, and its error was read as the
+  cost of placement (docs/validation.md);
+- parts: the same (own colour) for each part as inverse lighting cuts them (a region's texels in one block of
   b x b of a face, b = max(2, n / 16, ceil(sqrt(clipped texels / 48))), inverse_lighting.cpp):
   the best the fit's unknowns can do.
 
@@ -104,15 +108,22 @@ def main():
         print(f"  {label:18s}", sh9_irradiance(y[name], d, omega))
 
     clipped = raw.max(axis=2) >= 0.97 * exposure
-    texels, power, parts = raw.copy(), raw.copy(), raw.copy()
+    texels, power, parts, power_white = raw.copy(), raw.copy(), raw.copy(), raw.copy()
     block = max(2, n // 16, int(np.ceil(np.sqrt(clipped.sum() / 48))))
     ii, jj = np.meshgrid(np.arange(n), np.arange(n))
     cell = np.tile((jj // block) * n + ii // block, (6, 1))
 
-    def scale_to_hdr(m, cube):
+    def scale_to_hdr(m, cube, white=False):
+        # The HDR cube's added power over m, spread over m in proportion to the clipped value's
+        # luminance, in the added light's own colour (luminance 1), or in the clipped value's
+        # colour (white) with `white`.
         base = (y["raw"] * omega)[m].sum()
-        added = ((y["hdr"] - y["raw"]) * omega)[m].sum()
-        cube[m] = raw[m] * (1 + max(0.0, added) / base)
+        added_rgb = ((hdr - raw) * omega[..., None])[m].sum(0)
+        added = added_rgb @ LUMA
+        if white or added <= 0:
+            cube[m] = raw[m] * (1 + max(0.0, added) / base)
+        else:
+            cube[m] = raw[m] + (added / base) * y["raw"][m][:, None] * (added_rgb / added)[None, :]
     texels[clipped] = hdr[clipped]
     print("clipped regions (2 texels or more): texels, direction, added power HDR / recovered")
     rows = []
@@ -125,6 +136,7 @@ def main():
             added_hdr = ((y["hdr"] - y["raw"]) * omega)[m].sum()
             added_fit = ((y["fit"] - y["raw"]) * omega)[m].sum()
             scale_to_hdr(m, power)
+            scale_to_hdr(m, power_white, white=True)
             for c in np.unique(cell[m]):
                 scale_to_hdr(m & (cell == c), parts)
             direction = (d[m] * omega[m][:, None]).sum(0)
@@ -132,7 +144,7 @@ def main():
     for added_hdr, count, face, direction, added_fit in sorted(rows, key=lambda r: -r[0]):
         if count >= 2:
             print(f"  {count:5d} on {face} toward {direction}: {added_hdr:8.4f} / {added_fit:8.4f}")
-    for name, cube in (("texels", texels), ("power", power), ("parts", parts)):
+    for name, cube in (("texels", texels), ("power", power), ("parts", parts), ("power_white", power_white)):
         path = os.path.join(out, "oracle", f"cube_{name}.exr")
         write(path, cube)
         scene = json.loads(json.dumps(jpeg))
