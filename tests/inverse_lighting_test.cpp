@@ -4,7 +4,9 @@
 // the shots' cube is the true one clipped at a level, and the fit must find the true scale.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <cstdio>
 
 #include "cube_fixture.h"
 #include "light/clipped_sources.h"
@@ -111,13 +113,9 @@ struct Fixture {
   InverseLightingInput in;
 };
 
-// A 4 × 2.5 × 4 m room, grey walls (radiance 0.2), a ceiling lamp 50× the clip level 0.5.
-void make_room(Fixture& fx, float lamp = 25.0f, const Rgb& lamp_colour = Rgb::Ones()) {
-  fx.truth = test::constant_cube(kFace, Rgb(0.2f, 0.2f, 0.2f));
-  paint_disc(fx.truth, Vec3f(0.2f, 1, 0.1f), std::cos(0.25f), lamp * lamp_colour);
-  std::tie(fx.clipped, fx.mask) = clip(fx.truth, 0.5f);
-  fx.camera = Camera::look_at(Vec3d(1.5, 1.6, 1.5), Vec3d(-1, 0.3, -1), Vec3d(0, 1, 0), 80, 48, 36);
-  fx.in.room = RoomBox{Vec3f(-2, 0, -2), Vec3f(2, 2.5f, 2), Vec3f(0, 1, 0), {}};
+// The fit's input for a room fixture whose truth, clipped cube, camera and box are set: the floor
+// plane (albedo 0.5, unknown to the fit) and the photo of the empty room.
+void see_room(Fixture& fx) {
   fx.in.radiance = &fx.clipped;
   fx.in.clipped = &fx.mask;
   fx.in.camera = &fx.camera;
@@ -125,6 +123,16 @@ void make_room(Fixture& fx, float lamp = 25.0f, const Rgb& lamp_colour = Rgb::On
   fx.in.max_pixels = 600;
   fx.photo = photo_of(fx.in, fx.truth, 0.5f);
   fx.in.photo_linear = &fx.photo;
+}
+
+// A 4 × 2.5 × 4 m room, grey walls (radiance 0.2), a ceiling lamp 50× the clip level 0.5.
+void make_room(Fixture& fx, float lamp = 25.0f, const Rgb& lamp_colour = Rgb::Ones()) {
+  fx.truth = test::constant_cube(kFace, Rgb(0.2f, 0.2f, 0.2f));
+  paint_disc(fx.truth, Vec3f(0.2f, 1, 0.1f), std::cos(0.25f), lamp * lamp_colour);
+  std::tie(fx.clipped, fx.mask) = clip(fx.truth, 0.5f);
+  fx.camera = Camera::look_at(Vec3d(1.5, 1.6, 1.5), Vec3d(-1, 0.3, -1), Vec3d(0, 1, 0), 80, 48, 36);
+  fx.in.room = RoomBox{Vec3f(-2, 0, -2), Vec3f(2, 2.5f, 2), Vec3f(0, 1, 0), {}};
+  see_room(fx);
 }
 
 TEST(ClippedSources, RegionsJoinAcrossFaceEdgesAndSortByPower) {
@@ -235,6 +243,52 @@ TEST(InverseLighting, RecoversTheColourOfAClippedLamp) {
     const Rgb truth = irradiance_reference(fx.truth, Vec3d(0, 1, 0));
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(fitted[c], truth[c], 0.1f * truth[c]) << "channel " << c;
   }
+}
+
+// The sun in a window (issue 13, docs/validation.md "Where the part grid falls"): a 4 × 2.5 × 4 m
+// room, a window in the −x wall (an opening: light through it is distant), sky at twice the clip
+// level and one texel of sun, 600×, inside it. The coarse fit's parts are 2 × 2 texels here, so
+// the sun shares its part with sky texels; spread over them, its sunlit patch on the floor would
+// blur. Coarse to fine, the part is cut into its texels and the patch's edges place the sun: its
+// own texel gets most of the light that the fit adds to its old part, and the window's total is
+// the truth's.
+TEST(InverseLighting, TheSunInAWindowIsPlacedByItsPatch) {
+  Fixture fx;
+  fx.truth = test::constant_cube(kFace, Rgb(0.2f, 0.2f, 0.2f));
+  const RoomOpening window{0, Vec3f(-2, 0.8f, -0.75f), Vec3f(-2, 2.0f, 0.75f)};
+  const Vec3f capture(0, 1, 0);
+  std::array<int, 3> sun{0, 0, 0};
+  float best = -1;
+  const Vec3f sun_dir = Vec3f(-1, 0.4f, 0.1f).normalized();
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < kFace; ++j)
+      for (int i = 0; i < kFace; ++i) {
+        const Vec3f d = texel_direction(f, i, j, kFace);
+        if (d.x() >= 0) continue;
+        const Vec3f hit = capture + (window.min.x() - capture.x()) / d.x() * d;
+        if (hit.y() < window.min.y() || hit.y() > window.max.y() || hit.z() < window.min.z() || hit.z() > window.max.z()) continue;
+        fx.truth.set_texel(f, i, j, Rgb::Constant(1.0f));
+        if (d.dot(sun_dir) > best) best = d.dot(sun_dir), sun = {f, i, j};
+      }
+  fx.truth.set_texel(sun[0], sun[1], sun[2], Rgb::Constant(300.0f));
+  fx.truth.update_borders();
+  std::tie(fx.clipped, fx.mask) = clip(fx.truth, 0.5f);
+  fx.camera = Camera::look_at(Vec3d(-1.5, 1.6, 1.5), Vec3d(1, 0.2, -0.3), Vec3d(0, 1, 0), 80, 48, 36);
+  fx.in.room = RoomBox{Vec3f(-2, 0, -2), Vec3f(2, 2.5f, 2), capture, {window}};
+  see_room(fx);
+  const InverseLightingResult r = recover_clipped_sources(fx.in);
+  ASSERT_EQ(r.sources.size(), 1u);
+  ASSERT_TRUE(r.sources[0].determined) << r.message;
+  const CubeMap fitted = r.apply(fx.clipped);
+  const double d_omega = texel_solid_angle(sun[1], sun[2], kFace);
+  const double sun_added = (luminance(fitted.texel(sun[0], sun[1], sun[2])) - 0.5) * d_omega;
+  const double true_added = (300.0 - 0.5) * d_omega;
+  const double window_true = cube_power(fx.truth) - cube_power(fx.clipped);
+  std::printf("sun texel: added %.4g of a true %.4g; window added %.4g of a true %.4g\n", sun_added, true_added,
+              r.sources[0].added_power, window_true);
+  EXPECT_NEAR(r.sources[0].added_power, window_true, 0.1 * window_true);
+  EXPECT_GT(sun_added, 0.7 * true_added);
+  EXPECT_LT(sun_added, 1.3 * true_added);
 }
 
 // Distant light over an open plane: E_k / E_0 is the same at every pixel, so the source's scale

@@ -39,6 +39,9 @@
 // fit left (docs/validation.md, "A raised ball"). A source whose total is undetermined first holds
 // at the lower bound the parts that alone would fail its test (hold_unknown_parts: a speck beside
 // a window, out of the photo's view), and only if that is all or none of them is fitted whole.
+// Coarse to fine: a part fitted far brighter than its source (the sun in a window's sky) is then
+// cut into its texels and the sources fitted again, so that the photo, not the grid, places it
+// (refine_concentrated_parts; docs/validation.md, "Where the part grid falls").
 //
 // Colour. A texel that clipped in all three channels kept no colour (white at the clip level),
 // but a warm bulb's light is orange on the walls it lights. With the parts' scales fixed at the

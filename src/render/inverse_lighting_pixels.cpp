@@ -298,6 +298,46 @@ void estimate_irradiance(std::vector<FitPixel>& pixels, const RoomLight& room0,
   pixels.erase(std::remove_if(pixels.begin(), pixels.end(), [](const FitPixel& p) { return !(p.e0 > 0); }), pixels.end());
 }
 
+void replace_part_estimates(std::vector<FitPixel>& pixels, const std::vector<int>& replaced,
+                            const std::vector<std::unique_ptr<RoomLight>>& lights, const InverseLightingInput& in,
+                            std::uint64_t key) {
+  const float lift = in.room ? 1e-4f * Vec3f(in.room->max - in.room->min).maxCoeff() : 0.0f;
+  std::map<int, std::vector<Rgb>> by_surface;
+  auto estimate = [&](const FitPixel& p, std::uint64_t k) {
+    const int scale = p.on_ball ? 4 : in.room ? 1 : 16;
+    std::vector<Rgb> e;
+    for (std::size_t l = 0; l < lights.size(); ++l)
+      e.push_back(PlaneIrradiance::estimate(*lights[l], p.x + lift * p.n, p.n, scale * in.part_samples, 2 * k + 1 + ((l + key) << 40)));
+    return e;
+  };
+  std::vector<std::vector<Rgb>> fresh(pixels.size());
+  for (const FitPixel& p : pixels)
+    if (!p.on_ball && !in.room) by_surface.emplace(p.surface, std::vector<Rgb>{});
+  std::vector<int> surfaces;
+  for (auto& [s, e] : by_surface) surfaces.push_back(s);
+  tbb::parallel_for(std::size_t(0), surfaces.size(), [&](std::size_t i) {
+    const int s = surfaces[i];
+    const auto p = std::find_if(pixels.begin(), pixels.end(), [&](const FitPixel& q) { return !q.on_ball && q.surface == s; });
+    by_surface.at(s) = estimate(*p, std::uint64_t(s));
+  });
+  tbb::parallel_for(std::size_t(0), pixels.size(), [&](std::size_t i) {
+    const FitPixel& p = pixels[i];
+    if (p.on_ball || in.room) fresh[i] = estimate(p, p.on_ball ? (std::uint64_t(1) << 32) + i : i);
+  });
+  for (std::size_t i = 0; i < pixels.size(); ++i) {
+    FitPixel& p = pixels[i];
+    const std::vector<Rgb>& e = (p.on_ball || in.room) ? fresh[i] : by_surface.at(p.surface);
+    for (auto r = replaced.rbegin(); r != replaced.rend(); ++r) {
+      p.e0_rgb -= p.ek_rgb[std::size_t(*r)];
+      p.ek_rgb.erase(p.ek_rgb.begin() + *r);
+    }
+    for (const Rgb& x : e) p.ek_rgb.push_back(x), p.e0_rgb += x;
+    p.e0 = luminance(p.e0_rgb);
+    p.ek.clear();
+    for (const Rgb& x : p.ek_rgb) p.ek.push_back(luminance(x));
+  }
+}
+
 namespace {
 
 // Every texel of a cube as light from a direction: its unit direction, solid angle and radiance.

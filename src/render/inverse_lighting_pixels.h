@@ -35,6 +35,13 @@ std::vector<FitPixel> gather_pixels(const InverseLightingInput& in, const RoomLi
 void estimate_irradiance(std::vector<FitPixel>& pixels, const RoomLight& room0,
                          const std::vector<std::unique_ptr<RoomLight>>& parts, const InverseLightingInput& in);
 
+// Each pixel's Ek of the parts in `replaced` (ascending) dropped, and those of `lights` appended,
+// estimated as estimate_irradiance does; E0 keeps E_rest + Σ Ek. `key` sets the new estimates'
+// random streams apart from the first ones.
+void replace_part_estimates(std::vector<FitPixel>& pixels, const std::vector<int>& replaced,
+                            const std::vector<std::unique_ptr<RoomLight>>& lights, const InverseLightingInput& in,
+                            std::uint64_t key);
+
 // Under distant light, the E0 and Ek of each pixel in a ball's shadow zone (shadow_ball; its surface
 // planes + 6 + references + the ball's index where the plane's albedo is unknown) less what the
 // ball takes from it (`rest` the cube without the
