@@ -659,7 +659,9 @@ std::pair<std::vector<int>, std::vector<PartFit>> concentrated_parts(const Inver
 bool refine_concentrated_parts(std::vector<FitPixel>& pixels, const Albedos& albedos, const InverseLightingInput& in,
                                InverseLightingResult& res) {
   if (std::any_of(pixels.begin(), pixels.end(), [](const FitPixel& p) { return p.shadow_ball >= 0; })) return false;
-  auto [replaced, finer] = concentrated_parts(res, *in.radiance);
+  auto cut = concentrated_parts(res, *in.radiance);  // not a structured binding: the lambda below takes it
+  const std::vector<int>& replaced = cut.first;
+  std::vector<PartFit>& finer = cut.second;
   if (replaced.empty()) return false;
   const std::vector<FitPixel> coarse_pixels = pixels;
   const InverseLightingResult coarse = res;
