@@ -21,6 +21,9 @@ TEST(TempFiles, InterruptRemovesTemporaryOutputs) {
     const pid_t pid = fork();
     ASSERT_GE(pid, 0);
     if (pid == 0) {
+      // The signal as a terminal delivers it: a background job of a script starts with SIGINT
+      // ignored, and install_interrupt_cleanup rightly leaves an ignored signal ignored.
+      std::signal(sig, SIG_DFL);
       install_interrupt_cleanup();
       { const TempFileGuard finished(done); std::ofstream(done) << "renamed already, say"; }
       const TempFileGuard guard(tmp);
