@@ -66,9 +66,16 @@ in_root() {
   chroot "$root" /usr/bin/env -i HOME=/root PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
     LANG=C.UTF-8 /bin/bash -euo pipefail -c "cd /root/insitu && $1"
 }
+# Each stage's time is printed: a slow run says whether the root, the install and build, or the
+# tests took it (e574ef9's stage took 1362 s, earlier ones 649-811 s, and nothing said where).
+stage=$(date +%s)
+lap() { echo "check-fresh-install: $1 in $(( $(date +%s) - stage )) s"; stage=$(date +%s); }
+lap "root built"
 echo "check-fresh-install: README command 1: $first"
 in_root "$first" || die "the README's first command failed on a fresh Debian 12 root"
 in_root "test -s scenes/demo/out/composite.png" || die "the first command rendered no scenes/demo/out/composite.png"
+lap "README command 1 (install, build, demo) passed"
 echo "check-fresh-install: README command 2: $second"
 in_root "$second" || die "the README's test command failed on a fresh Debian 12 root"
+lap "README command 2 (the test suite) passed"
 echo "check-fresh-install: passed in $(( $(date +%s) - start )) s"
