@@ -68,7 +68,7 @@ in_root() {
 }
 # Each stage's time is printed: a slow run says whether the root, the install and build, or the
 # tests took it (e574ef9's stage took 1362 s, earlier ones 649-811 s, and nothing said where).
-stage=$(date +%s)
+stage=$start  # the root counts from its mmdebstrap
 lap() { echo "check-fresh-install: $1 in $(( $(date +%s) - stage )) s"; stage=$(date +%s); }
 lap "root built"
 echo "check-fresh-install: README command 1: $first"
