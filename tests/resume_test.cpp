@@ -220,14 +220,36 @@ int wait_for(pid_t pid) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 1000 + WTERMSIG(status);
 }
 
-double seconds_of(const std::string& report, const char* stage) {
-  return nlohmann::json::parse(test::slurp(report))["seconds"][stage].get<double>();
+// Waits for the render's first progress line, "render: 38% (1.2 s) ...": the sample loop is under
+// way (tools/progress.cpp prints after its first second). Returns the seconds of sample loop left
+// at this pace, 0 when the process ended first (its exit code in *ended) or no line came in 5
+// minutes. Timed from the process's own progress, not from the reference render's seconds: the
+// other test shard's load comes and goes, and a delay measured on one run fell after the end of
+// every later run in the sanitized suite (2026-11-25).
+double wait_for_sample_loop(pid_t pid, const std::string& err_file, int* ended) {
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  while (std::chrono::steady_clock::now() < give_up) {
+    const std::string err = test::slurp(err_file);
+    const std::size_t at = err.find("render: ");
+    double percent = 0, elapsed = 0;
+    if (at != std::string::npos && err.find('\n', at) != std::string::npos &&
+        std::sscanf(err.c_str() + at, "render: %lf%% (%lf s)", &percent, &elapsed) == 2 && percent > 0)
+      return elapsed * (100 - percent) / percent;
+    int status = 0;
+    if (waitpid(pid, &status, WNOHANG) == pid) {
+      *ended = WIFEXITED(status) ? WEXITSTATUS(status) : 1000 + WTERMSIG(status);
+      return 0;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return 0;
 }
 
 // Interrupted by SIGINT or SIGTERM at random moments of the sample loop, resumed (and interrupted
 // again) until done: the image and the layers are those of an uninterrupted render, bit for bit.
-// A SIGKILL on the way leaves the last checkpoint valid. A signal that lands while the scene
-// loads ends the process before anything is written; the loop simply starts again.
+// A SIGKILL on the way leaves the last checkpoint valid. Each signal is sent at a random moment
+// of what is left of the loop once its first progress line shows; one that lands after the
+// render finished is the end of that trial.
 TEST(Resume, KilledAtRandomMomentsResumesToTheSameImage) {
   SceneFixture fx;
   auto j = fx.scene;
@@ -238,20 +260,22 @@ TEST(Resume, KilledAtRandomMomentsResumesToTheSameImage) {
   const std::string scene = fx.write(j);
   const std::string ref_args = "render " + scene + " -o " + fx.dir.file("ref.exr");
   ASSERT_EQ(test::run_insitu(fx.dir, ref_args).exit_code, 0);
-  const double t_load = seconds_of(fx.dir.file("ref.exr.report.json"), "load");
-  const double t_render = seconds_of(fx.dir.file("ref.exr.report.json"), "render");
   std::mt19937 rng(7);
   int interrupted = 0;
   for (int trial = 0; trial < 3; ++trial) {
     const std::string out = fx.dir.file("run" + std::to_string(trial) + ".exr");
     std::string resume;
     for (int attempt = 0; attempt < 12; ++attempt) {
+      std::filesystem::remove(fx.dir.file("bg.err"));  // not the last run's line
       const pid_t pid = spawn_insitu(fx.dir, "render " + scene + " -o " + out + resume);
-      const double delay = 1.5 * t_load + std::uniform_real_distribution<double>(0.05, 0.9)(rng) * t_render;
-      std::this_thread::sleep_for(std::chrono::duration<double>(delay));
+      int code = -1;
+      const double left_s = wait_for_sample_loop(pid, fx.dir.file("bg.err"), &code);
       const int sig = attempt == 2 ? SIGKILL : (attempt % 2 ? SIGTERM : SIGINT);
-      kill(pid, sig);
-      const int code = wait_for(pid);
+      if (code < 0) {
+        std::this_thread::sleep_for(std::chrono::duration<double>(std::uniform_real_distribution<double>(0.0, 0.8)(rng) * left_s));
+        kill(pid, sig);
+        code = wait_for(pid);
+      }
       if (code == 0) break;
       if (code == 130) {
         ++interrupted, resume = " --resume";
