@@ -62,9 +62,8 @@ TEST_P(BadInput, OneLineExitCodeAndNothingTouched) {
   // cases it fails).
   const char* other = std::getenv("INSITU_TEST_BINARY");
   const std::string binary = other && *other ? other : INSITU_BINARY;
-  const std::string cmd = "cd " + shell_quote(work.string()) + " && " + test::child_environment() + binary + args +
-                          " < /dev/null > " + out + " 2> " + err;
-  const int status = std::system(cmd.c_str());
+  const int status = test::run_with_leak_check("cd " + shell_quote(work.string()) + " && ",
+                                               binary + args + " < /dev/null > " + out + " 2> " + err, err);
   const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   const std::string stderr_text = test::slurp(err);
 
