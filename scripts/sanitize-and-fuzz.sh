@@ -10,7 +10,9 @@
 # Needs clang and libFuzzer (installed here if missing). 849 s on 2 cores in CI for 7a3539c
 # (unity build 284 s, suite 469 s, fuzzing 5 × 30 s two at a time; 1562 s for 3031c95, before the
 # unity build). The suite grew with issues 13 and 18 to about 1400 s (7fc294f; the build 428 s),
-# a quarter of it the studio's browser test, which this leg no longer runs (tests/CMakeLists.txt).
+# a quarter of it the studio's browser test, which this leg no longer runs (tests/CMakeLists.txt),
+# and 1164 s for c8f08f6, half of each insitu process the tests start spent taking full stacks
+# for LeakSanitizer (those now take them only to attribute a leak: tests/cli_util.h).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-60}
