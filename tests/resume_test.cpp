@@ -203,13 +203,25 @@ TEST(Resume, FingerprintFollowsTheSettingsAndInputs) {
   EXPECT_NE(a, render_fingerprint(fixture_scene(fx, 8)));
 }
 
-// `insitu render ARGS` in the background, its output to files; returns its pid.
+// `insitu render ARGS` in the background, its output to files; returns its pid. SIGINT and SIGTERM
+// are set to their defaults in the child, as a terminal's process has them: a test binary started
+// as a script's background job (`cmd &`) has SIGINT ignored, the child would inherit that, and
+// install_interrupt_cleanup rightly leaves an ignored signal ignored (ctest resets them itself).
 pid_t spawn_insitu(const test::TempDir& dir, const std::string& args) {
   const std::string cmd = test::child_environment() + "exec " + INSITU_BINARY + " " + args + " < /dev/null > " +
                           dir.file("bg.out") + " 2> " + dir.file("bg.err");
   const char* argv[] = {"/bin/sh", "-c", cmd.c_str(), nullptr};
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  sigset_t defaults;
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGINT);
+  sigaddset(&defaults, SIGTERM);
+  posix_spawnattr_setsigdefault(&attr, &defaults);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGDEF);
   pid_t pid = 0;
-  EXPECT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
+  EXPECT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, &attr, const_cast<char**>(argv), environ), 0);
+  posix_spawnattr_destroy(&attr);
   return pid;
 }
 
@@ -223,9 +235,8 @@ int wait_for(pid_t pid) {
 // Waits for the render's first progress line, "render: 38% (1.2 s) ...": the sample loop is under
 // way (tools/progress.cpp prints after its first second). Returns the seconds of sample loop left
 // at this pace, 0 when the process ended first (its exit code in *ended) or no line came in 5
-// minutes. Timed from the process's own progress, not from the reference render's seconds: the
-// other test shard's load comes and goes, and a delay measured on one run fell after the end of
-// every later run in the sanitized suite (2026-11-25).
+// minutes. Timed from the process's own progress, not from the reference render's seconds, so
+// that the delay does not depend on how loaded the machine was during the reference run.
 double wait_for_sample_loop(pid_t pid, const std::string& err_file, int* ended) {
   const auto give_up = std::chrono::steady_clock::now() + std::chrono::minutes(5);
   while (std::chrono::steady_clock::now() < give_up) {
