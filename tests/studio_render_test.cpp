@@ -97,9 +97,10 @@ TEST(StudioRender, StreamsEveryPassToTheEndAndRemapsWithoutRendering) {
   get_png(studio, "/api/render/path.png?tonemap=adaptive_log&key=-1", 400);
   get_png(studio, "/api/render/irradiance.png", 404);
   // The light this render used: radiance and irradiance, each a cross of 4 × 3 faces.
+  std::vector<cv::Mat> light;
   for (const char* which : {"/api/light/cube.png", "/api/light/irradiance.png"}) {
-    const cv::Mat cross = get_png(studio, which);
-    EXPECT_EQ(cross.cols * 3, cross.rows * 4) << which;
+    light.push_back(get_png(studio, which));
+    EXPECT_EQ(light.back().cols * 3, light.back().rows * 4) << which;
   }
   // Saved as `insitu render` writes it.
   auto c = studio.client();
@@ -116,6 +117,9 @@ TEST(StudioRender, StreamsEveryPassToTheEndAndRemapsWithoutRendering) {
   EXPECT_EQ(ab["slots"]["realtime"]["spp_done"], 2);
   EXPECT_EQ(ab["slots"]["path"]["spp_done"], 2);
   EXPECT_EQ(get_png(studio, "/api/render/realtime.png?tonemap=photo").cols, 640);
+  // The A/B's light is the same cube: the same previews.
+  EXPECT_EQ(cv::norm(get_png(studio, "/api/light/cube.png"), light[0], cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(get_png(studio, "/api/light/irradiance.png"), light[1], cv::NORM_INF), 0.0);
 }
 
 // Every pass of a fixed render publishes its image; an adaptive render's many short passes publish
@@ -142,6 +146,7 @@ TEST(StudioRender, StopsAfterThePassUnderWayAndReportsTheLibrarysErrors) {
   TempDir dir;
   StudioFixture studio(dir);
   without_light_recovery(studio);
+  get_png(studio, "/api/light/cube.png", 404);  // no scene loaded yet
   post_render(studio, {{"spp", 4096}});
   auto c = studio.client();
   c.set_read_timeout(300, 0);

@@ -59,13 +59,9 @@ void RenderJob::run(const std::string& integrator, int spp) {
     const auto loaded = std::make_shared<const LoadedScene>(load_scene(spec));
     const LoadedScene& scene = *loaded;
     const std::string name = scene.integrator.entry->name;
-    {  // The light as this render uses it: the cube, and its exact irradiance over π.
-      const double exposure = preview_exposure(scene.environment);
-      const auto field = make_irradiance(IrradianceMode::kExact, scene.environment);
-      std::string cube = display_png(cube_cross_preview(scene.environment, exposure));
-      std::string irradiance = display_png(cube_cross_preview(irradiance_cube(*field, 32, 1 / kPiF), exposure));
+    {
       const std::lock_guard<std::mutex> lock(mutex_);
-      cube_png_ = std::move(cube), irradiance_png_ = std::move(irradiance);
+      light_scene_ = loaded;  // its light's previews are made when the page asks (light_png)
       state_ = "rendering", integrator_ = name;
       slots_[name] = Slot{};  // this integrator's image is the new render's from its first pass on
     }
@@ -106,7 +102,7 @@ json RenderJob::status() const {
     slots[name] = {{"spp_done", s.spp_done}, {"spp", s.spp}, {"noise", s.noise}, {"seconds", s.seconds},
                    {"done", s.done}, {"passes", s.passes}, {"image", !s.linear.data.empty()}};
   return {{"state", state_}, {"integrator", integrator_}, {"fraction", fraction_}, {"slots", slots},
-          {"error", error_ ? *error_ : json(nullptr)}, {"light", cube_png_.has_value()}};
+          {"error", error_ ? *error_ : json(nullptr)}, {"light", light_scene_ != nullptr}};
 }
 
 std::optional<std::string> RenderJob::png(const std::string& name, const ToneMapSettings& tonemap) const {
@@ -120,9 +116,27 @@ std::optional<std::string> RenderJob::png(const std::string& name, const ToneMap
   return display_png(tonemap.op == ToneMap::kPhoto ? image : insitu::tonemap(image, tonemap));
 }
 
+// The light as the latest render uses it: the cube, and its exact irradiance over π, at one
+// exposure. Made on the page's first request, not before the render: the exact irradiance of the
+// demo's cube takes about 2 s (half of the sanitized studio tests' time), and a render stopped or
+// failed before the page asks needs none. Kept while the cube stays the same texels, so an A/B
+// render of the same light makes none.
 std::optional<std::string> RenderJob::light_png(bool irradiance) const {
-  const std::lock_guard<std::mutex> lock(mutex_);
-  return irradiance ? irradiance_png_ : cube_png_;
+  std::shared_ptr<const LoadedScene> scene;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    scene = light_scene_;
+  }
+  if (!scene) return std::nullopt;
+  const std::lock_guard<std::mutex> lock(light_mutex_);
+  if (!light_ || !light_->environment.same_texels(scene->environment)) {
+    const CubeMap& L = scene->environment;
+    const double exposure = preview_exposure(L);
+    const auto field = make_irradiance(IrradianceMode::kExact, L);
+    light_ = LightPreview{L, display_png(cube_cross_preview(L, exposure)),
+                          display_png(cube_cross_preview(irradiance_cube(*field, 32, 1 / kPiF), exposure))};
+  }
+  return irradiance ? light_->irradiance_png : light_->cube_png;
 }
 
 std::vector<std::string> RenderJob::save_outputs() const {

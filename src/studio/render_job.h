@@ -2,8 +2,8 @@
 // own thread, of the scene file as it is when the render starts.
 //
 // A render loads the scene with the library (load_scene: the light recovered as the CLI recovers
-// it), makes the light's previews (the radiance cube and its exact irradiance E/π, unfolded, at
-// one exposure), then renders with render_scene. After each pass of samples the render loop calls
+// it), then renders with render_scene. The light's previews (the radiance cube and its exact
+// irradiance E/π, unfolded, at one exposure) are made when the page first asks for them. After each pass of samples the render loop calls
 // back between passes, its threads idle; the composite of the samples so far
 // (layers_from_state + finish_render) is published then, with the noise figure the loop reports
 // (mean relative standard error over the pixels the render changes). So the page sees the render
@@ -27,9 +27,12 @@
 
 #include "core/image.h"
 #include "core/json_reader.h"
+#include "light/cubemap.h"
 #include "output/settings.h"
 
 namespace insitu {
+
+struct LoadedScene;
 
 // Whether the image after a pass that reached `spp_done` of `spp` samples is published, the last
 // one published being at `shown` samples (0: none yet).
@@ -56,7 +59,8 @@ class RenderJob {
   // The latest image of slot `name`, tone mapped by `tonemap` (photo: the composite as encoded
   // through the photo's own curve), as PNG; nullopt when that slot has no image yet.
   std::optional<std::string> png(const std::string& name, const ToneMapSettings& tonemap) const;
-  // The light's previews as PNG (`irradiance`: E/π; else the radiance), once a scene has loaded.
+  // The light's previews as PNG (`irradiance`: E/π; else the radiance), once a scene has loaded:
+  // made on the first request for that scene's cube.
   std::optional<std::string> light_png(bool irradiance) const;
   // Writes the last finished render of the scene's own integrator to the scene's outputs, as
   // `insitu render` does (write_outputs: atomic, never over an input); their paths. Throws
@@ -83,7 +87,13 @@ class RenderJob {
   double fraction_ = 0;
   std::optional<json> error_;
   std::map<std::string, Slot> slots_;
-  std::optional<std::string> cube_png_, irradiance_png_;
+  std::shared_ptr<const LoadedScene> light_scene_;  // the latest scene loaded
+  struct LightPreview {
+    CubeMap environment;  // the cube they show
+    std::string cube_png, irradiance_png;
+  };
+  mutable std::mutex light_mutex_;  // guards light_ (made outside mutex_: status stays answered)
+  mutable std::optional<LightPreview> light_;
   struct Finished;  // a scene and its finished render, for save_outputs
   std::shared_ptr<const Finished> finished_;
 };

@@ -217,9 +217,11 @@ void StudioServer::Impl::add_render_routes() {
     });
   });
   http.Get(R"(/api/light/(cube|irradiance)\.png)", [this](const httplib::Request& req, httplib::Response& res) {
-    const auto png = render.light_png(req.matches[1] == "irradiance");
-    if (!png) return reply_error(res, 404, req.path, "no scene loaded yet: start a render");
-    res.set_content(*png, "image/png");
+    guarded(res, [&] {  // the previews are made here, on the first request
+      const auto png = render.light_png(req.matches[1] == "irradiance");
+      if (!png) return reply_error(res, 404, req.path, "no scene loaded yet: start a render");
+      res.set_content(*png, "image/png");
+    });
   });
 }
 
