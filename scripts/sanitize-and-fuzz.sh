@@ -13,7 +13,9 @@
 # unity build). The suite grew with issues 13 and 18 to about 1400 s (7fc294f; the build 428 s),
 # a quarter of it the studio's browser test, which this leg no longer runs (tests/CMakeLists.txt),
 # and 1164 s for c8f08f6, half of each insitu process the tests start spent taking full stacks
-# for LeakSanitizer (those now take them only to attribute a leak: tests/cli_util.h).
+# for LeakSanitizer (those now take them only to attribute a leak: tests/cli_util.h). 810 s for
+# e968206: the studio's light preview, made before every render, and the inverse-lighting tests'
+# floor estimates had been a third of it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-60}
