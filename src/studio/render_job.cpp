@@ -59,9 +59,10 @@ void RenderJob::run(const std::string& integrator, int spp) {
     const auto loaded = std::make_shared<const LoadedScene>(load_scene(spec));
     const LoadedScene& scene = *loaded;
     const std::string name = scene.integrator.entry->name;
+    auto cube = std::make_shared<const CubeMap>(scene.environment);
     {
       const std::lock_guard<std::mutex> lock(mutex_);
-      light_scene_ = loaded;  // its light's previews are made when the page asks (light_png)
+      light_cube_ = std::move(cube);  // its previews are made when the page asks (light_png)
       state_ = "rendering", integrator_ = name;
       slots_[name] = Slot{};  // this integrator's image is the new render's from its first pass on
     }
@@ -102,7 +103,7 @@ json RenderJob::status() const {
     slots[name] = {{"spp_done", s.spp_done}, {"spp", s.spp}, {"noise", s.noise}, {"seconds", s.seconds},
                    {"done", s.done}, {"passes", s.passes}, {"image", !s.linear.data.empty()}};
   return {{"state", state_}, {"integrator", integrator_}, {"fraction", fraction_}, {"slots", slots},
-          {"error", error_ ? *error_ : json(nullptr)}, {"light", light_scene_ != nullptr}};
+          {"error", error_ ? *error_ : json(nullptr)}, {"light", light_cube_ != nullptr}};
 }
 
 std::optional<std::string> RenderJob::png(const std::string& name, const ToneMapSettings& tonemap) const {
@@ -122,18 +123,18 @@ std::optional<std::string> RenderJob::png(const std::string& name, const ToneMap
 // failed before the page asks needs none. Kept while the cube stays the same texels, so an A/B
 // render of the same light makes none.
 std::optional<std::string> RenderJob::light_png(bool irradiance) const {
-  std::shared_ptr<const LoadedScene> scene;
+  std::shared_ptr<const CubeMap> cube;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    scene = light_scene_;
+    cube = light_cube_;
   }
-  if (!scene) return std::nullopt;
+  if (!cube) return std::nullopt;
   const std::lock_guard<std::mutex> lock(light_mutex_);
-  if (!light_ || !light_->environment.same_texels(scene->environment)) {
-    const CubeMap& L = scene->environment;
+  if (!light_ || !light_->environment->same_texels(*cube)) {
+    const CubeMap& L = *cube;
     const double exposure = preview_exposure(L);
     const auto field = make_irradiance(IrradianceMode::kExact, L);
-    light_ = LightPreview{L, display_png(cube_cross_preview(L, exposure)),
+    light_ = LightPreview{cube, display_png(cube_cross_preview(L, exposure)),
                           display_png(cube_cross_preview(irradiance_cube(*field, 32, 1 / kPiF), exposure))};
   }
   return irradiance ? light_->irradiance_png : light_->cube_png;

@@ -3,14 +3,15 @@
 //
 // A render loads the scene with the library (load_scene: the light recovered as the CLI recovers
 // it), then renders with render_scene. The light's previews (the radiance cube and its exact
-// irradiance E/π, unfolded, at one exposure) are made when the page first asks for them. After each pass of samples the render loop calls
-// back between passes, its threads idle; the composite of the samples so far
-// (layers_from_state + finish_render) is published then, with the noise figure the loop reports
-// (mean relative standard error over the pixels the render changes). So the page sees the render
-// converge pass by pass, and the last image is the one `insitu render` would write. An adaptive
-// render's passes are short (61 at 1024 spp, render/render_state.h), and a composite costs about
-// a pass at catalogue size: an image is published after the first pass and after each pass that
-// reaches a new eighth of the planned samples (every pass of a fixed render), and at the end.
+// irradiance E/π, unfolded, at one exposure) are made when the page first asks for them. After
+// each pass of samples the render loop calls back, its threads idle; the composite of the samples
+// so far (layers_from_state + finish_render) is published then, with the noise figure the loop
+// reports (mean relative standard error over the pixels the render changes). So the page sees the
+// render converge pass by pass, and the last image is the one `insitu render` would write. An
+// adaptive render's passes are short (61 at 1024 spp, render/render_state.h), and a composite
+// costs about a pass at catalogue size: an image is published after the first pass and after each
+// pass that reaches a new eighth of the planned samples (every pass of a fixed render), and at the
+// end.
 //
 // Each integrator's latest image is kept in its own slot ("path", "realtime", ...), linear and
 // photo-encoded, so the page can tone map either again (adaptive_log's key and bias) without
@@ -87,9 +88,9 @@ class RenderJob {
   double fraction_ = 0;
   std::optional<json> error_;
   std::map<std::string, Slot> slots_;
-  std::shared_ptr<const LoadedScene> light_scene_;  // the latest scene loaded
+  std::shared_ptr<const CubeMap> light_cube_;  // the latest loaded scene's environment (a copy)
   struct LightPreview {
-    CubeMap environment;  // the cube they show
+    std::shared_ptr<const CubeMap> environment;  // the cube they show
     std::string cube_png, irradiance_png;
   };
   mutable std::mutex light_mutex_;  // guards light_ (made outside mutex_: status stays answered)
