@@ -175,17 +175,19 @@ TEST(Validation, ClosedRoomFromJpegShotsWithinTheGoal) {
 }
 
 // The open ground with a grey ball in the real scene, given as a reference (issue 13): from clipped
-// JPEG shots the ball tells the ceiling lamps from the windows, and the objects' brightness is
-// within 10 % of the truth (0.67 without it). The error's goal, 1.5 × the HDR shots', is not met
-// (from the CLI's JPEG shots 5.2 %, against 2.6 %: how the fit divides the missing light among the
-// windows and specks, docs/validation.md "Colour, not shape"), so it is printed, not bounded.
+// JPEG shots the ball tells the ceiling lamps from the windows (the objects 0.67× as bright without
+// it). Issue 13's goal: the error at most 1.5 × the same scene's error from its HDR shots, rendered
+// here too, and the objects' brightness within 10 %. Without the smoothing within a source
+// (kReferenceSmoothing) 5.2 % from the CLI's JPEG shots, against 1.5 × 2.6 %: how the fit divided
+// the missing light among a window's parts (docs/validation.md "Priors on the parts").
 // Not under AddressSanitizer: with it and the ball's unit tests, their shard took 824 s there
 // instead of 51 s, near CI's budget; the ball's code paths run sanitized in InverseLighting's tests.
 TEST(Validation, OpenGroundWithAGreyBallFromJpegShots) {
 #ifdef INSITU_UNDER_ASAN
   GTEST_SKIP() << "the ball's fit runs sanitized in InverseLighting.AGreyBall*";
 #endif
-  check_against_cycles("open_ground_ball", 0.0, true);
+  const double hdr = check_against_cycles("open_ground_ball", 0.0, false);
+  if (hdr >= 0) check_against_cycles("open_ground_ball", 1.5 * hdr, true);
 }
 
 // The grey ball raised on a rod, beside the orange ball (tools/validate/open_ground_raised_ball,
@@ -193,15 +195,15 @@ TEST(Validation, OpenGroundWithAGreyBallFromJpegShots) {
 // clipped regions beyond the fourth merged into one source, the lamps (15 texels each, the least
 // power at the clip level) shared one scale with the windows' edges and the specks, and the fit
 // sent the missing light to the windows: the objects 1.53× too bright, 57 % error (from the CLI's
-// JPEG shots). Every region its own source and σ in scaled units: 13.3 %, brightness 1.03 (here
-// 10.0 %, 1.079); regions closer than a part's width one source, with the parts the photo cannot
-// tell held at the lower bound: 7.0 %, 1.023 (here 6.55 %, 1.037). The objects' brightness is held
-// within 10 % (jpeg); the error is printed.
+// JPEG shots). Every region its own source and σ in scaled units: 13.3 %, brightness 1.03; regions
+// closer than a part's width one source, with the parts the photo cannot tell held at the lower
+// bound: 7.0 %, 1.023; with the smoothing within a source: 4.3 %. Held to issue 13's goal, as above.
 TEST(Validation, OpenGroundWithARaisedGreyBallFromJpegShots) {
 #ifdef INSITU_UNDER_ASAN
   GTEST_SKIP() << "the ball's fit runs sanitized in InverseLighting.AGreyBall*";
 #endif
-  check_against_cycles("open_ground_raised_ball", 0.0, true);
+  const double hdr = check_against_cycles("open_ground_raised_ball", 0.0, false);
+  if (hdr >= 0) check_against_cycles("open_ground_raised_ball", 1.5 * hdr, true);
 }
 
 // The same ball on a plate of its own (issue 13): the photo and the truth are the open ground's,

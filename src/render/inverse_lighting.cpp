@@ -163,6 +163,13 @@ bool hold_unknown_parts(const Fit& fit, const Columns& columns, std::size_t k, d
   return true;
 }
 
+// The source of each column that is one part alone, −1 for the others (solve's smoothing).
+std::vector<int> column_sources(const Columns& columns, const InverseLightingResult& res) {
+  std::vector<int> out;
+  for (const auto& c : columns) out.push_back(c.size() == 1 ? res.parts[std::size_t(c[0])].source : -1);
+  return out;
+}
+
 // Fits the free sources' parts, each source judged by the σ of its added power (the sum over its
 // parts: determined even where its parts are not told apart). A source so undetermined is fitted
 // again whole, one scale for all its parts (where the photo gives only the irradiance its parts
@@ -186,7 +193,8 @@ void fit_sources(const std::vector<FitPixel>& pixels, const Albedos& albedos, In
       for (int j : c) a += (res.parts[std::size_t(j)].scale - 1) / double(c.size());
       start.push_back(std::max(0.0, a));
     }
-    const Fit fit = solve(pixels, columns, albedos, warm ? &start : nullptr);
+    const std::vector<int> sources = column_sources(columns, res);
+    const Fit fit = solve(pixels, columns, albedos, warm ? &start : nullptr, &sources);
     res.residual_rms = fit.sigma_r;
     std::vector<bool> tied(res.sources.size(), false);
     for (std::size_t k = 0; k < res.sources.size(); ++k) {

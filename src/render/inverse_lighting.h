@@ -65,7 +65,10 @@
 // all within 4 radii. With a reference the fit leaves out the pixels that cannot inform the light
 // (a surface of unknown albedo whose pixels all see one E), starts from the convex fit of the
 // known-albedo pixels and then a near-least-squares one, weighs the reference's residuals by their
-// own scale, and takes the parts it holds at 0 as known (solve, unpinned).
+// own scale, and takes the parts it holds at 0 as known (solve, unpinned). It also pulls each
+// part's log scale gently toward its source's mean (kReferenceSmoothing): where a ball cannot tell
+// one part of a window from its neighbour they share the window's scale, and where the data can,
+// each keeps its own (docs/validation.md, "Smoothing in fits with a reference").
 //
 // Under distant light the clipped texels that look into a plane of the local scene show the
 // ground, not light, and are no source (light_texels).

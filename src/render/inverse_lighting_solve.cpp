@@ -66,10 +66,12 @@ double robust_sigma(std::vector<double> r) {
   return 1.4826 * r[r.size() / 2];
 }
 
-// JᵀJ of the robustified residuals over `blocks` (their columns in order).
-Eigen::MatrixXd normal_matrix(ceres::Problem& problem, const std::vector<double*>& blocks) {
+// JᵀJ of the robustified `residuals` over `blocks` (their columns in order).
+Eigen::MatrixXd normal_matrix(ceres::Problem& problem, const std::vector<double*>& blocks,
+                              const std::vector<ceres::ResidualBlockId>& residuals) {
   ceres::Problem::EvaluateOptions eval;
   eval.parameter_blocks = blocks;
+  eval.residual_blocks = residuals;
   eval.apply_loss_function = true;
   ceres::CRSMatrix crs;
   problem.Evaluate(eval, nullptr, nullptr, nullptr, &crs);
@@ -81,11 +83,45 @@ Eigen::MatrixXd normal_matrix(ceres::Problem& problem, const std::vector<double*
 }
 
 // How the log residuals are weighed: the Cauchy loss's scale, and a factor per surface on it
-// (empty: 1 each).
+// (empty: 1 each); and the weight λ of the smoothing within a source (0: none).
 struct Weights {
   double cauchy = 0.1;
   std::vector<double> surface;
+  double smoothing = 0;
 };
+
+// r_c = √(λN) (log(1 + a_c) − 1/|S| Σ_{c' ∈ S} log(1 + a_c')), S the columns that are single parts
+// of c's source (c among them): the pull of one part's scale toward its source's others.
+struct SmoothingResidual {
+  std::size_t c;
+  std::vector<std::size_t> same;
+  double weight;
+  template <typename T>
+  bool operator()(T const* const* params, T* r) const {
+    T mean = T(0);
+    for (std::size_t k : same) mean += log(T(1) + params[0][k]);
+    r[0] = T(weight) * (log(T(1) + params[0][c]) - mean / T(double(same.size())));
+    return true;
+  }
+};
+
+// The smoothing's residuals, one per column that is a single part of a source with two or more
+// such columns (`column_source`: that source, −1 for any other column).
+void add_smoothing(ceres::Problem& problem, const std::vector<int>& column_source, double lambda, std::size_t n,
+                   double* a) {
+  for (std::size_t c = 0; c < column_source.size(); ++c) {
+    if (column_source[c] < 0) continue;
+    std::vector<std::size_t> same;
+    for (std::size_t d = 0; d < column_source.size(); ++d)
+      if (column_source[d] == column_source[c]) same.push_back(d);
+    if (same.size() < 2) continue;
+    auto* cost = new ceres::DynamicAutoDiffCostFunction<SmoothingResidual>(
+        new SmoothingResidual{c, std::move(same), std::sqrt(lambda * double(n))});
+    cost->AddParameterBlock(int(column_source.size()));
+    cost->SetNumResiduals(1);
+    problem.AddResidualBlock(cost, nullptr, a);
+  }
+}
 
 // The pixels' residuals and the references' constraints.
 void add_residuals(ceres::Problem& problem, const std::vector<FitPixel>& pixels, const Columns& columns,
@@ -123,14 +159,20 @@ void solve_with_a_nonnegative(ceres::Problem& problem, std::vector<double>& a) {
   ceres::Solve(options, &problem, &summary);
 }
 
-// One robust least-squares fit from `start` (a = 0 and the initial ρ when null).
+// One robust least-squares fit from `start` (a = 0 and the initial ρ when null). JᵀJ is the
+// data's alone: the smoothing moves the fit along the directions the data leaves nearly flat, and
+// must not count as their precision (a σ from it would call a part determined that the photo
+// cannot see).
 Fit solve_pass(const std::vector<FitPixel>& pixels, const Columns& columns, const Albedos& albedos, const Weights& w,
-               const Fit* start) {
+               const Fit* start, const std::vector<int>* column_source = nullptr) {
   Fit fit;
   fit.a = start ? start->a : std::vector<double>(columns.size(), 0.0);
   fit.log_rho = start ? start->log_rho : albedos.log_rho;
   ceres::Problem problem;
   add_residuals(problem, pixels, columns, fit.log_rho, albedos, w, fit.a.data());
+  std::vector<ceres::ResidualBlockId> data;
+  problem.GetResidualBlocks(&data);
+  if (w.smoothing > 0 && column_source) add_smoothing(problem, *column_source, w.smoothing, pixels.size(), fit.a.data());
   std::vector<double*> free_blocks{fit.a.data()};
   for (std::size_t s = 0; s < fit.log_rho.size(); ++s) {
     if (!problem.HasParameterBlock(&fit.log_rho[s])) continue;
@@ -143,7 +185,7 @@ Fit solve_pass(const std::vector<FitPixel>& pixels, const Columns& columns, cons
   problem.Evaluate(eval, nullptr, &fit.residuals, nullptr, nullptr);
   fit.residuals.resize(pixels.size());  // the pixels' come first, in order
   fit.sigma_r = robust_sigma(fit.residuals);
-  fit.jtj = normal_matrix(problem, free_blocks);
+  fit.jtj = normal_matrix(problem, free_blocks, data);
   return fit;
 }
 
@@ -219,7 +261,7 @@ std::vector<FitPixel> informative(const std::vector<FitPixel>& pixels, const Alb
 }  // namespace
 
 Fit solve(const std::vector<FitPixel>& all_pixels, const Columns& columns, const Albedos& albedos,
-          const std::vector<double>* a_start) {
+          const std::vector<double>* a_start, const std::vector<int>* column_source) {
   if (std::none_of(all_pixels.begin(), all_pixels.end(), [&](const FitPixel& p) { return albedos.reference[std::size_t(p.surface)]; })) {
     Fit start;
     if (a_start) start.a = *a_start, start.log_rho = albedos.log_rho;
@@ -227,9 +269,11 @@ Fit solve(const std::vector<FitPixel>& all_pixels, const Columns& columns, const
   }
   const std::vector<FitPixel> pixels = informative(all_pixels, albedos);
   const Fit convex = convex_start(pixels, columns, albedos);
-  const Fit coarse = solve_pass(pixels, columns, albedos, {1.0, {}}, &convex);
-  const Fit first = solve_pass(pixels, columns, albedos, {0.1, {}}, &coarse);
-  Fit fit = solve_pass(pixels, columns, albedos, reference_weights(pixels, first, albedos), &first);
+  const Fit coarse = solve_pass(pixels, columns, albedos, {1.0, {}, kReferenceSmoothing}, &convex, column_source);
+  const Fit first = solve_pass(pixels, columns, albedos, {0.1, {}, kReferenceSmoothing}, &coarse, column_source);
+  Weights w = reference_weights(pixels, first, albedos);
+  w.smoothing = kReferenceSmoothing;
+  Fit fit = solve_pass(pixels, columns, albedos, w, &first, column_source);
   fit.referenced = true;
   return fit;
 }
