@@ -160,6 +160,18 @@ double check_against_cycles(const std::string& name, double goal, bool jpeg = fa
   return error;
 }
 
+// The edit that adds a grey ball (albedo 0.18, radius 0.15 m) at `center`, on a plate of its own:
+// the photo of validation scene `name`, the same view with the ball.
+std::function<void(SceneSpec&)> grey_ball_on_a_plate(const std::string& name, const Vec3d& center) {
+  return [=](SceneSpec& spec) {
+    ReferenceSpec ball;
+    ball.ball = BallSpec{center, 0.15};
+    ball.albedo = 0.18;
+    ball.photo = test::source_dir() + "/tools/validate/" + name + "/out/photo.exr";
+    spec.references.push_back(ball);
+  };
+}
+
 TEST(Validation, OpenGroundAgainstCyclesWithinTheGoal) { check_against_cycles("open_ground", 0.03); }
 
 // A closed room: a low sun through the window (an opening of the room box), a ceiling lamp, the
@@ -206,6 +218,32 @@ TEST(Validation, OpenGroundWithARaisedGreyBallFromJpegShots) {
   if (hdr >= 0) check_against_cycles("open_ground_raised_ball", 1.5 * hdr, true);
 }
 
+// The grey ball resting near the photo's right edge, at the edge of a light check
+// (tools/validate/open_ground_ball_edge; docs/validation.md, "A ball at a check's edge"): a
+// placement held out from every choice in the fit. Its shadow zone's pixels share one unknown
+// albedo, and the check's edge across it reads as a shadow: the light of a window at −x went to
+// a speck toward −z (from the CLI's JPEG shots 11.8 %, against 2.6 % from HDR shots; 25.9 % before
+// the smoothing within a source). Issue 13's goal is not met, so the error is printed; the objects'
+// brightness is held within 10 % (jpeg).
+TEST(Validation, AGreyBallAtACheckEdgeFromJpegShots) {
+#ifdef INSITU_UNDER_ASAN
+  GTEST_SKIP() << "the ball's fit runs sanitized in InverseLighting.AGreyBall*";
+#endif
+  check_against_cycles("open_ground_ball_edge", 0.0, true);
+}
+
+// The same ball on a plate of its own: the photo and the truth are the open ground's, the plate the
+// edge scene's photo. The plate's shadow zone divided by the clean photo cancels the checks
+// (divide_by_clean_photo): here 6.0 %, against 11.6 % read as it was (from the CLI's JPEG shots
+// 4.2 % and 10.9 %). The goal, 1.5 × the open ground's 2.5 % from HDR shots, is not met, so the
+// error is printed; the objects' brightness is held within 10 % (jpeg).
+TEST(Validation, AGreyBallAtACheckEdgeOnAPlate) {
+#ifdef INSITU_UNDER_ASAN
+  GTEST_SKIP() << "the ball's fit runs sanitized in InverseLighting.AGreyBall*";
+#endif
+  check_against_cycles("open_ground", 0.0, true, grey_ball_on_a_plate("open_ground_ball_edge", Vec3d(1.4, 0.15, 0.6)));
+}
+
 // The same ball on a plate of its own (issue 13): the photo and the truth are the open ground's,
 // without the ball; the plate is the ball scene's photo, the same view with the ball and its
 // shadow. The plate holds what the ball in the photo held, so the error must be the same: within
@@ -216,14 +254,8 @@ TEST(Validation, OpenGroundWithAGreyBallOnAPlate) {
 #ifdef INSITU_UNDER_ASAN
   GTEST_SKIP() << "the ball's fit runs sanitized in InverseLighting.AGreyBall*";
 #endif
-  const std::string plate = test::source_dir() + "/tools/validate/open_ground_ball/out/photo.exr";
-  const double on_plate = check_against_cycles("open_ground", 0.0, true, [&](SceneSpec& spec) {
-    ReferenceSpec ball;
-    ball.ball = BallSpec{Vec3d(-0.6, 0.15, 1.6), 0.15};
-    ball.albedo = 0.18;
-    ball.photo = plate;
-    spec.references.push_back(ball);
-  });
+  const double on_plate =
+      check_against_cycles("open_ground", 0.0, true, grey_ball_on_a_plate("open_ground_ball", Vec3d(-0.6, 0.15, 1.6)));
   const double in_photo = check_against_cycles("open_ground_ball", 0.0, true);
   if (on_plate >= 0 && in_photo >= 0) {
     EXPECT_LT(on_plate, 1.3 * in_photo);

@@ -68,7 +68,9 @@
 // own scale, and takes the parts it holds at 0 as known (solve, unpinned). It also pulls each
 // part's log scale gently toward its source's mean (kReferenceSmoothing): where a ball cannot tell
 // one part of a window from its neighbour they share the window's scale, and where the data can,
-// each keeps its own (docs/validation.md, "Smoothing in fits with a reference").
+// each keeps its own (docs/validation.md, "Smoothing in fits with a reference"). A ball on a plate
+// of its own: its shadow zone's pixels are the plate's over the clean photo's, which cancels the
+// floor's texture (inverse_lighting_pixels.cpp, divide_by_clean_photo).
 //
 // Under distant light the clipped texels that look into a plane of the local scene show the
 // ground, not light, and are no source (light_texels).

@@ -178,10 +178,28 @@ BallEffect ball_effect(const InverseLightingInput& in, const Ray& ray, FitPixel&
   return BallEffect::kNone;
 }
 
+// A shadow-zone pixel of a plate over the same pixel of the clean photo: P_plate / P_photo =
+// E_shadowed(x) / E, the floor's texture ρ(x) cancelled, E (the floor's unshadowed irradiance)
+// the same at every pixel under distant light over an open plane, and so one factor that the
+// zone's own free albedo takes. Per channel, for the colour fit. False where the photo's pixel
+// says nothing (clipped, dark).
+bool divide_by_clean_photo(const InverseLightingInput& in, int x, int y, FitPixel& px) {
+  if (in.photo_clipped && in.photo_clipped->rgb(x, y).maxCoeff() > 0) return false;
+  const Rgb clean = in.photo_linear->rgb(x, y);
+  if (!(clean.minCoeff() > 0)) return false;
+  px.p_rgb = px.p_rgb / clean;
+  px.log_p -= std::log(double(luminance(clean)));
+  return std::isfinite(px.log_p);
+}
+
 // A ball on a plate of its own casts its shadow on the plate: under distant light its shadow
-// zone's pixels are read from the plate (the photo's, clean, are fitted as the rest of the floor).
+// zone's pixels are read from the plate, and where the zone's albedo is unknown divided by the
+// clean photo's (divide_by_clean_photo), so that a floor's texture in the zone — the edge of a
+// check — is not read as a shadow. (The photo's own pixels, clean, are fitted as the rest of the
+// floor.)
 void gather_plate_shadows(const InverseLightingInput& in, const RoomLight& room, int step, std::vector<FitPixel>& out) {
   if (in.room) return;
+  const auto zone_surface = [&](std::size_t r) { return int(in.planes.size() + 6 + in.references.size() + r); };
   for (std::size_t r = 0; r < in.references.size(); ++r) {
     if (!in.references[r].ball || !in.references[r].plate_linear) continue;
     FitReference surface_view = in.references[r];  // the plate's pixels, as surfaces
@@ -189,9 +207,11 @@ void gather_plate_shadows(const InverseLightingInput& in, const RoomLight& room,
     for (int y = step / 2; y < in.photo_linear->height; y += step)
       for (int x = step / 2; x < in.photo_linear->width; x += step) {
         FitPixel px;
-        if (sample_pixel(in, room, x, y, px, &surface_view) == PixelUse::kUsed &&
-            ball_effect(in, in.camera->ray(Vec2d(x + 0.5, y + 0.5)), px, int(r)) == BallEffect::kShadow)
-          out.push_back(px);
+        if (sample_pixel(in, room, x, y, px, &surface_view) != PixelUse::kUsed ||
+            ball_effect(in, in.camera->ray(Vec2d(x + 0.5, y + 0.5)), px, int(r)) != BallEffect::kShadow)
+          continue;
+        if (px.surface == zone_surface(r) && !divide_by_clean_photo(in, x, y, px)) continue;
+        out.push_back(px);
       }
   }
 }
