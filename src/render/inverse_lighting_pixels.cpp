@@ -160,6 +160,12 @@ PixelUse sample_pixel(const InverseLightingInput& in, const RoomLight& room, int
 constexpr float kShadowZone = 8.0f;
 enum class BallEffect { kNone, kHidden, kShadow };
 
+// The surface index of ball r's shadow zone, fitted with an albedo of its own: after the planes,
+// the room box's six faces and the references (inverse_lighting_pixels.h).
+int shadow_zone_surface(const InverseLightingInput& in, std::size_t r) {
+  return int(in.planes.size() + 6 + in.references.size() + r);
+}
+
 // The effect on px of the balls in the photo, or with `plate` of reference `plate` alone (the
 // plate shows that ball and its shadow).
 BallEffect ball_effect(const InverseLightingInput& in, const Ray& ray, FitPixel& px, int plate = -1) {
@@ -171,7 +177,7 @@ BallEffect ball_effect(const InverseLightingInput& in, const Ray& ray, FitPixel&
     if (!in.room && d < kShadowZone) {
       px.shadow_ball = int(r);
       if (px.surface < int(in.planes.size()) && !in.planes[std::size_t(px.surface)].albedo)
-        px.surface = int(in.planes.size() + 6 + in.references.size() + r);
+        px.surface = shadow_zone_surface(in, r);
       return BallEffect::kShadow;
     }
   }
@@ -199,7 +205,6 @@ bool divide_by_clean_photo(const InverseLightingInput& in, int x, int y, FitPixe
 // floor.)
 void gather_plate_shadows(const InverseLightingInput& in, const RoomLight& room, int step, std::vector<FitPixel>& out) {
   if (in.room) return;
-  const auto zone_surface = [&](std::size_t r) { return int(in.planes.size() + 6 + in.references.size() + r); };
   for (std::size_t r = 0; r < in.references.size(); ++r) {
     if (!in.references[r].ball || !in.references[r].plate_linear) continue;
     FitReference surface_view = in.references[r];  // the plate's pixels, as surfaces
@@ -210,7 +215,7 @@ void gather_plate_shadows(const InverseLightingInput& in, const RoomLight& room,
         if (sample_pixel(in, room, x, y, px, &surface_view) != PixelUse::kUsed ||
             ball_effect(in, in.camera->ray(Vec2d(x + 0.5, y + 0.5)), px, int(r)) != BallEffect::kShadow)
           continue;
-        if (px.surface == zone_surface(r) && !divide_by_clean_photo(in, x, y, px)) continue;
+        if (px.surface == shadow_zone_surface(in, r) && !divide_by_clean_photo(in, x, y, px)) continue;
         out.push_back(px);
       }
   }
