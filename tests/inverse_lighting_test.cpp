@@ -4,6 +4,7 @@
 // the shots' cube is the true one clipped at a level, and the fit must find the true scale.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -16,6 +17,7 @@
 #include "render/inverse_lighting.h"
 #include "render/inverse_lighting_pixels.h"
 #include "render/plane_irradiance.h"
+#include "test_util.h"
 
 namespace insitu {
 namespace {
@@ -258,8 +260,8 @@ TEST(InverseLighting, RecoversTheColourOfAClippedLamp) {
 // blur. Coarse to fine, the part is cut into its texels and the patch's edges place the sun: its
 // own texel gets most of the light that the fit adds to its old part, and the window's total is
 // the truth's.
-TEST(InverseLighting, TheSunInAWindowIsPlacedByItsPatch) {
-  Fixture fx;
+// The room of the two tests below: its truth, clipped cube, camera and box; returns the sun's texel.
+std::array<int, 3> sun_in_a_window(Fixture& fx) {
   fx.truth = test::constant_cube(kFace, Rgb(0.2f, 0.2f, 0.2f));
   const RoomOpening window{0, Vec3f(-2, 0.8f, -0.75f), Vec3f(-2, 2.0f, 0.75f)};
   const Vec3f capture(0, 1, 0);
@@ -281,6 +283,12 @@ TEST(InverseLighting, TheSunInAWindowIsPlacedByItsPatch) {
   std::tie(fx.clipped, fx.mask) = clip(fx.truth, 0.5f);
   fx.camera = Camera::look_at(Vec3d(-1.5, 1.6, 1.5), Vec3d(1, 0.2, -0.3), Vec3d(0, 1, 0), 80, 48, 36);
   fx.in.room = RoomBox{Vec3f(-2, 0, -2), Vec3f(2, 2.5f, 2), capture, {window}};
+  return sun;
+}
+
+TEST(InverseLighting, TheSunInAWindowIsPlacedByItsPatch) {
+  Fixture fx;
+  const std::array<int, 3> sun = sun_in_a_window(fx);
   see_room(fx);
   const InverseLightingResult r = recover_clipped_sources(fx.in);
   ASSERT_EQ(r.sources.size(), 1u);
@@ -396,6 +404,40 @@ TEST(InverseLighting, ASheetClippedInThePhotoServesNothing) {
   EXPECT_EQ(r.reference_surfaces, 0);
   ASSERT_EQ(r.sources.size(), 1u);
   EXPECT_FALSE(r.sources[0].determined);
+}
+
+// The same room with a white sheet on its floor. A reference leaves the coarse-to-fine refinement
+// out (the fit with a reference has parts of 2 × 2 texels), so the sun shares its part with sky
+// texels; that part's added power must still be its truth's, within 30 %: the walls tell it from
+// the sky's parts. The smoothing within a source (kReferenceSmoothing), made for open ground, applies
+// here too; measured, the sun's part 1.51 of a true 1.68 with it, 1.40 without.
+TEST(InverseLighting, ASheetInARoomLeavesTheSunsPartToThePhoto) {
+  if (test::kUnderAsan)
+    GTEST_SKIP() << "a minute under the sanitizers; its code runs there in TheSunInAWindowIsPlacedByItsPatch and "
+                    "OpenPlaneWithAWhiteSheetInThePhotoIsDetermined";
+  Fixture fx;
+  const std::array<int, 3> sun = sun_in_a_window(fx);
+  see_room(fx);
+  lay_sheet(fx.photo, 0.5f, 0.8f);
+  fx.in.references.push_back({kSheet, 0.8f, std::nullopt});
+  const InverseLightingResult r = recover_clipped_sources(fx.in);
+  ASSERT_EQ(r.sources.size(), 1u);
+  ASSERT_TRUE(r.sources[0].determined) << r.message;
+  ASSERT_EQ(r.reference_surfaces, 1);
+  const auto part = std::find_if(r.parts.begin(), r.parts.end(), [&](const PartFit& p) {
+    return std::find(p.texels.texels.begin(), p.texels.texels.end(), sun) != p.texels.texels.end();
+  });
+  ASSERT_NE(part, r.parts.end());
+  ASSERT_GT(part->texels.texels.size(), 1u) << "the sun's part is the sun alone: nothing to smooth";
+  double true_added = 0;
+  for (const auto& [f, i, j] : part->texels.texels)
+    true_added += (luminance(fx.truth.texel(f, i, j)) - luminance(fx.clipped.texel(f, i, j))) * texel_solid_angle(i, j, kFace);
+  const double added = (part->scale - 1) * part->texels.power;
+  const double window_true = cube_power(fx.truth) - cube_power(fx.clipped);
+  std::printf("sun's part (%zu texels): added %.4g of a true %.4g; window added %.4g of a true %.4g\n",
+              part->texels.texels.size(), added, true_added, r.sources[0].added_power, window_true);
+  EXPECT_NEAR(r.sources[0].added_power, window_true, 0.1 * window_true);
+  EXPECT_NEAR(added, true_added, 0.3 * true_added);
 }
 
 // Under distant light, clipped texels below the floor's horizon show the ground, not light (the
@@ -572,7 +614,8 @@ TEST(InverseLighting, AGreyBallOnAPlateOverACheckeredFloorIsFittedAsOverAPlainOn
   const InverseLightingResult plain = fit_on_plate(std::nullopt);
   TwoLamps::expect_recovered(plain);
   const auto [up0, side0] = TwoLamps::lamps(plain);
-  for (const float offset_m : {0.1f, 0.5f}) {
+  // Two placements of the checks; under the sanitizers one (each fit is 19 s there).
+  for (const float offset_m : test::kUnderAsan ? std::vector<float>{0.1f} : std::vector<float>{0.1f, 0.5f}) {
     SCOPED_TRACE(offset_m);
     const InverseLightingResult r = fit_on_plate(offset_m);
     TwoLamps::expect_recovered(r);
