@@ -63,8 +63,6 @@ Rgb sh9_irradiance(const Sh9& sh, const Vec3f& n) {
 
 namespace {
 
-constexpr int kExactMaxFace = 512;
-
 CubeMap box_reduce(const CubeMap& c, int size) {
   // Area average of factor × factor blocks (size divides c.size()) or OpenImageIO's box filter.
   CubeMap out(size);
@@ -190,11 +188,11 @@ class ExactField final : public IrradianceField {
 
 }  // namespace
 
-CubeMap exact_irradiance_cube(const CubeMap& radiance, int size) {
+CubeMap exact_irradiance_cube(const CubeMap& radiance, int size, int max_face) {
   const CubeMap* L = &radiance;
   CubeMap reduced;
-  if (radiance.size() > kExactMaxFace) {
-    reduced = box_reduce(radiance, kExactMaxFace);
+  if (radiance.size() > max_face) {
+    reduced = box_reduce(radiance, max_face);
     L = &reduced;
   }
   const RowPrefix P = build_prefix(*L);

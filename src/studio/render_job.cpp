@@ -122,6 +122,10 @@ std::optional<std::string> RenderJob::png(const std::string& name, const ToneMap
 // demo's cube takes about 2 s (half of the sanitized studio tests' time), and a render stopped or
 // failed before the page asks needs none. Kept while the cube stays the same texels, so an A/B
 // render of the same light makes none.
+// The irradiance preview's radiance, per face: within 0.8 % of ∫ L dω (exact_irradiance_cube), a
+// display's precision; the exact integral costs a time per direction in proportion to the face.
+constexpr int kLightPreviewFace = 128;
+
 std::optional<std::string> RenderJob::light_png(bool irradiance) const {
   std::shared_ptr<const CubeMap> cube;
   {
@@ -133,9 +137,9 @@ std::optional<std::string> RenderJob::light_png(bool irradiance) const {
   if (!light_ || !light_->environment->same_texels(*cube)) {
     const CubeMap& L = *cube;
     const double exposure = preview_exposure(L);
-    const auto field = make_irradiance(IrradianceMode::kExact, L);
+    // E/π at 32² per face, exact over the radiance box-averaged to kLightPreviewFace per face.
     light_ = LightPreview{cube, display_png(cube_cross_preview(L, exposure)),
-                          display_png(cube_cross_preview(irradiance_cube(*field, 32, 1 / kPiF), exposure))};
+                          display_png(cube_cross_preview(exact_irradiance_cube(L, 32, kLightPreviewFace), exposure / kPi))};
   }
   return irradiance ? light_->irradiance_png : light_->cube_png;
 }
