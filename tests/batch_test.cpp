@@ -66,7 +66,8 @@ TEST(Batch, EntriesSharingARoomBoxAreTheirScenesRenders) {
   auto r = run_insitu(b.fx.dir, "batch " + batch);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("(room shared)"), std::string::npos) << r.err;
-  for (int i : {1, 2}) {
+  // Two entries against their own renders; under the sanitizers one (each render is 12 s there).
+  for (int i : test::kUnderAsan ? std::vector<int>{1} : std::vector<int>{1, 2}) {
     r = b.render_alone(i, fmt::format("alone{}.exr", i));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     ASSERT_FALSE(exr_pixels(b.out(i)).empty());
