@@ -117,15 +117,16 @@ std::optional<std::string> RenderJob::png(const std::string& name, const ToneMap
   return display_png(tonemap.op == ToneMap::kPhoto ? image : insitu::tonemap(image, tonemap));
 }
 
+// The irradiance preview's radiance, per face: E within 7.1 ∫ L dω / 128 = 5.5 % of ∫ L dω
+// (exact_irradiance_cube's bound; 4.6·10⁻⁴ at most on the shared HDRIs), a display's precision. The
+// exact integral's time per direction grows with the face.
+constexpr int kLightPreviewFace = 128;
+
 // The light as the latest render uses it: the cube, and its exact irradiance over π, at one
 // exposure. Made on the page's first request, not before the render: the exact irradiance of the
 // demo's cube takes about 2 s (half of the sanitized studio tests' time), and a render stopped or
 // failed before the page asks needs none. Kept while the cube stays the same texels, so an A/B
 // render of the same light makes none.
-// The irradiance preview's radiance, per face: within 0.8 % of ∫ L dω (exact_irradiance_cube), a
-// display's precision; the exact integral costs a time per direction in proportion to the face.
-constexpr int kLightPreviewFace = 128;
-
 std::optional<std::string> RenderJob::light_png(bool irradiance) const {
   std::shared_ptr<const CubeMap> cube;
   {
