@@ -7,6 +7,7 @@
 #include <map>
 
 #include "core/colour.h"
+#include "render/inverse_lighting_costs.h"
 
 namespace insitu {
 namespace inverse_lighting_detail {
@@ -24,33 +25,20 @@ std::vector<double> column_coefficients(const FitPixel& p, const Columns& column
   return coef;
 }
 
-// E = E0 + Σ_c a_c coef_c, the irradiance a pixel's model gives.
-template <typename T>
-T model_irradiance(double e0, const std::vector<double>& coef, const T* a) {
-  T e = T(e0);
-  for (std::size_t c = 0; c < coef.size(); ++c) e += a[c] * coef[c];
-  return e;
-}
-
-// r = log P − log ρ + log π − log(E0 + Σ_c a_c coef_c).
-struct LogResidual {
+// A pixel's data: log P, E0 and each column's coefficient.
+struct PixelModel {
   double log_p, e0;
   std::vector<double> coef;
-  template <typename T>
-  bool operator()(T const* const* params, T* r) const {
-    r[0] = T(log_p) - params[0][0] + T(std::log(kPi)) - log(model_irradiance(e0, coef, params[1]));
-    return true;
-  }
 };
 
 // A surface of known mean albedo ρ̄ (a reference): log(mean_i π P_i / E_i) = log ρ̄, within 1 %.
 struct MeanAlbedoResidual {
-  std::vector<LogResidual> pixels;
+  std::vector<PixelModel> pixels;
   double log_ref;
   template <typename T>
   bool operator()(T const* const* params, T* r) const {
     T sum = T(0);
-    for (const LogResidual& p : pixels) sum += exp(T(p.log_p) + T(std::log(kPi)) - log(model_irradiance(p.e0, p.coef, params[0])));
+    for (const PixelModel& p : pixels) sum += exp(T(p.log_p) + T(std::log(kPi)) - log(model_irradiance(p.e0, p.coef, params[0])));
     r[0] = (log(sum / T(double(pixels.size()))) - T(log_ref)) / T(0.01);
     return true;
   }
@@ -91,20 +79,8 @@ struct Weights {
 };
 
 // r_c = √(λN) (log(1 + a_c) − 1/|S| Σ_{c' ∈ S} log(1 + a_c')), S the columns that are single parts
-// of c's source (c among them): the pull of one part's scale toward its source's others.
-struct SmoothingResidual {
-  std::size_t c;
-  std::vector<std::size_t> same;
-  double weight;
-  template <typename T>
-  bool operator()(T const* const* params, T* r) const {
-    T mean = T(0);
-    for (std::size_t k : same) mean += log(T(1) + params[0][k]);
-    r[0] = T(weight) * (log(T(1) + params[0][c]) - mean / T(double(same.size())));
-    return true;
-  }
-};
-
+// of c's source (c among them): the pull of one part's scale toward its source's others
+// (smoothing_cost).
 // The smoothing's residuals, one per column that is a single part of a source with two or more
 // such columns (`column_source`: that source, −1 for any other column).
 void add_smoothing(ceres::Problem& problem, const std::vector<int>& column_source, double lambda, std::size_t n,
@@ -115,11 +91,8 @@ void add_smoothing(ceres::Problem& problem, const std::vector<int>& column_sourc
     for (std::size_t d = 0; d < column_source.size(); ++d)
       if (column_source[d] == column_source[c]) same.push_back(d);
     if (same.size() < 2) continue;
-    auto* cost = new ceres::DynamicAutoDiffCostFunction<SmoothingResidual>(
-        new SmoothingResidual{c, std::move(same), std::sqrt(lambda * double(n))});
-    cost->AddParameterBlock(int(column_source.size()));
-    cost->SetNumResiduals(1);
-    problem.AddResidualBlock(cost, nullptr, a);
+    problem.AddResidualBlock(smoothing_cost(c, std::move(same), std::sqrt(lambda * double(n)), int(column_source.size())),
+                             nullptr, a);
   }
 }
 
@@ -129,12 +102,9 @@ void add_residuals(ceres::Problem& problem, const std::vector<FitPixel>& pixels,
   std::vector<MeanAlbedoResidual> refs(log_rho.size());
   for (const FitPixel& p : pixels) {
     const auto s = std::size_t(p.surface);
-    LogResidual res{p.log_p, p.e0, column_coefficients(p, columns)};
-    if (albedos.mean[s]) refs[s].pixels.push_back(res);
-    auto* cost = new ceres::DynamicAutoDiffCostFunction<LogResidual>(new LogResidual(std::move(res)));
-    cost->AddParameterBlock(1);
-    cost->AddParameterBlock(int(columns.size()));
-    cost->SetNumResiduals(1);
+    PixelModel model{p.log_p, p.e0, column_coefficients(p, columns)};
+    if (albedos.mean[s]) refs[s].pixels.push_back(model);
+    ceres::CostFunction* cost = log_residual_cost(model.log_p, model.e0, std::move(model.coef));
     ceres::LossFunction* loss = new ceres::CauchyLoss(w.cauchy);
     if (!w.surface.empty() && w.surface[s] != 1) loss = new ceres::ScaledLoss(loss, w.surface[s], ceres::TAKE_OWNERSHIP);
     problem.AddResidualBlock(cost, loss, &log_rho[s], a);
@@ -200,18 +170,6 @@ Weights reference_weights(const std::vector<FitPixel>& pixels, const Fit& fit, c
   return w;
 }
 
-// r = 1 − (E0 + Σ_c a_c coef_c) / T, T = π P / ρ the irradiance a pixel of known albedo shows:
-// linear in a.
-struct RelativeIrradianceResidual {
-  double target, e0;
-  std::vector<double> coef;
-  template <typename T>
-  bool operator()(T const* const* params, T* r) const {
-    r[0] = T(1) - model_irradiance(e0, coef, params[0]) / T(target);
-    return true;
-  }
-};
-
 // The start of a fit with a reference: the a ≥ 0 that best match the known-albedo pixels' own
 // irradiance in plain least squares, linear in a and so a convex problem whose minimum the
 // solver finds from anywhere (the log residuals' fit has several basins: from the lower bound,
@@ -225,11 +183,11 @@ Fit convex_start(const std::vector<FitPixel>& pixels, const Columns& columns, co
   for (const FitPixel& p : pixels) {
     const auto s = std::size_t(p.surface);
     if (!albedos.known[s]) continue;
-    auto* cost = new ceres::DynamicAutoDiffCostFunction<RelativeIrradianceResidual>(new RelativeIrradianceResidual{
-        kPi * std::exp(p.log_p - albedos.log_rho[s]), p.e0, column_coefficients(p, columns)});
-    cost->AddParameterBlock(int(columns.size()));
-    cost->SetNumResiduals(1);
-    problem.AddResidualBlock(cost, nullptr, start.a.data());
+    // r = 1 − (E0 + Σ_c a_c coef_c) / T, T = π P / ρ the irradiance a pixel of known albedo shows:
+    // linear in a.
+    problem.AddResidualBlock(relative_irradiance_cost(kPi * std::exp(p.log_p - albedos.log_rho[s]), p.e0,
+                                                      column_coefficients(p, columns)),
+                             nullptr, start.a.data());
   }
   if (problem.NumResidualBlocks() == 0) return start;
   solve_with_a_nonnegative(problem, start.a);
