@@ -8,6 +8,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <map>
 #include <optional>
 
 #include "cube_fixture.h"
@@ -48,35 +50,96 @@ void paint_disc(CubeMap& cube, const Vec3f& dir, float cos_radius, const Rgb& va
   cube.update_borders();
 }
 
+// Every texel of a cube: its direction, solid angle and radiance.
+struct Texel {
+  Vec3f dir;
+  float d_omega;
+  Rgb radiance;
+};
+std::vector<Texel> texels_of(const CubeMap& cube) {
+  std::vector<Texel> out;
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < cube.size(); ++j)
+      for (int i = 0; i < cube.size(); ++i)
+        out.push_back({texel_direction(f, i, j, cube.size()), float(texel_solid_angle(i, j, cube.size())), cube.texel(f, i, j)});
+  return out;
+}
+
 // The light a ball in the photo takes from floor point p under distant light (no room box): every
 // texel of the true cube whose ray from p meets the ball, L cos θ ΔΩ (by rays, not by the fit's
 // cone of directions).
-Rgb ball_shadow(const InverseLightingInput& in, const CubeMap& truth, const Vec3f& p) {
+Rgb ball_shadow(const InverseLightingInput& in, const std::vector<Texel>& truth, const Vec3f& p) {
   Rgb taken = Rgb::Zero();
   if (in.room) return taken;
   for (const FitReference& ref : in.references) {
     if (!ref.ball || ref.plate_linear) continue;
-    for (int f = 0; f < 6; ++f)
-      for (int j = 0; j < truth.size(); ++j)
-        for (int i = 0; i < truth.size(); ++i) {
-          const Vec3f d = texel_direction(f, i, j, truth.size()), oc = p - ref.ball->center;
-          const float b = oc.dot(d), disc = b * b - oc.squaredNorm() + ref.ball->radius * ref.ball->radius;
-          if (d.y() > 0 && disc >= 0 && -b - std::sqrt(disc) > 0)
-            taken += truth.texel(f, i, j) * float(d.y() * texel_solid_angle(i, j, truth.size()));
-        }
+    for (const Texel& t : truth) {
+      const Vec3f oc = p - ref.ball->center;
+      const float b = oc.dot(t.dir), disc = b * b - oc.squaredNorm() + ref.ball->radius * ref.ball->radius;
+      if (t.dir.y() > 0 && disc >= 0 && -b - std::sqrt(disc) > 0) taken += t.radiance * (t.dir.y() * t.d_omega);
+    }
   }
   return taken;
 }
+Rgb ball_shadow(const InverseLightingInput& in, const CubeMap& truth, const Vec3f& p) {
+  return ball_shadow(in, texels_of(truth), p);
+}
+
+// The floor's albedo at a point (a texture), or empty for the photo's uniform one.
+using FloorAlbedo = std::function<float(const Vec3f&)>;
+
+// What a reference ball's lower half sees under distant light (no box): the floor, not the cube's
+// lower half. ∫ over the texels below the horizon of (L_floor(y) − L_cube(ω)) cos θ dω at ball point
+// p, normal n; y the floor point along ω, L_floor(y) = ρ(y)/π (E_floor − ball_shadow(y)), the shadow
+// memoized on a grid of a quarter of the ball's radius (the ball's lower half sees the same floor
+// points again and again) and taken as 0 beyond 16 radii of the foot (along x or z), where the ball
+// covers less than 0.4 % of the sky.
+struct BallsFloor {
+  static constexpr int kCells = 128;  // 32 radii across, a quarter radius each
+  const InverseLightingInput& in;
+  const std::vector<Texel>& truth;
+  FloorAlbedo rho;
+  Rgb e_floor;
+  std::vector<std::optional<Rgb>> shadow = std::vector<std::optional<Rgb>>(kCells * kCells);
+  Rgb radiance(const Vec3f& y) {
+    const FitBall& ball = *in.references[0].ball;
+    const float cell = ball.radius / 4;
+    const long i = std::lround((y.x() - ball.center.x()) / cell) + kCells / 2;
+    const long j = std::lround((y.z() - ball.center.z()) / cell) + kCells / 2;
+    if (i < 0 || j < 0 || i >= kCells || j >= kCells) return rho(y) / kPiF * e_floor;
+    std::optional<Rgb>& s = shadow[std::size_t(j * kCells + i)];
+    const Vec3f centre(ball.center.x() + float(i - kCells / 2) * cell, 0, ball.center.z() + float(j - kCells / 2) * cell);
+    if (!s) s = ball_shadow(in, truth, centre);
+    return rho(y) / kPiF * (e_floor - *s).cwiseMax(0.0f);
+  }
+  Rgb difference(const Vec3f& p, const Vec3f& n) {
+    Rgb sum = Rgb::Zero();
+    for (const Texel& t : truth) {
+      if (t.dir.y() >= 0 || t.dir.dot(n) <= 0) continue;
+      const Vec3f y = p - (p.y() / t.dir.y()) * t.dir;
+      sum += (radiance(y) - t.radiance) * (t.dir.dot(n) * t.d_omega);
+    }
+    return sum;
+  }
+};
 
 // The photo of the empty scene: P = ρ/π · E_true at the surface each pixel sees (the fit's own
 // hit test, so only the irradiance is checked), E_true by 1024 samples of the true room light,
-// less a ball's shadow on the floor (ball_shadow); a reference ball's pixels ρ_ball/π · E_true over
-// its normal's hemisphere. Under distant light (no box) E_true depends on the normal alone, so the
-// floor's is estimated once (its pixels share its estimate's noise; a ball's normals are each
-// their own): most of these tests' time under the sanitizers was the floor's estimates.
-Image photo_of(const InverseLightingInput& in, const CubeMap& truth, float albedo) {
+// less a ball's shadow on the floor (ball_shadow); the floor's albedo `floor_rho` where given, else
+// `albedo`. A reference ball's pixels are ρ_ball/π · E_true over its normal's hemisphere, whose
+// lower half, under distant light, is the floor as the photo shows it (BallsFloor). Under distant
+// light (no box) E_true depends on the normal alone, so the floor's is estimated once (its pixels
+// share its estimate's noise; a ball's normals are each their own): most of these tests' time
+// under the sanitizers was the floor's estimates.
+Image photo_of(const InverseLightingInput& in, const CubeMap& truth, float albedo, FloorAlbedo floor_rho = {}) {
   RoomLight room(truth, in.room);
-  std::optional<Rgb> distant_floor;
+  if (!floor_rho) floor_rho = [albedo](const Vec3f&) { return albedo; };
+  const std::vector<Texel> texels = texels_of(truth);
+  std::optional<BallsFloor> balls_floor;
+  if (!in.room) {
+    const Vec3f up(0, 1, 0);
+    balls_floor.emplace(BallsFloor{in, texels, floor_rho, PlaneIrradiance::estimate(room, 1e-4f * up, up, 1024, 0)});
+  }
   Image img(in.camera->width, in.camera->height, 3);
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
@@ -93,7 +156,7 @@ Image photo_of(const InverseLightingInput& in, const CubeMap& truth, float albed
         n[axis] = r.dir[axis] > 0 ? -1.0f : 1.0f;
       }
       // A reference ball in front: its own albedo and normal, E over the normal's whole hemisphere.
-      float rho = albedo;
+      std::optional<float> ball_rho;
       for (const FitReference& ref : in.references) {
         if (!ref.ball) continue;
         const Vec3f oc = r.origin - ref.ball->center;
@@ -101,15 +164,19 @@ Image photo_of(const InverseLightingInput& in, const CubeMap& truth, float albed
         if (disc < 0 || -b - std::sqrt(disc) >= t) continue;
         t = -b - std::sqrt(disc);
         n = (r.origin + t * r.dir - ref.ball->center).normalized();
-        rho = ref.albedo;
+        ball_rho = ref.albedo;
       }
       if (!std::isfinite(t)) continue;
       const Vec3f p = r.origin + t * r.dir + 1e-4f * n;
-      const bool floor = rho == albedo && n.y() == 1;
-      if (floor && !in.room && !distant_floor) distant_floor = PlaneIrradiance::estimate(room, p, n, 1024, 0);
-      Rgb e = floor && !in.room ? *distant_floor : PlaneIrradiance::estimate(room, p, n, 1024, std::uint64_t(y) * img.width + x);
-      if (floor) e = (e - ball_shadow(in, truth, p)).cwiseMax(0.0f);
-      img.set_rgb(x, y, rho / kPiF * e);
+      const bool floor = !ball_rho && n.y() == 1;
+      if (floor && balls_floor) {
+        img.set_rgb(x, y, floor_rho(p) / kPiF * (balls_floor->e_floor - ball_shadow(in, texels, p)).cwiseMax(0.0f));
+        continue;
+      }
+      Rgb e = PlaneIrradiance::estimate(room, p, n, 1024, std::uint64_t(y) * img.width + x);
+      if (floor) e = (e - ball_shadow(in, texels, p)).cwiseMax(0.0f);
+      if (ball_rho && balls_floor) e = (e + balls_floor->difference(p, n)).cwiseMax(0.0f);
+      img.set_rgb(x, y, (ball_rho ? *ball_rho : floor ? floor_rho(p) : albedo) / kPiF * e);
     }
   return img;
 }
@@ -459,16 +526,34 @@ TEST(InverseLighting, ClippedGroundBelowTheHorizonIsNoSource) {
   EXPECT_EQ(r.status, "fitted");
 }
 
+// The lower half of a cube as the shots see an open floor of albedo ρ under it: ρ/π E_floor, E_floor
+// the upper half's irradiance on the floor (exact over the texels).
+void floor_in_the_lower_half(CubeMap& cube, float rho) {
+  Rgb e = Rgb::Zero();
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < cube.size(); ++j)
+      for (int i = 0; i < cube.size(); ++i) {
+        const Vec3f d = texel_direction(f, i, j, cube.size());
+        if (d.y() > 0) e += cube.texel(f, i, j) * float(d.y() * texel_solid_angle(i, j, cube.size()));
+      }
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < cube.size(); ++j)
+      for (int i = 0; i < cube.size(); ++i)
+        if (texel_direction(f, i, j, cube.size()).y() < 0) cube.set_texel(f, i, j, rho / kPiF * e);
+  cube.update_borders();
+}
+
 // Two lamps over an open floor, one overhead (50× the clip level) and one low at the side (20×): the
 // floor (albedo 0.3, unknown) says nothing of either, even with its mean albedo given it says only
 // how much light is missing. A grey ball of albedo 0.18 in the photo sees them from every side
 // and tells them apart: each is recovered within 3σ or 10 %.
 struct TwoLamps {
   Fixture fx;
-  TwoLamps() {
+  explicit TwoLamps(FloorAlbedo floor_rho = {}) {
     fx.truth = test::constant_cube(kFace, Rgb(0.2f, 0.2f, 0.2f));
     paint_disc(fx.truth, Vec3f(0.2f, 1, 0.1f), std::cos(0.2f), Rgb(25, 25, 25));
     paint_disc(fx.truth, Vec3f(1, 0.25f, 0.6f), std::cos(0.2f), Rgb(10, 10, 10));
+    floor_in_the_lower_half(fx.truth, 0.3f);
     std::tie(fx.clipped, fx.mask) = clip(fx.truth, 0.5f);
     fx.camera = Camera::look_at(Vec3d(1.5, 1.2, 1.5), Vec3d(0, 0.3, 0), Vec3d(0, 1, 0), 40, 96, 72);
     fx.in.radiance = &fx.clipped;
@@ -477,7 +562,7 @@ struct TwoLamps {
     fx.in.planes.push_back({Vec3f::Zero(), Vec3f(0, 1, 0), std::nullopt, std::nullopt});
     fx.in.max_pixels = 600;
     fx.in.references.push_back({{}, 0.18f, FitBall{Vec3f(0, 0.3f, 0), 0.3f}});
-    fx.photo = photo_of(fx.in, fx.truth, 0.3f);
+    fx.photo = photo_of(fx.in, fx.truth, 0.3f, floor_rho);
     fx.in.photo_linear = &fx.photo;
   }
   // The overhead lamp's fit and the side lamp's (by their directions).
@@ -561,20 +646,13 @@ TEST(InverseLighting, ABallsShadowIsWhatItsRaysMeet) {
   EXPECT_GT(luminance(unshaded[std::size_t(side)]), 0.01 * px.e0) << "a side lamp that lights the point unshaded";
 }
 
-// The floor's pixels of `image` (not the ball's, nor the sky's) given checks of 1 m, their corners
-// shifted by `offset_m` from the ball's foot, albedo × 0.2 and × 1.8 (0.06 and 0.54: 9× apart).
-void checker_the_floor(const TwoLamps& t, Image& image, float offset_m) {
-  for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < image.width; ++x) {
-      const Ray r = t.fx.camera.ray(Vec2d(x + 0.5, y + 0.5));
-      const FitBall& ball = *t.fx.in.references[0].ball;
-      const Vec3f oc = r.origin - ball.center;
-      const float b = oc.dot(r.dir), disc = b * b - oc.squaredNorm() + ball.radius * ball.radius;
-      if (disc >= 0 || r.dir.y() >= 0) continue;  // the ball, or the sky
-      const Vec3f p = r.origin - (r.origin.y() / r.dir.y()) * r.dir;
-      const bool dark = (int(std::floor(p.x() + offset_m)) + int(std::floor(p.z() + offset_m))) % 2 != 0;
-      image.set_rgb(x, y, image.rgb(x, y) * (dark ? 0.2f : 1.8f));
-    }
+// The TwoLamps floor's albedo 0.3 in checks of `size_m`, their corners shifted by `offset_m` from
+// the ball's foot, × `dark` and × `light` (by default 0.06 and 0.54: 9× apart).
+FloorAlbedo checks(float offset_m, float size_m = 1, float dark = 0.2f, float light = 1.8f) {
+  return [=](const Vec3f& p) {
+    const long i = std::lround(std::floor((p.x() + offset_m) / size_m)), j = std::lround(std::floor((p.z() + offset_m) / size_m));
+    return 0.3f * ((i + j) % 2 != 0 ? dark : light);
+  };
 }
 
 // Over a checkered floor the floor's pixels all see one E and say nothing of the lamps: they leave
@@ -582,8 +660,7 @@ void checker_the_floor(const TwoLamps& t, Image& image, float offset_m) {
 // ground's lamps with it). The lamps are recovered from the ball and its shadow.
 TEST(InverseLighting, AGreyBallOverACheckeredFloor) {
   for (const float offset_m : {0.5f}) {  // checks shifted half a check from the ball's foot
-    TwoLamps t;
-    checker_the_floor(t, t.fx.photo, offset_m);
+    TwoLamps t(checks(offset_m));
     SCOPED_TRACE(offset_m);
     const InverseLightingResult r = recover_clipped_sources(t.fx.in);
     TwoLamps::expect_recovered(r);
@@ -592,21 +669,37 @@ TEST(InverseLighting, AGreyBallOverACheckeredFloor) {
   }
 }
 
+// The ball stands on a dark round rug (albedo 0.06, 1.2 m across, all of it in the photo) on a
+// floor of 0.3, which is what the shots saw (the cube's lower half): the ball's lower half sees the
+// rug as the photo shows it (light_balls_from_the_floor), and the fit is the truth's to its noise.
+// Lit by the shots' floor instead, the ball's underside was 5× too bright in the model and the fit
+// gave the overhead lamp × 53 and the side lamp × 16 (true × 50 and × 20).
+TEST(InverseLighting, AGreyBallOnADarkRugIsLitByTheRugNotByTheShotsFloor) {
+  TwoLamps t([](const Vec3f& p) { return std::hypot(p.x(), p.z()) < 0.6f ? 0.06f : 0.3f; });
+  const InverseLightingResult r = recover_clipped_sources(t.fx.in);
+  TwoLamps::expect_recovered(r);
+  const auto [up, side] = TwoLamps::lamps(r);
+  EXPECT_NEAR(up->scale, 50.0, 1.0);
+  EXPECT_NEAR(side->scale, 20.0, 0.4);
+}
+
 // On a plate over a checkered floor, the checks' edges cross the ball's shadow zone, whose pixels
-// share one unknown albedo: read as they are, an edge is a shadow (on the validation's open ground,
-// a ball near a check's edge: 10.9 % error, against 4.2 % divided). The plate's pixels there are
-// divided by the clean photo's, which cancels the floor's texture (divide_by_clean_photo): the
-// fit, to its σ, is the plain floor's. (Read as they were, the lamps' σ was 0.7× to 5.5× the plain
-// floor's as the checks moved; here the ball alone would still place the two lamps.)
+// share one unknown albedo: read as they are, an edge is a shadow. The plate's pixels there are
+// divided by the clean photo's, which cancels the floor's texture (divide_by_clean_photo), and the
+// ball's lower half is lit by the floor the plate shows (light_balls_from_the_floor): the fit is
+// the plain floor's within 3 %. What the checks still change is the floor the photo does not show
+// (below its edge, under the ball), which the ball sees and the fit takes from the cube's lower
+// half, the floor's mean; measured 2026-11-26: the lamps within 0.3 % and 1.7 % of the plain
+// floor's.
 TEST(InverseLighting, AGreyBallOnAPlateOverACheckeredFloorIsFittedAsOverAPlainOne) {
   const auto fit_on_plate = [](std::optional<float> checks_offset_m) {
-    TwoLamps t;
+    const FloorAlbedo floor_rho = checks_offset_m ? checks(*checks_offset_m) : FloorAlbedo{};
+    TwoLamps t(floor_rho);
     Image plate = t.fx.photo;
     const Image no_clip(plate.width, plate.height, 3);
     InverseLightingInput clean = t.fx.in;
     clean.references.clear();
-    t.fx.photo = photo_of(clean, t.fx.truth, 0.3f);
-    if (checks_offset_m) checker_the_floor(t, plate, *checks_offset_m), checker_the_floor(t, t.fx.photo, *checks_offset_m);
+    t.fx.photo = photo_of(clean, t.fx.truth, 0.3f, floor_rho);
     t.fx.in.references[0].plate_linear = &plate;
     t.fx.in.references[0].plate_clipped = &no_clip;
     return recover_clipped_sources(t.fx.in);
@@ -620,10 +713,8 @@ TEST(InverseLighting, AGreyBallOnAPlateOverACheckeredFloorIsFittedAsOverAPlainOn
     const InverseLightingResult r = fit_on_plate(offset_m);
     TwoLamps::expect_recovered(r);
     const auto [up, side] = TwoLamps::lamps(r);
-    EXPECT_NEAR(up->scale, up0->scale, 1e-3 * up0->scale);
-    EXPECT_NEAR(side->scale, side0->scale, 1e-3 * side0->scale);
-    EXPECT_NEAR(up->sigma, up0->sigma, 0.05 * up0->sigma);
-    EXPECT_NEAR(side->sigma, side0->sigma, 0.05 * side0->sigma);
+    EXPECT_NEAR(up->scale, up0->scale, 0.03 * up0->scale);
+    EXPECT_NEAR(side->scale, side0->scale, 0.03 * side0->scale);
   }
 }
 

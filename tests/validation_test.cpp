@@ -231,30 +231,26 @@ TEST(Validation, OpenGroundWithARaisedGreyBallFromJpegShots) {
   if (hdr >= 0) check_against_cycles("open_ground_raised_ball", 1.5 * hdr, true);
 }
 
-// The grey ball resting near the photo's right edge, at the edge of a light check
-// (tools/validate/open_ground_ball_edge; docs/validation.md, "A ball at a check's edge"): a
-// placement held out from every choice in the fit. Its shadow zone's pixels share one unknown
-// albedo, and the check's edge across it reads as a shadow: the light of a window at −x went to
-// a speck toward −z (from the CLI's JPEG shots 11.8 %, against 2.6 % from HDR shots; 25.9 % before
-// the smoothing within a source). Issue 13's goal is not met, so the error is printed; the objects'
-// brightness is held within 10 % (jpeg).
+// The grey ball resting near the photo's right edge, on a dark check at the edge of a light one
+// (tools/validate/open_ground_ball_edge; docs/validation.md, "What the ball sees below it"): a
+// placement held out from every choice in the fit. Its underside sees the dark check, where the
+// shots' floor (the cube's lower half) is both checks' mean: lit by that, the fit sent the light of
+// a window at −x to a speck toward −z (from the CLI's JPEG shots 11.8 %, against 2.6 % from HDR
+// shots). Lit by the floor the photo shows (light_balls_from_the_floor): 2.9 %. Held to issue 13's
+// goal, 1.5 × the same scene's error from its HDR shots, rendered here too.
+//
+// The same ball on a plate of its own: the photo and the truth are the open ground's, the plate the
+// edge scene's photo, its shadow zone divided by the clean photo (divide_by_clean_photo) and its
+// underside lit by the plate's floor. Held to 1.5 × the open ground's error from its HDR shots.
 TEST(Validation, AGreyBallAtACheckEdgeFromJpegShots) {
 #ifdef INSITU_UNDER_ASAN
   GTEST_SKIP() << "the ball's fit runs sanitized in InverseLighting.AGreyBall*";
 #endif
-  check_against_cycles("open_ground_ball_edge", 0.0, true);
-}
-
-// The same ball on a plate of its own: the photo and the truth are the open ground's, the plate the
-// edge scene's photo. The plate's shadow zone divided by the clean photo cancels the checks
-// (divide_by_clean_photo): here 6.0 %, against 11.6 % read as it was (from the CLI's JPEG shots
-// 4.2 % and 10.9 %). The goal, 1.5 × the open ground's 2.5 % from HDR shots, is not met, so the
-// error is printed; the objects' brightness is held within 10 % (jpeg).
-TEST(Validation, AGreyBallAtACheckEdgeOnAPlate) {
-#ifdef INSITU_UNDER_ASAN
-  GTEST_SKIP() << "the ball's fit runs sanitized in InverseLighting.AGreyBall*";
-#endif
-  check_against_cycles("open_ground", 0.0, true, grey_ball_on_a_plate("open_ground_ball_edge", Vec3d(1.4, 0.15, 0.6)));
+  const double hdr = check_against_cycles("open_ground_ball_edge", 0.0, false);
+  if (hdr < 0) return;  // skipped: no Cycles truth
+  check_against_cycles("open_ground_ball_edge", 1.5 * hdr, true);
+  const double open_hdr = check_against_cycles("open_ground", 0.0, false);
+  check_against_cycles("open_ground", 1.5 * open_hdr, true, grey_ball_on_a_plate("open_ground_ball_edge", Vec3d(1.4, 0.15, 0.6)));
 }
 
 }  // namespace

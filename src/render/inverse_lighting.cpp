@@ -480,6 +480,7 @@ InverseLightingResult recover_clipped_sources(const InverseLightingInput& in) {
   });
   std::vector<FitPixel> pixels = gather_pixels(in, room0, res.references);
   estimate_irradiance(pixels, room0, lights, in);
+  inverse_lighting_detail::light_balls_from_the_floor(pixels, rest, in);
   std::vector<const ClippedSource*> part_texels;
   for (const PartFit& p : res.parts) part_texels.push_back(&p.texels);
   inverse_lighting_detail::shade_by_balls(pixels, rest, *in.radiance, part_texels, in);

@@ -42,6 +42,11 @@ void replace_part_estimates(std::vector<FitPixel>& pixels, const std::vector<int
                             const std::vector<std::unique_ptr<RoomLight>>& lights, const InverseLightingInput& in,
                             std::uint64_t key);
 
+// Each reference ball pixel's E0 with the floor it sees below it read from the photo (or its
+// plate) where the photo shows it, instead of from the cube's lower half (`rest`: without the
+// clipped texels).
+void light_balls_from_the_floor(std::vector<FitPixel>& pixels, const CubeMap& rest, const InverseLightingInput& in);
+
 // Under distant light, the E0 and Ek of each pixel in a ball's shadow zone (shadow_ball; its surface
 // planes + 6 + references + the ball's index where the plane's albedo is unknown) less what the
 // ball takes from it (`rest` the cube without the
