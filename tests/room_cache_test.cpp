@@ -7,22 +7,22 @@
 namespace insitu {
 namespace {
 
-const RoomBox kBox{Vec3f(-2.5f, 0, -3), Vec3f(2.5f, 2.6f, 3), Vec3f(-0.2f, 0.9f, -1.2f),
+const RoomBox kRoom{Vec3f(-2.5f, 0, -3), Vec3f(2.5f, 2.6f, 3), Vec3f(-0.2f, 0.9f, -1.2f),
                    {{0, Vec3f(-2.5f, 0.9f, -2.2f), Vec3f(-2.5f, 2.1f, -0.6f)}}};
 
 // A grid asked for twice is built once; it is what a grid built on its own gives, bit for bit.
 TEST(RoomCache, BuildsEachGridOnceAndAsItWouldAlone) {
   const CubeMap cube = test::random_cube(8, 3);
-  RoomCache cache(cube, kBox);
+  RoomCache cache(cube, kRoom);
   const auto a = cache.plane(Vec3f::Zero(), Vec3f(0, 1, 0), 8);
   const auto b = cache.plane(Vec3f::Zero(), Vec3f(0, 1, 0), 8);
   EXPECT_EQ(a.get(), b.get());
   EXPECT_EQ(cache.light().get(), cache.light().get());
-  const auto wall = cache.plane(kBox.min, Vec3f(1, 0, 0), 8);
+  const auto wall = cache.plane(kRoom.min, Vec3f(1, 0, 0), 8);
   EXPECT_NE(wall.get(), a.get());
   EXPECT_EQ(cache.plane_count(), 2u);
-  const RoomLight room(cube, kBox);
-  const PlaneIrradiance alone(room, kBox, Vec3f::Zero(), Vec3f(0, 1, 0), 8);
+  const RoomLight room(cube, kRoom);
+  const PlaneIrradiance alone(room, kRoom, Vec3f::Zero(), Vec3f(0, 1, 0), 8);
   for (const Vec3f& x : {Vec3f(0.3f, 0, -1.1f), Vec3f(-2.4f, 0, 2.9f), Vec3f(1.7f, 0, 0.4f)})
     EXPECT_TRUE((a->at(x) == alone.at(x)).all()) << x.transpose();
 }
@@ -30,13 +30,13 @@ TEST(RoomCache, BuildsEachGridOnceAndAsItWouldAlone) {
 // A cache serves its own room only: another box, another cube or no box is not its.
 TEST(RoomCache, ServesItsOwnRoomOnly) {
   const CubeMap cube = test::random_cube(8, 3), other = test::random_cube(8, 4);
-  const RoomCache cache(cube, kBox);
-  EXPECT_TRUE(cache.serves(cube, kBox));
-  EXPECT_FALSE(cache.serves(other, kBox));
-  RoomBox moved = kBox;
+  const RoomCache cache(cube, kRoom);
+  EXPECT_TRUE(cache.serves(cube, kRoom));
+  EXPECT_FALSE(cache.serves(other, kRoom));
+  RoomBox moved = kRoom;
   moved.capture.x() += 0.01f;
   EXPECT_FALSE(cache.serves(cube, moved));
-  RoomBox closed = kBox;
+  RoomBox closed = kRoom;
   closed.openings.clear();
   EXPECT_FALSE(cache.serves(cube, closed));
   EXPECT_FALSE(cache.serves(cube, std::nullopt));
