@@ -1,6 +1,8 @@
 // Running the insitu binary from tests: stdin closed, stdout and stderr captured.
 #pragma once
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -10,6 +12,8 @@
 #include <string>
 
 #include "test_util.h"
+
+extern char** environ;
 
 namespace insitu::test {
 
@@ -63,5 +67,34 @@ inline void expect_one_line_error(const CliRun& r, const std::string& contains) 
   EXPECT_NE(r.err.find(contains), std::string::npos) << r.err;
 }
 
+
+// `insitu ARGS` in the background, its output to files; returns its pid. SIGINT and SIGTERM
+// are set to their defaults in the child, as a terminal's process has them: a test binary started
+// as a script's background job (`cmd &`) has SIGINT ignored, the child would inherit that, and
+// install_interrupt_cleanup rightly leaves an ignored signal ignored (ctest resets them itself).
+inline pid_t spawn_insitu(const TempDir& dir, const std::string& args) {
+  const std::string cmd = test::child_environment() + "exec " + INSITU_BINARY + " " + args + " < /dev/null > " +
+                          dir.file("bg.out") + " 2> " + dir.file("bg.err");
+  const char* argv[] = {"/bin/sh", "-c", cmd.c_str(), nullptr};
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  sigset_t defaults;
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGINT);
+  sigaddset(&defaults, SIGTERM);
+  posix_spawnattr_setsigdefault(&attr, &defaults);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGDEF);
+  pid_t pid = 0;
+  EXPECT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, &attr, const_cast<char**>(argv), environ), 0);
+  posix_spawnattr_destroy(&attr);
+  return pid;
+}
+
+// Waits for the process: its exit code, or 1000 + the signal that ended it.
+inline int wait_for(pid_t pid) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 1000 + WTERMSIG(status);
+}
 
 }  // namespace insitu::test

@@ -18,12 +18,12 @@
 #include "scene/pipeline.h"
 #include "scene_fixture.h"
 
-extern char** environ;
-
 namespace insitu {
 namespace {
 
 using test::SceneFixture;
+using test::spawn_insitu;
+using test::wait_for;
 
 LoadedScene fixture_scene(SceneFixture& fx, int spp) {
   auto j = fx.scene;
@@ -110,6 +110,39 @@ TEST(Resume, StoppedBetweenTilesIsBitIdentical) {
     expect_same_layers(rest.layers, whole.layers);
     EXPECT_EQ(rest.layers.samples.data, whole.layers.samples.data);
   }
+}
+
+// Stopped at once (RenderControl::stop_at_once, the studio's stop) inside a tile: one tile of
+// 16 × 16 pixels, a pass of 8192 samples a pixel (seconds of work), the stop raised 0.1 s after
+// the render began. The render returns without finishing the tile: every pixel holds the pass's
+// samples whole or none, not all pixels hold them, and the state can be neither resumed nor
+// checkpointed. Without stop_at_once the tile would run to its end (all 256 pixels).
+TEST(Resume, StoppedAtOnceLeavesWholeSamplesAndNoResumableState) {
+  SceneFixture fx(16, 16);
+  const LoadedScene s = fixture_scene(fx, 65536);
+  std::atomic<bool> stop{false};
+  std::thread stopper;
+  RenderState state;
+  RenderControl control{&stop, &state};
+  control.stop_at_once = true;
+  const RenderResult part = render_scene(s, [&](const RenderProgress&) {
+    if (!stopper.joinable()) stopper = std::thread([&] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      stop = true;
+    });
+  }, control);
+  stopper.join();
+  ASSERT_TRUE(part.layers.interrupted);
+  EXPECT_FALSE(state.resumable);
+  int sampled = 0;
+  for (float n : part.layers.samples.data) {
+    EXPECT_TRUE(n == 0 || n == 8192) << n;
+    sampled += n > 0;
+  }
+  EXPECT_LT(sampled, 256);
+  EXPECT_THROW(render_scene(s, {}, {nullptr, &state}), std::invalid_argument);
+  EXPECT_THROW(write_checkpoint(fx.dir.file("at_once.checkpoint"), state, 7), std::invalid_argument);
+  EXPECT_FALSE(std::filesystem::exists(fx.dir.file("at_once.checkpoint")));
 }
 
 // The state of an 8-spp render of the fixture stopped once a pass is done.
@@ -201,35 +234,6 @@ TEST(Resume, FingerprintFollowsTheSettingsAndInputs) {
   Image photo(fx.width, fx.height, 3, 0.5f);
   write_image(fx.dir.file("photo.png"), photo);
   EXPECT_NE(a, render_fingerprint(fixture_scene(fx, 8)));
-}
-
-// `insitu render ARGS` in the background, its output to files; returns its pid. SIGINT and SIGTERM
-// are set to their defaults in the child, as a terminal's process has them: a test binary started
-// as a script's background job (`cmd &`) has SIGINT ignored, the child would inherit that, and
-// install_interrupt_cleanup rightly leaves an ignored signal ignored (ctest resets them itself).
-pid_t spawn_insitu(const test::TempDir& dir, const std::string& args) {
-  const std::string cmd = test::child_environment() + "exec " + INSITU_BINARY + " " + args + " < /dev/null > " +
-                          dir.file("bg.out") + " 2> " + dir.file("bg.err");
-  const char* argv[] = {"/bin/sh", "-c", cmd.c_str(), nullptr};
-  posix_spawnattr_t attr;
-  posix_spawnattr_init(&attr);
-  sigset_t defaults;
-  sigemptyset(&defaults);
-  sigaddset(&defaults, SIGINT);
-  sigaddset(&defaults, SIGTERM);
-  posix_spawnattr_setsigdefault(&attr, &defaults);
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGDEF);
-  pid_t pid = 0;
-  EXPECT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, &attr, const_cast<char**>(argv), environ), 0);
-  posix_spawnattr_destroy(&attr);
-  return pid;
-}
-
-// Waits for the process: its exit code, or 1000 + the signal that ended it.
-int wait_for(pid_t pid) {
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 1000 + WTERMSIG(status);
 }
 
 // Waits for the render's first progress line, "render: 38% (1.2 s) ...": the sample loop is under

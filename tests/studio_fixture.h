@@ -33,7 +33,15 @@ class StudioFixture {
     server_->stop();
     thread_.join();
   }
+  // A client that speaks as the page does: the launch's token, and the page's own Origin (every
+  // request but GET and HEAD needs it, request_guard.h).
   httplib::Client client() const {
+    httplib::Client c = bare_client();
+    c.set_default_headers({{"Authorization", "token " + server_->token()}, {"Origin", origin()}});
+    return c;
+  }
+  // A client with no token and no Origin: what another web site, or another program, has.
+  httplib::Client bare_client() const {
     httplib::Client c("127.0.0.1", port_);
     c.set_url_encode(false);  // paths go out exactly as written, "%2e%2e" included
     // A hang guard, not a timing test: httplib's default of 5 s is shorter than GET /api/shots
@@ -45,6 +53,9 @@ class StudioFixture {
   }
   const std::filesystem::path& folder() const { return folder_; }
   int port() const { return port_; }
+  const std::string& token() const { return server_->token(); }
+  std::string origin() const { return "http://127.0.0.1:" + std::to_string(port_); }
+  StudioServer& server() { return *server_; }
 
  private:
   std::filesystem::path folder_;

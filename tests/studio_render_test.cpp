@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
+#include <regex>
 #include <thread>
 
 #include "cli_util.h"
@@ -140,6 +141,73 @@ TEST(StudioRender, PublishesEveryFixedPassAndEachEighthOfAnAdaptiveRender) {
     if (publish_after_pass(done, shown, 1024)) shown = done, ++published;
   }
   EXPECT_EQ(published, 9);  // 64, 128, 256, ..., 1024
+}
+
+// Stop takes effect at once whatever the spp (issue 46): at 2^20 spp a pass is 131072 samples a
+// pixel, and one tile of it (33.5 M samples) 33 s in release, which a stop used to wait for. Now
+// the tiles under way are left unfinished: after the stop no tile has reported (the fraction done
+// is still 0; it counts finished tiles). The stop's time is printed; the reply's timeout is a
+// hang guard, not a timing test.
+TEST(StudioRender, StopsAtOnceWhateverTheSpp) {
+  TempDir dir;
+  StudioFixture studio(dir);
+  without_light_recovery(studio);
+  post_render(studio, {{"spp", 1 << 20}});
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  while (get_json(studio.client(), "/api/render")["state"] == "loading" && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));  // past the integrator's preparation
+  auto c = studio.client();
+  c.set_read_timeout(60, 0);
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto stopped = c.Post("/api/render/stop", "", "application/json");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_TRUE(stopped) << "no reply within 60 s: the stop waited for the tiles under way";
+  EXPECT_EQ(json::parse(stopped->body)["state"], "stopped") << stopped->body;
+  EXPECT_EQ(json::parse(stopped->body)["fraction"], 0.0) << "a tile under way was finished first: " << stopped->body;
+  std::printf("StopsAtOnceWhateverTheSpp: the stop took %.3f s\n", seconds);
+}
+
+// `insitu studio` ends on the first Ctrl-C (SIGINT) with exit 0, a render of 2^20 spp under way
+// stopped at once; before, its stop waited for the tiles under way. The wait is a hang guard.
+TEST(StudioRender, CtrlCEndsTheStudioWithARenderUnderWay) {
+  TempDir dir;
+  fs::copy(fs::path(test::source_dir()) / "scenes/demo", dir.path() / "demo", fs::copy_options::recursive);
+  fs::remove_all(dir.path() / "demo/out");
+  const fs::path scene = dir.path() / "demo/scene.json";
+  json j = json::parse(test::slurp(scene.string()));
+  j["environment"]["inverse_lighting"] = false;
+  std::ofstream(scene) << j.dump(2);
+  const pid_t pid = test::spawn_insitu(dir, "studio " + scene.string() + " --port 0");
+  std::smatch url;
+  const std::regex printed(R"(http://127\.0\.0\.1:(\d+)/\?token=([0-9a-f]{32}))");
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::minutes(2);
+  std::string out;
+  while (!std::regex_search(out = test::slurp(dir.file("bg.out")), url, printed) && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_FALSE(url.empty()) << out << test::slurp(dir.file("bg.err"));
+  const int port = std::stoi(url[1]);
+  httplib::Client c("127.0.0.1", port);
+  c.set_default_headers({{"Authorization", "token " + url[2].str()}, {"Origin", "http://127.0.0.1:" + url[1].str()}});
+  c.set_read_timeout(300, 0);
+  ASSERT_TRUE(c.Post("/api/render", json{{"spp", 1 << 20}}.dump(), "application/json"));
+  for (std::string state = "loading"; state == "loading" && std::chrono::steady_clock::now() < give_up;
+       std::this_thread::sleep_for(std::chrono::milliseconds(20)))
+    if (const auto r = c.Get("/api/render")) state = json::parse(r->body)["state"];
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));  // into the sample loop
+  kill(pid, SIGINT);
+  int status = 0;
+  const auto end = std::chrono::steady_clock::now() + std::chrono::minutes(2);
+  while (waitpid(pid, &status, WNOHANG) == 0 && std::chrono::steady_clock::now() < end)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  if (std::chrono::steady_clock::now() >= end) {
+    kill(pid, SIGKILL);
+    waitpid(pid, &status, 0);
+    FAIL() << "the studio did not end within 2 minutes of SIGINT";
+  }
+  ASSERT_TRUE(WIFEXITED(status)) << "ended by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 0) << test::slurp(dir.file("bg.err"));
+  EXPECT_NE(test::slurp(dir.file("bg.err")).find("insitu studio: stopped"), std::string::npos) << test::slurp(dir.file("bg.err"));
 }
 
 TEST(StudioRender, StopsAfterThePassUnderWayAndReportsTheLibrarysErrors) {

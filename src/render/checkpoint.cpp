@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/error.h"
 #include "core/file_check.h"
@@ -140,6 +141,7 @@ std::string checkpoint_path(const std::string& image_path) { return image_path +
 
 void write_checkpoint(const std::string& path, const RenderState& st, std::uint64_t fingerprint,
                       const std::string& settings) {
+  if (!st.resumable) throw std::invalid_argument("write_checkpoint: the state was stopped within its tiles and cannot be resumed");
   std::string out(kMagic, sizeof(kMagic));
   put(out, kVersion), put(out, kPixelBytes), put(out, fingerprint);
   for (int v : {st.width, st.height, st.spp, st.sample_begin, st.sample_end, st.passes_done, st.tiles_done, st.spp_done})

@@ -165,8 +165,11 @@ struct PassContext {
   double total_work;
 };
 
-// Samples [s0, s1) of the pixels of one tile.
-void render_tile(const PassContext& c, int tile, int s0, int s1) {
+// Whether a stop at once (RenderSettings::stop_at_once) has come.
+bool stopped_at_once(const RenderSettings& s) { return s.stop_at_once && s.stop && s.stop->load(std::memory_order_relaxed); }
+
+// Samples [s0, s1) of the pixels of one tile; false when a stop at once left it unfinished.
+bool render_tile(const PassContext& c, int tile, int s0, int s1) {
   const int w = c.camera.width, h = c.camera.height, across = tiles_across(w);
   const int x0 = (tile % across) * kTilePixels, y0 = (tile / across) * kTilePixels;
   const int x1 = std::min(w, x0 + kTilePixels), y1 = std::min(h, y0 + kTilePixels);
@@ -185,6 +188,10 @@ void render_tile(const PassContext& c, int tile, int s0, int s1) {
       if (!c.stopped.empty() && c.stopped[pixel]) continue;
       pass_blocks.clear();
       for (int s = s0; s < s1; ++s) {
+        if (stopped_at_once(c.settings)) {  // this pixel's samples of the pass are dropped
+          c.nonfinite += local_nonfinite;
+          return false;
+        }
         Sampler sampler(c.settings.seed, pixel, std::uint64_t(s));
         const Ray ray = jittered_ray(c.camera, x, y, sampler);
         PixelSums leaf;
@@ -203,23 +210,26 @@ void render_tile(const PassContext& c, int tile, int s0, int s1) {
     std::lock_guard<std::mutex> lock(c.progress_mutex);
     c.progress({double(done) / c.total_work, s0 - c.first, -1.0});
   }
+  return true;
 }
 
 // One pass: samples [s0, s1) of every pixel. The threads take tiles in order from *tiles_done
 // on and look at the stop flag before taking one, so that, stopped, the pass has done exactly the
 // tiles [0, *tiles_done), each whole: a resumed render carries on from there, bit for bit.
 // Returns whether the pass is complete.
-bool run_pass(const PassContext& c, int s0, int s1, int& tiles_done) {
+bool run_pass(const PassContext& c, int s0, int s1, int& tiles_done, bool& resumable) {
   const int tiles = tiles_across(c.camera.width) * tiles_across(c.camera.height);
   std::atomic<int> next{tiles_done};
+  std::atomic<bool> unfinished{false};
   const int workers = std::max(1, tbb::this_task_arena::max_concurrency());
   tbb::parallel_for(0, workers, [&](int) {
     while (!(c.settings.stop && c.settings.stop->load())) {
       const int tile = next++;
       if (tile >= tiles) break;
-      render_tile(c, tile, s0, s1);
+      if (!render_tile(c, tile, s0, s1)) unfinished = true;
     }
   });
+  if (unfinished) resumable = false;
   tiles_done = std::min(tiles, next.load());
   if (tiles_done < tiles) return false;
   tiles_done = 0;
@@ -237,6 +247,7 @@ void reserve_blocks(RenderState& st) {
 // The state to start from: a fresh one, or the caller's (checked against the plan).
 void start_state(RenderState& st, int w, int h, int spp, int begin, int end, double noise_target) {
   const std::size_t n = std::size_t(w) * std::size_t(h);
+  if (!st.resumable) throw std::invalid_argument("render: the state was stopped within its tiles and cannot be resumed");
   if (st.passes_done == 0 && st.pixels.empty()) {
     st = RenderState{w, h, spp, begin, end, 0, 0, 0, 0, std::vector<PixelBlocks>(n), noise_target,
                      std::vector<std::uint8_t>(noise_target > 0 ? n : 0, 0)};
@@ -284,7 +295,7 @@ void run_passes(const PassContext& c, RenderState& st) {
   std::vector<PixelSums> totals;  // adaptive sampling's judgement, between passes
   for (; st.passes_done < passes; ++st.passes_done) {
     const int s0 = plan_pass_start(st, st.passes_done), s1 = plan_pass_start(st, st.passes_done + 1);
-    if (!run_pass(c, s0, s1, st.tiles_done)) break;  // stopped
+    if (!run_pass(c, s0, s1, st.tiles_done, st.resumable)) break;  // stopped
     st.spp_done = s1 - begin;
     if (st.noise_target > 0) {
       fold_totals(st, totals);

@@ -25,6 +25,11 @@ constexpr float kNoHitDepth = 1e10f;
 // numbers (the integrator reads its own parameters: integrators/registry.h).
 // `stop`, when set (a signal handler, a host's cancel), ends the render after the pass under way:
 // the layers are then the means over the samples taken (RenderLayers::spp_done).
+// `stop_at_once`: the stop is also looked at before each sample, so that it takes effect within a
+// sample's time whatever the spp (a tile of a pass at 2^20 spp is minutes). The tiles under way
+// are left unfinished: their pixels done so far keep this pass's samples, the pixel under way
+// none, and the state is no longer resumable (RenderState::resumable). The studio's stop, which
+// keeps no checkpoint.
 // `sample_begin`, `sample_end`: render only the samples [begin, end) of the spp (a part of a split
 // render, issue 17; end −1: spp).
 // `noise_target` > 0: adaptive sampling (render/adaptive.h), each pixel stopping at that relative
@@ -35,6 +40,7 @@ struct RenderSettings {
   const std::atomic<bool>* stop = nullptr;
   int sample_begin = 0, sample_end = -1;
   double noise_target = 0;
+  bool stop_at_once = false;
 };
 
 struct RenderLayers {

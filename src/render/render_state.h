@@ -48,6 +48,9 @@ struct RenderState {
   // and the pixels stopped (1), judged at the end of each pass; empty when off.
   double noise_target = 0;
   std::vector<std::uint8_t> stopped;
+  // False once a stop left tiles unfinished (RenderSettings::stop_at_once): the tiles done are then
+  // not [0, tiles_done), so neither a resume nor a checkpoint may use the state.
+  bool resumable = true;
 };
 
 // Whether the render changed the pixel: an object covers part of it, or the catcher's estimates

@@ -303,7 +303,7 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress, 
   auto integrator = scene.integrator.entry->create(inputs, scene.integrator.params);
   const double prepare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const RenderSettings settings{scene.spec.render.spp, scene.spec.render.seed, control.stop, control.sample_begin,
-                                control.sample_end, scene.spec.render.noise_target};
+                                control.sample_end, scene.spec.render.noise_target, control.stop_at_once};
   return finish_render(scene, render(scene.camera, *integrator, settings, progress, control.state), prepare_seconds);
 }
 

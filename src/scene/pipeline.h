@@ -68,11 +68,12 @@ struct RenderResult {
 // How a render may be stopped and resumed (issue 15): `stop` ends it after the pass under way;
 // `state` starts it from a checkpoint (render/checkpoint.h) and receives where it ended. A part of
 // a split render (issue 17) takes only the samples [sample_begin, sample_end) of render.spp (end
-// −1: spp).
+// −1: spp). `stop_at_once`: RenderSettings::stop_at_once.
 struct RenderControl {
   const std::atomic<bool>* stop = nullptr;
   RenderState* state = nullptr;
   int sample_begin = 0, sample_end = -1;
+  bool stop_at_once = false;
 };
 RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress = {}, const RenderControl& control = {});
 // The composite of layers rendered (or merged from parts) for this scene.

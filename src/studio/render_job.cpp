@@ -67,7 +67,7 @@ void RenderJob::run(const std::string& integrator, int spp) {
       slots_[name] = Slot{};  // this integrator's image is the new render's from its first pass on
     }
     RenderState state;
-    const RenderControl control{&stop_, &state};
+    const RenderControl control{&stop_, &state, 0, -1, true};  // a stop takes effect at once
     int passes = 0, shown = 0;  // images published, and the samples of the last
     const auto progress = [&](const RenderProgress& p) {
       { const std::lock_guard<std::mutex> lock(mutex_); fraction_ = p.fraction; }

@@ -51,7 +51,8 @@ class RenderJob {
   // Starts a render with `integrator` ("": the scene's) and `spp` (0: the scene's), stopping one
   // under way first.
   void start(const std::string& integrator, int spp);
-  // Stops the render under way after its current pass, and waits for it.
+  // Stops the render under way and waits for it: at once, within a sample, whatever the spp
+  // (RenderSettings::stop_at_once); the image keeps the samples taken.
   void stop();
   // {"state": "idle" | "loading" | "rendering" | "done" | "stopped" | "error", "integrator",
   //  "fraction", "spp_done", "spp", "noise", "passes", "seconds", "error": {"where", "what"},

@@ -61,7 +61,7 @@ void put_points(StudioServer::Impl& s, const httplib::Request& req, httplib::Res
     reply_error(res, 409, s.points.path(), kConflict);
     return;
   }
-  res.set_content(json{{"version", r.now.version}}.dump(), "application/json");
+  reply_json(res, json{{"version", r.now.version}});
 }
 
 void post_calibrate(StudioServer::Impl& s, const httplib::Request& req, httplib::Response& res) {
@@ -74,7 +74,7 @@ void post_calibrate(StudioServer::Impl& s, const httplib::Request& req, httplib:
   }
   const auto points = control_points_from_json(body["points"], s.points.path());
   try {
-    res.set_content(calibration_view(points, s.width, s.height, model, s.scene).dump(), "application/json");
+    reply_json(res, calibration_view(points, s.width, s.height, model, s.scene));
   } catch (const InputError& e) {
     if (!e.where().empty()) throw;  // a point's own place names the file already
     throw e.with_context(fs::path(s.points.path()).filename().string());
@@ -87,10 +87,9 @@ void post_snap(StudioServer::Impl& s, const httplib::Request& req, httplib::Resp
   const JsonValue uv(body.is_object() && body.contains("uv") ? body["uv"] : kMissing, req.path, "$.uv");
   if (!uv.is_array() || uv.size() != 2) uv.fail("expected [u, v]");
   const CornerSnap snap = snap_to_corner(s.gray, {uv.element(0).number(), uv.element(1).number()});
-  res.set_content(json{{"snapped", snap.snapped},
+  reply_json(res, json{{"snapped", snap.snapped},
                        {"uv", {snap.uv_px.x(), snap.uv_px.y()}},
-                       {"offset", {snap.offset_px.x(), snap.offset_px.y()}}}.dump(),
-                  "application/json");
+                       {"offset", {snap.offset_px.x(), snap.offset_px.y()}}});
 }
 
 // {"version", "op": "swap", "a", "b"} | {"version", "op": "turn", "key", "by_deg"} |
@@ -111,7 +110,7 @@ void post_shots(StudioServer::Impl& s, const httplib::Request& req, httplib::Res
     return set_faced_wall(scene, name, text("wall"));
   });
   if (!r.saved) return reply_error(res, 409, name, kConflict);
-  res.set_content(json{{"version", r.now.version}}.dump(), "application/json");
+  reply_json(res, json{{"version", r.now.version}});
 }
 
 // {"version", "op": "add", "polygon_px": [[u, v], ...], "albedo": a} | {"version", "op": "remove",
@@ -135,7 +134,7 @@ void post_references(StudioServer::Impl& s, const httplib::Request& req, httplib
     return edited;
   });
   if (!r.saved) return reply_error(res, 409, name, kConflict);
-  res.set_content(json{{"version", r.now.version}}.dump(), "application/json");
+  reply_json(res, json{{"version", r.now.version}});
 }
 
 // The scene's references as the page draws them, with the scene file's version to edit from.
@@ -180,13 +179,14 @@ ToneMapSettings query_tonemap(const httplib::Request& req) {
 // {"integrator": "" | name, "spp": 0 | n}: a render started (render_job.h).
 void post_render(StudioServer::Impl& s, const httplib::Request& req, httplib::Response& res) {
   const json body = req.body.empty() ? json::object() : body_json(req);
+  if (!body.is_object()) throw InputError(req.path, "expected {\"integrator\": \"path\", \"spp\": 64} (either may be left out)");
   static const json kNone;
   const JsonValue integrator(body.is_object() && body.contains("integrator") ? body["integrator"] : kNone, req.path, "$.integrator");
   const JsonValue spp(body.is_object() && body.contains("spp") ? body["spp"] : kNone, req.path, "$.spp");
   const std::string name = integrator.raw().is_null() ? "" : integrator.string();
   if (!name.empty() && !find_integrator(name)) integrator.fail(unknown_integrator_message(name));
   s.render.start(name, spp.raw().is_null() ? 0 : int(spp.integer(1, 1 << 20)));
-  res.set_content(s.render.status().dump(), "application/json");
+  reply_json(res, s.render.status());
 }
 
 }  // namespace
@@ -197,17 +197,17 @@ void StudioServer::Impl::add_render_routes() {
   });
   http.Post("/api/render/stop", [this](const httplib::Request&, httplib::Response& res) {
     render.stop();
-    res.set_content(render.status().dump(), "application/json");
+    reply_json(res, render.status());
   });
   http.Post("/api/render/save", [this](const httplib::Request&, httplib::Response& res) {
     guarded(res, [&] {
       json written = json::array();
       for (const std::string& p : render.save_outputs()) written.push_back(fs::relative(p, folder).string());
-      res.set_content(json{{"written", written}}.dump(), "application/json");
+      reply_json(res, json{{"written", written}});
     });
   });
   http.Get("/api/render", [this](const httplib::Request&, httplib::Response& res) {
-    res.set_content(render.status().dump(), "application/json");
+    reply_json(res, render.status());
   });
   http.Get(R"(/api/render/(\w+)\.png)", [this](const httplib::Request& req, httplib::Response& res) {
     guarded(res, [&] {
@@ -228,7 +228,7 @@ void StudioServer::Impl::add_render_routes() {
 void StudioServer::Impl::add_api_routes() {
   add_render_routes();
   http.Get("/api/shots", [this](const httplib::Request&, httplib::Response& res) {
-    guarded(res, [&] { res.set_content(shots_state(*this).dump(), "application/json"); });
+    guarded(res, [&] { reply_json(res, shots_state(*this)); });
   });
   http.Get(R"(/api/shot/([0-5])\.png)", [this](const httplib::Request& req, httplib::Response& res) {
     guarded(res, [&] { res.set_content(shot_preview_png(scene_file.path(), std::stoi(req.matches[1]), 320), "image/png"); });
@@ -237,13 +237,13 @@ void StudioServer::Impl::add_api_routes() {
     guarded(res, [&] { post_shots(*this, req, res); });
   });
   http.Get("/api/references", [this](const httplib::Request&, httplib::Response& res) {
-    guarded(res, [&] { res.set_content(references_state(*this).dump(), "application/json"); });
+    guarded(res, [&] { reply_json(res, references_state(*this)); });
   });
   http.Post("/api/references", [this](const httplib::Request& req, httplib::Response& res) {
     guarded(res, [&] { post_references(*this, req, res); });
   });
   http.Get("/api/state", [this](const httplib::Request&, httplib::Response& res) {
-    guarded(res, [&] { res.set_content(state_json(*this).dump(), "application/json"); });
+    guarded(res, [&] { reply_json(res, state_json(*this)); });
   });
   http.Put("/api/points", [this](const httplib::Request& req, httplib::Response& res) {
     guarded(res, [&] { put_points(*this, req, res); });

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
+#include <sys/socket.h>
 #include <thread>
 
 #include "core/colour.h"
@@ -52,19 +53,45 @@ void load_photo(StudioServer::Impl& s) {
   s.photo_png = srgb_png(linear);
 }
 
+// The headers of every reply: no page of another site may frame the studio (clickjacking), run
+// anything but the studio's own scripts in it, or sniff a reply's type; nothing is cached (the
+// photo and the token's page are the customer's).
+const httplib::Headers kSecurityHeaders = {
+    {"X-Frame-Options", "DENY"},
+    {"Content-Security-Policy",
+     "default-src 'self'; img-src 'self' data: blob:; object-src 'none'; base-uri 'none'; form-action 'none'; frame-ancestors 'none'"},
+    {"X-Content-Type-Options", "nosniff"},
+    {"Referrer-Policy", "no-referrer"},
+    {"Cache-Control", "no-store"},
+};
+
+// The limits of the server. A thread serves one connection at a time, so the pool is larger than
+// a browser's six connections per host plus stalled ones; a connection that sends nothing is
+// closed after kIdleSeconds, one that stalls mid-request after kReadSeconds.
+constexpr int kServerThreads = 32, kIdleSeconds = 2, kReadSeconds = 5, kWriteSeconds = 5;
+
+RequestHeaders headers_of(const httplib::Request& req) {
+  return {req.method, req.get_header_value("Host"), req.get_header_value("Origin"), req.get_header_value("Content-Type"),
+          req.get_header_value("Authorization"), req.get_header_value("Cookie"),
+          req.has_param("token") ? req.get_param_value("token") : ""};
+}
+
 }  // namespace
+
+void reply_json(httplib::Response& res, const json& body) {
+  res.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
+}
 
 void reply_error(httplib::Response& res, int status, const std::string& where, const std::string& what) {
   res.status = status;
-  res.set_content(json{{"error", where.empty() ? what : where + ": " + what}, {"where", where}, {"what", what}}.dump(),
-                  "application/json");
+  reply_json(res, json{{"error", where.empty() ? what : where + ": " + what}, {"where", where}, {"what", what}});
 }
 
 StudioServer::Impl::Impl(const StudioOptions& o)
     : options(o), scene(parse_scene_file(o.scene)), folder(fs::absolute(o.scene).parent_path().string()),
-      points(points_path(scene)), scene_file(o.scene, ""), render(o.scene) {
+      points(points_path(scene)), scene_file(o.scene, ""), render(o.scene), guard{random_token(), 0} {
   load_photo(*this);
-  http.set_payload_max_length(options.max_body_bytes);
+  secure_server();
   for (const StudioAsset* a = kStudioAssets; a->name; ++a)
     http.Get(std::string("/") + (std::string(a->name) == "index.html" ? "" : a->name), [a](const httplib::Request&, httplib::Response& res) {
       res.set_content(reinterpret_cast<const char*>(a->data), a->size, content_type(a->name).c_str());
@@ -81,6 +108,42 @@ StudioServer::Impl::Impl(const StudioOptions& o)
   add_api_routes();
 }
 
+void StudioServer::Impl::secure_server() {
+  // The port is this studio's alone: httplib's default also sets SO_REUSEPORT, under which a
+  // second studio binds the same port and the kernel splits the requests between the two scenes.
+  http.set_socket_options([](socket_t sock) {
+    const int yes = 1;  // SO_REUSEADDR: a restart may bind while old connections are in TIME_WAIT
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+  });
+  http.new_task_queue = [] { return new httplib::ThreadPool(kServerThreads); };
+  http.set_keep_alive_timeout(kIdleSeconds);
+  http.set_read_timeout(kReadSeconds, 0);
+  http.set_write_timeout(kWriteSeconds, 0);
+  http.set_payload_max_length(options.max_body_bytes);
+  http.set_default_headers(kSecurityHeaders);
+  // Before any route, and before the request's body is read (request_guard.h).
+  http.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+    const GuardVerdict v = judge_request(guard, headers_of(req));
+    if (v.status != 0) {
+      reply_error(res, v.status, "", v.what);
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    if (v.set_cookie) res.set_header("Set-Cookie", token_cookie(guard));
+    return httplib::Server::HandlerResponse::Unhandled;
+  });
+  // A handler's unexpected exception is a 500 with its message, never an empty reply.
+  http.set_exception_handler([](const httplib::Request& req, httplib::Response& res, std::exception_ptr ep) {
+    std::string what = "unknown exception";
+    try {
+      std::rethrow_exception(ep);
+    } catch (const std::exception& e) {
+      what = e.what();
+    } catch (...) {
+    }
+    reply_error(res, 500, req.path, "internal error: " + what);
+  });
+}
+
 StudioServer::StudioServer(const StudioOptions& options) : impl_(std::make_unique<Impl>(options)) {}
 StudioServer::~StudioServer() = default;
 
@@ -88,9 +151,14 @@ int StudioServer::bind() {
   // Only the loopback address: the studio writes files and must never be reachable from the network.
   const int port = impl_->options.port == 0 ? impl_->http.bind_to_any_port("127.0.0.1")
                                             : (impl_->http.bind_to_port("127.0.0.1", impl_->options.port) ? impl_->options.port : -1);
-  if (port <= 0) throw InputError(fmt::format("--port {}", impl_->options.port), "cannot listen on 127.0.0.1 (in use?)");
-  return impl_->port = port;
+  if (port <= 0)
+    throw InputError(fmt::format("--port {}", impl_->options.port),
+                     "127.0.0.1 has this port in use (another studio?) or will not give it: choose another, or --port 0 for any free one");
+  return impl_->guard.port = port;
 }
+
+std::string StudioServer::url() const { return fmt::format("http://127.0.0.1:{}/?token={}", impl_->guard.port, impl_->guard.token); }
+const std::string& StudioServer::token() const { return impl_->guard.token; }
 
 void StudioServer::run() {
   impl_->run_called = true;

@@ -22,7 +22,9 @@
 //   GET  /api/render/NAME.png         slot NAME's latest image, ?tonemap=&key=&bias=
 //   GET  /api/light/cube.png, /api/light/irradiance.png   the light the render used
 // Errors are 400 with {"error": "<where>: <what>", "where", "what"}: the CLI's message. Request
-// bodies over 1 MiB are refused (413) before they are read.
+// bodies over 1 MiB are refused (413) before they are read. Every request needs the launch's
+// token, its own Host, and (if it changes anything) its own Origin and a JSON body: 403 or 415
+// otherwise (request_guard.h).
 #pragma once
 #include <memory>
 #include <string>
@@ -42,6 +44,9 @@ class StudioServer {
   ~StudioServer();
   // Binds 127.0.0.1 (never another address) and returns the port; throws InputError if it cannot.
   int bind();
+  // The address to open, with the launch's token: http://127.0.0.1:PORT/?token=T (after bind()).
+  std::string url() const;
+  const std::string& token() const;
   // Serves until stop() (from another thread).
   void run();
   void stop();

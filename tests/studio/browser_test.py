@@ -73,11 +73,11 @@ def start_studio(insitu, scene):
     proc = subprocess.Popen([insitu, "studio", scene, "--port", "0"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                             text=True)
     line = proc.stdout.readline()
-    m = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
+    m = re.search(r"http://127\.0\.0\.1:(\d+)/\?token=[0-9a-f]{32}", line)
     if not m:
         proc.kill()
         sys.exit(f"browser_test: insitu studio did not start: {line}{proc.stdout.read()}")
-    return proc, f"http://127.0.0.1:{m.group(1)}/"
+    return proc, m.group(0)
 
 
 def click_image_point(browser, canvas, uv):
@@ -117,6 +117,7 @@ def main():
     studio, url = start_studio(insitu, os.path.join(scene_dir, "scene.json"))
     try:
         run(browser, url, truth, points_file, shots)
+        run_attack(browser, url, scene_dir)
         run_shots(browser, os.path.join(scene_dir, "scene.json"), shots)
         run_render(browser, shots, scene_dir, sys.argv[3] if len(sys.argv) > 3 else "16")
     finally:
@@ -130,6 +131,8 @@ def main():
 def run(browser, url, truth, points_file, shots):
     browser.get(url)
     WebDriverWait(browser, 30).until(lambda b: b.execute_script("return S.width > 0 && S.photo.complete"))
+    # The token is now the page's cookie, and has left the address bar.
+    assert "token" not in browser.current_url, browser.current_url
     canvas = browser.find_element(By.ID, "photo")
     chosen = [truth[i] for i in (0, 1, 2, 3, 8, 10, 11)]
     for i, p in enumerate(chosen):
@@ -159,6 +162,85 @@ def run(browser, url, truth, points_file, shots):
     browser.find_elements(By.CSS_SELECTOR, "#points tbody button")[-1].click()
     WebDriverWait(browser, 20).until(lambda b: len(json.load(open(points_file))) == len(chosen) - 1)
 
+
+
+ATTACK_PAGE = """<!doctype html><title>another site</title>
+<iframe name="sink"></iframe>
+<form id="save" method="POST" action="STUDIO/api/render/save" enctype="text/plain" target="sink">
+<input name='{"spp": 1048576, "x": "' value='"}'></form>
+<iframe id="framed" src="STUDIO/"></iframe>
+<script>
+const studio = "STUDIO";
+const results = {};
+async function attack() {
+  document.getElementById("save").submit();
+  for (const [name, init] of [
+      ["text", {method: "POST", mode: "no-cors", credentials: "include", headers: {"Content-Type": "text/plain"},
+                body: '{"spp": 1048576}'}],
+      ["json", {method: "POST", credentials: "include", headers: {"Content-Type": "application/json"},
+                body: '{"spp": 1048576}'}],
+      ["read", {credentials: "include"}]]) {
+    try {
+      const r = await fetch(studio + (name === "read" ? "/api/state" : "/api/render"), init);
+      results[name] = r.type === "opaque" ? "opaque" : String(r.status) + " " + await r.text();
+    } catch (e) { results[name] = "blocked"; }
+  }
+  results.done = true;
+}
+attack();
+</script>"""
+
+
+def run_attack(browser, url, scene_dir):
+    """Pages on another origin (on the studio's own host at another port: the same site, so the
+    SameSite cookie goes along; and on localhost: another site) try what issue 46 found: a form
+    POST that saves outputs, fetch() that starts a render, reading the customer's state, framing
+    the page. The browser holds the studio's cookie (the page was opened above). Nothing may
+    change, and nothing may be read."""
+    import http.server
+    import threading
+    import urllib.request
+    studio = url.split("/?")[0]
+    page = ATTACK_PAGE.replace("STUDIO", studio).encode()
+
+    class Handler(http.server.BaseHTTPRequestHandler):
+        def do_GET(self):
+            self.send_response(200)
+            self.send_header("Content-Type", "text/html")
+            self.end_headers()
+            self.wfile.write(page)
+
+        def log_message(self, *args):
+            pass
+
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), Handler)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    token = url.split("token=")[1]
+    before = {f: open(os.path.join(scene_dir, f)).read() for f in ("scene.json", "points.json")}
+    try:
+        for origin in (f"http://127.0.0.1:{server.server_port}/", f"http://localhost:{server.server_port}/"):
+            browser.get(origin)
+            WebDriverWait(browser, 30).until(lambda b: b.execute_script("return results.done === true"))
+            results = browser.execute_script("return results")
+            time.sleep(1)  # the form's POST into the frame
+            print(f"browser_test: attack from {origin}: {results}")
+            assert results["text"] == "opaque", results  # sent blind, and refused (below)
+            assert results["json"] == "blocked" and results["read"] == "blocked", results
+            # The framed studio shows nothing: its document is not the studio's page.
+            framed = browser.execute_script(
+                "try { return document.getElementById('framed').contentDocument.title; } catch (e) { return 'cross-origin'; }")
+            assert framed != "insitu studio", framed
+            request = urllib.request.Request(studio + "/api/render", headers={"Authorization": f"token {token}"})
+            state = json.load(urllib.request.urlopen(request))
+            assert state["state"] == "idle", state  # no render was started
+            assert not os.path.exists(os.path.join(scene_dir, "out")), "outputs were written"
+            for f, text in before.items():
+                assert open(os.path.join(scene_dir, f)).read() == text, f
+    finally:
+        server.shutdown()
+    browser.get(studio + "/")  # back to the studio: its cookie still opens it
+    WebDriverWait(browser, 30).until(lambda b: b.execute_script("return S.width > 0"))
+    print("browser_test: attacks from another origin and another site changed nothing")
 
 
 def draw_reference(browser, canvas, scene_file):

@@ -19,6 +19,7 @@ function show_image() {
   if (!R.shown || !slots[R.shown] || !slots[R.shown].image) return;
   const s = slots[R.shown];
   $("render-image").src = `/api/render/${R.shown}.png?${tonemap_query()}&pass=${s.passes}&t=${s.seconds}`;
+  $("render-image").hidden = false;  // hidden until there is an image (no broken-image icon)
   $("render-caption").textContent = `${R.shown}: ${s.spp_done} of ${s.spp} spp in ${s.seconds.toFixed(1)} s, ` +
     `noise ${s.noise >= 0 ? (100 * s.noise).toFixed(2) + " %" : "–"}${s.done ? "" : " (rendering)"}`;
 }
@@ -49,6 +50,7 @@ async function poll() {
     R.seen.light = true;
     $("light-cube").src = `/api/light/cube.png?t=${Date.now()}`;
     $("light-irradiance").src = `/api/light/irradiance.png?t=${Date.now()}`;
+    $("light-cube").hidden = $("light-irradiance").hidden = false;
   }
   if (busy || !R.shown) R.shown = data.integrator || R.shown;
   ab_buttons();

@@ -5,6 +5,10 @@
 
 const $ = (id) => document.getElementById(id);
 
+// Opened from the address insitu studio printed, the page holds its token as a cookie now
+// (HttpOnly: no script reads it); the token leaves the address bar and the history.
+if (new URLSearchParams(location.search).has("token")) history.replaceState(null, "", location.pathname);
+
 async function api(method, url, body) {
   const r = await fetch(url, { method, headers: { "Content-Type": "application/json" },
                                body: body === undefined ? undefined : JSON.stringify(body) });
