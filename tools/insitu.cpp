@@ -3,6 +3,7 @@
 // nothing written. Internal failure: exit code 1.
 #include <CLI/CLI.hpp>
 
+#include <csignal>
 #include <cstdio>
 #include <malloc.h>
 
@@ -30,6 +31,9 @@ int main(int argc, char** argv) {
   using namespace insitu;
   keep_freed_memory();
   install_interrupt_cleanup();  // an interrupted write leaves no temporary file
+  // A file-size limit (`ulimit -f`) fails a write with EFBIG, which is then reported like a full
+  // disk (exit 2, nothing written), instead of ending the process by SIGXFSZ.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"insitu: physically based insertion of 3D furniture into a photograph of a room"};
   app.set_version_flag("--version", std::string("insitu ") + INSITU_VERSION);
   app.require_subcommand(1);

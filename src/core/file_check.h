@@ -13,5 +13,8 @@ void require_existing(const std::string& path);
 bool exists_quietly(const std::string& path);
 // A folder (false on any error).
 bool is_directory_quietly(const std::string& path);
+// Flushes a written file to the disk (fsync): "" or why not. A full disk or a quota may report a
+// write's failure only here; a file is synced before it takes its final name.
+std::string sync_to_disk(const std::string& path);
 
 }  // namespace insitu

@@ -3,6 +3,7 @@
 #include "core/image.h"
 
 #include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 #include <unistd.h>
@@ -20,6 +21,7 @@
 #include "core/error.h"
 #include "core/exr_header.h"
 #include "core/temp_files.h"
+#include "core/text_file.h"
 
 namespace insitu {
 namespace fs = std::filesystem;
@@ -287,25 +289,68 @@ TypeDesc storage_type(const std::string& ext_lower) {
   return TypeDesc::UINT8;
 }
 
-// Writes an image with `spec` under a temporary name, then renames it to `path`; `write_pixels`
-// writes the pixels through the open output (false: failed, with its error). On any failure the
-// temporary file is removed and an InputError names `path`.
+// Reads a written image back to its last row, in bands (bounded memory at any size): "" when it
+// decodes whole with the shape written, else why not. OpenImageIO's PNG writer ignores libpng's
+// short writes, so on a full disk (or past `ulimit -f`) it returned success for a truncated file
+// (issue 46); a file that reads back whole was written whole.
+std::string read_back_failure(const std::string& path, const ImageSpec& spec) {
+  StderrCapture capture;  // libpng prints its own "libpng error" before OpenImageIO reports it
+  auto in = ImageInput::open(path);
+  if (!in) {
+    capture.failed();
+    return "the file written does not open again (a full disk?): " + one_line(OIIO::geterror());
+  }
+  const ImageSpec& got = in->spec();
+  if (got.width != spec.width || got.height != spec.height || got.nchannels != spec.nchannels) {
+    capture.failed();
+    return fmt::format("the file written reads back as {}x{}x{}, not {}x{}x{}", got.width, got.height, got.nchannels, spec.width,
+                       spec.height, spec.nchannels);
+  }
+  constexpr int kBandRows = 64;
+  std::vector<float> band(std::size_t(spec.width) * std::size_t(spec.nchannels) * kBandRows);
+  for (int y = 0; y < spec.height; y += kBandRows)
+    if (!in->read_scanlines(0, 0, y, std::min(spec.height, y + kBandRows), 0, 0, spec.nchannels, TypeDesc::FLOAT, band.data())) {
+      capture.failed();
+      return "the file written is cut short or damaged (a full disk?): " + one_line(in->geterror());
+    }
+  return "";
+}
+
+// An 8-bit image (PNG, JPEG: a few MB at most) is encoded in memory, then written as bytes by
+// write_binary_file, whose every write and fsync is checked. libjpeg, writing a file itself, ends
+// the process on a full disk (exit 1, its own message, a temporary file left behind).
+void write_through_memory(const std::string& path, const ImageSpec& spec, ImageOutput& out,
+                          const std::function<bool(ImageOutput&)>& write_pixels) {
+  std::vector<unsigned char> bytes;
+  Filesystem::IOVecOutput memory(bytes);
+  if (!out.set_ioproxy(&memory) || !out.open(path, spec) || !write_pixels(out) || !out.close())
+    throw InputError(path, "cannot write image: " + one_line(out.geterror()));
+  write_binary_file(path, std::string(bytes.begin(), bytes.end()));
+}
+
+// Writes an image with `spec` under a temporary name, flushes it to the disk, reads it back whole,
+// then renames it to `path`; `write_pixels` writes the pixels through the open output (false:
+// failed, with its error). On any failure the temporary file is removed and an InputError names
+// `path`: no image that does not open ever gets its final name.
 void write_atomically(const std::string& path, const std::string& format, const ImageSpec& spec,
                       const std::function<bool(ImageOutput&)>& write_pixels) {
   const fs::path p(path);
   make_parent(p);
   const std::string tmp = temporary_name(p);
-  const TempFileGuard guard(tmp);  // removed if the process is interrupted meanwhile
   auto out = ImageOutput::create(format.empty() ? tmp : format);
   if (!out) throw InputError(path, "no image format for '" + p.extension().string() + "'");
-  if (!out->open(tmp, spec) || !write_pixels(*out) || !out->close()) {
-    const std::string err = out->geterror();
-    out.reset();
+  if (spec.format == TypeDesc::UINT8 && out->supports("ioproxy")) return write_through_memory(path, spec, *out, write_pixels);
+  const TempFileGuard guard(tmp);  // removed if the process is interrupted meanwhile
+  std::string err;
+  if (!out->open(tmp, spec) || !write_pixels(*out) || !out->close()) err = out->geterror();
+  out.reset();
+  if (err.empty()) err = sync_to_disk(tmp);
+  if (err.empty()) err = read_back_failure(tmp, spec);
+  if (!err.empty()) {
     std::error_code ec;
     fs::remove(tmp, ec);
     throw InputError(path, "cannot write image: " + err);
   }
-  out.reset();
   commit(tmp, path);
 }
 

@@ -27,8 +27,12 @@ void write_binary_file(const std::string& path, const std::string& text) {
     out.close();
     if (!out) {
       fs::remove(tmp, ec);
-      throw InputError(path, "cannot write (is its folder writable?)");
+      throw InputError(path, "cannot write (is its folder writable, and is there room on the disk?)");
     }
+  }
+  if (const std::string why = sync_to_disk(tmp.string()); !why.empty()) {
+    fs::remove(tmp, ec);
+    throw InputError(path, "cannot write: " + why);
   }
   fs::rename(tmp, p, ec);
   if (ec) {
