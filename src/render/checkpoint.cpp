@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/fnv1a.h"
 #include "core/file_check.h"
 #include "core/text_file.h"
 #include "render/pixel_blocks.h"
@@ -17,7 +18,7 @@ namespace insitu {
 namespace {
 
 constexpr char kMagic[8] = {'I', 'N', 'S', 'I', 'T', 'U', 'C', 'K'};
-constexpr std::uint32_t kVersion = 5;
+constexpr std::uint32_t kVersion = 6;
 
 template <class T>
 void put(std::string& out, T v) {
@@ -156,7 +157,19 @@ void write_checkpoint(const std::string& path, const RenderState& st, std::uint6
     for (const PixelSums& p : blocks) put_sums(out, p);
   }
   if (st.noise_target > 0) out.append(st.stopped.begin(), st.stopped.end());
+  Fnv1a sum;
+  sum.bytes(out.data(), out.size());
+  put(out, sum.digest());
   write_binary_file(path, out);
+}
+
+// The magic and the layout's version and block size: at `at` past them.
+void check_layout(const std::string& in, std::size_t& at, const std::string& path) {
+  if (in.size() < sizeof(kMagic) || std::memcmp(in.data(), kMagic, sizeof(kMagic)) != 0)
+    throw InputError(path, "not an insitu checkpoint or part");
+  at = sizeof(kMagic);
+  if (get<std::uint32_t>(in, at, path) != kVersion || get<std::uint32_t>(in, at, path) != kPixelBytes)
+    throw InputError(path, "a checkpoint of another insitu version");
 }
 
 StateFile read_state_file(const std::string& path) {
@@ -165,12 +178,24 @@ StateFile read_state_file(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   std::stringstream ss;
   ss << f.rdbuf();
-  const std::string in = ss.str();
-  if (in.size() < sizeof(kMagic) || std::memcmp(in.data(), kMagic, sizeof(kMagic)) != 0)
-    throw InputError(path, "not an insitu checkpoint or part");
-  std::size_t at = sizeof(kMagic);
-  if (get<std::uint32_t>(in, at, path) != kVersion || get<std::uint32_t>(in, at, path) != kPixelBytes)
-    throw InputError(path, "a checkpoint of another insitu version");
+  std::string in = ss.str();
+  std::size_t at = 0;
+  check_layout(in, at, path);
+  if (in.size() - at < sizeof(std::uint64_t)) throw InputError(path, "truncated checkpoint");
+  std::size_t end = in.size() - sizeof(std::uint64_t);
+  const std::uint64_t stored = get<std::uint64_t>(in, end, path);
+  Fnv1a sum;
+  sum.bytes(in.data(), in.size() - sizeof(std::uint64_t));
+  if (sum.digest() != stored)
+    throw InputError(path, "damaged: its checksum does not match its contents (it is kept as it is; render without "
+                           "--resume to start again)");
+  in.resize(in.size() - sizeof(std::uint64_t));
+  return parse_state_bytes(in, path);
+}
+
+StateFile parse_state_bytes(const std::string& in, const std::string& path) {
+  std::size_t at = 0;
+  check_layout(in, at, path);
   StateFile file;
   file.fingerprint = get<std::uint64_t>(in, at, path);
   file.state = read_header(in, at, path);
