@@ -1,12 +1,13 @@
-// insitu merge PART... -o OUT [--layers PATH|none] [--tonemap OP] [--key K]
+// insitu merge PART... -o OUT [--layers PATH|none] [--tonemap OP] [--key K] [--allow-partial]
 //
 // The parts of a split render (`insitu render --samples A:B`, issue 17) added into the image, the
 // layers and the report that one render of all their samples gives, bit for bit: each pixel's
 // sums are pairwise over aligned blocks of sample indices (render/pixel_blocks.h), and the parts'
 // blocks are pushed in sample order as the render itself pushes them. The parts must be of one
-// scene with the same inputs and settings, and cover a range of samples without gap or overlap;
-// the scene is loaded again from the path and the overrides each part records, and its
-// fingerprint must still be theirs.
+// scene with the same inputs and settings, and cover the samples 0:spp without gap or overlap
+// (--allow-partial: any adjoining range, whose report then says "interrupted": true); the scene is
+// loaded again from the path and the overrides each part records, and its fingerprint must still
+// be theirs.
 #include <algorithm>
 #include <cstdio>
 #include <fmt/format.h>
@@ -26,6 +27,7 @@ namespace {
 struct MergeArgs {
   std::vector<std::string> parts;
   RenderArgs outputs;  // -o, --layers, --tonemap, --key
+  bool allow_partial = false;
 };
 
 struct Part {
@@ -64,6 +66,18 @@ std::vector<Part> read_parts(const std::vector<std::string>& paths) {
   return parts;
 }
 
+// The adjoining parts cover the render's samples 0:spp; else the missing range is named.
+void require_all_samples(const std::vector<Part>& parts) {
+  const RenderState &first = parts.front().file.state, &last = parts.back().file.state;
+  const std::string advice = " (render the missing part, or merge what there is with --allow-partial)";
+  if (first.sample_begin != 0)
+    throw InputError(parts.front().path, fmt::format("samples 0:{} of the {} spp are in no part given{}", first.sample_begin,
+                                                     first.spp, advice));
+  if (last.sample_end != last.spp)
+    throw InputError(parts.back().path, fmt::format("samples {}:{} of the {} spp are in no part given{}", last.sample_end,
+                                                    last.spp, last.spp, advice));
+}
+
 // The state of one render of all the parts' samples.
 RenderState merged_state(const std::vector<Part>& parts) {
   RenderState out = parts[0].file.state;
@@ -81,6 +95,7 @@ RenderState merged_state(const std::vector<Part>& parts) {
 
 int run_merge(const MergeArgs& m) {
   const std::vector<Part> parts = read_parts(m.parts);
+  if (!m.allow_partial) require_all_samples(parts);
   RenderArgs a = parts[0].record.args;
   a.output = m.outputs.output, a.layers = m.outputs.layers, a.tonemap = m.outputs.tonemap, a.key = m.outputs.key;
   const SceneSpec spec = render_spec(a);
@@ -100,6 +115,7 @@ int run_merge(const MergeArgs& m) {
   for (const Part& p : parts) prepare_seconds += p.record.prepare_seconds, render_seconds += p.record.render_seconds;
   RenderLayers layers = layers_from_state(merged);
   layers.seconds = render_seconds;
+  layers.interrupted = merged.sample_begin != 0 || merged.sample_end != merged.spp;  // --allow-partial
   write_outputs(scene, finish_render(scene, std::move(layers), prepare_seconds));
   std::printf("%s\n", spec.output.image.c_str());
   if (!spec.output.layers.empty()) std::printf("%s\n", spec.output.layers.c_str());
@@ -120,6 +136,8 @@ Command add_merge_command(CLI::App& app) {
   cmd->add_option("--tonemap", m->outputs.tonemap, "for PNG/JPEG: " + quoted_choices(names_of(kToneMaps)))
       ->check(CLI::IsMember(names_of(kToneMaps)));
   cmd->add_option("--key", m->outputs.key, "tone-mapping key")->check(CLI::PositiveNumber);
+  cmd->add_flag("--allow-partial", m->allow_partial, "merge parts that do not cover all the render's samples (the report "
+                                                      "says \"interrupted\": true)");
   return [cmd, m] { return cmd->parsed() ? run_merge(*m) : -1; };
 }
 
