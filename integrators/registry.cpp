@@ -91,10 +91,13 @@ void check_render_keys(const std::string& name, const JsonBlock& render,
     }
     const auto rd = readers.find(key);
     if (rd == readers.end()) {
-      std::vector<std::string> known(std::begin(kLoopKeys), std::end(kLoopKeys));
+      // A value for the render, or an integrator's own object of parameters: "irradiance" is both
+      // (the irradiance mode, and the irradiance integrator's object), said once in each role.
+      std::vector<std::string> known(std::begin(kLoopKeys), std::end(kLoopKeys)), blocks;
       for (const auto& [k, who] : readers) known.push_back(k);
-      for (const auto& e : integrator_registry()) known.push_back(e.name);
-      throw InputError(render.file + ":" + render.path + "." + key, "unknown key (expected one of: " + join(known) + ")");
+      for (const auto& e : integrator_registry()) blocks.push_back(e.name);
+      throw InputError(render.file + ":" + render.path + "." + key,
+                       "unknown key (expected one of: " + join(known) + "; or an integrator's object of parameters: " + join(blocks) + ")");
     }
     if (std::find(rd->second.begin(), rd->second.end(), name) == rd->second.end())
       warnings.add("render." + key, fmt::format("has no effect: the {} integrator does not read it (only {} {})", name,

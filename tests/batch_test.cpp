@@ -12,6 +12,8 @@
 #include <chrono>
 #include <filesystem>
 #include <fmt/format.h>
+#include <functional>
+#include <map>
 #include <thread>
 
 #include "cli_util.h"
@@ -191,7 +193,7 @@ TEST(Batch, BadBatchesAreRefusedNamingTheEntry) {
   refused({{"scene", "none.json"}, {"entries", b.entries}}, "none.json");
   auto twice = b.entries;
   twice[2]["output"]["image"] = "out/e0.exr";
-  refused({{"scene", "scene.json"}, {"entries", twice}}, "entries[2]");
+  refused({{"scene", "scene.json"}, {"entries", twice}}, "entry 2");
   auto unnamed = b.entries;
   unnamed[1].erase("output");
   refused({{"scene", "scene.json"}, {"entries", unnamed}}, "entries[1]: every entry names its own output.image");
@@ -199,6 +201,64 @@ TEST(Batch, BadBatchesAreRefusedNamingTheEntry) {
   missing[2]["objects"][0]["mesh"] = "no_such.obj";
   refused({{"scene", "scene.json"}, {"entries", missing}}, "entries[2]");
   EXPECT_FALSE(fs::exists(b.out(0)));
+}
+
+// The whole batch is checked before its first render (issue 46): an entry's output on the batch
+// file, on the room's scene file or on another entry's photo, and two entries writing one file
+// under two spellings (a layers path that is another entry's image, a symlink), each exit 0 and
+// an overwritten input before. Refused with one line; nothing rendered, nothing changed.
+TEST(Batch, NoEntryWritesOverAnInputOrAnotherEntrysOutput) {
+  BatchFixture b;
+  const fs::path dir = b.fx.dir.path();
+  fs::copy_file(dir / "photo.png", dir / "photo1.png");
+  fs::copy_file(dir / "scene.json", dir / "room.png.report.json");
+  fs::create_directories(dir / "out");
+  b.fx.dir.write("out/e0.exr", "a previous run's image");
+  fs::create_symlink(dir / "out/e0.exr", dir / "out/link.exr");
+  struct Case {
+    std::string batch_name, room, says;
+    std::function<void(nlohmann::json&)> edit;
+  };
+  const std::vector<Case> cases = {
+      {"e.png.report.json", "scene.json", "the batch file", [](auto& e) { e[0]["output"]["image"] = "e.png"; }},
+      {"batch.json", "room.png.report.json", "the room's scene file", [](auto& e) { e[1]["output"]["image"] = "room.png"; }},
+      {"batch.json", "scene.json", "the photo of entry 1", [](auto& e) {
+         e[1]["photo"] = "photo1.png";
+         e[0]["output"]["image"] = "photo1.png";
+       }},
+      {"batch.json", "scene.json", "the output image of entry 1", [](auto& e) { e[0]["output"]["layers"] = "out/e1.exr"; }},
+      {"batch.json", "scene.json", "the output image of entry 0", [](auto& e) { e[2]["output"]["image"] = "out/link.exr"; }},
+  };
+  for (const Case& c : cases) {
+    nlohmann::json entries = b.entries;
+    c.edit(entries);
+    const std::string batch = b.fx.dir.write(c.batch_name, nlohmann::json{{"scene", c.room}, {"entries", entries}}.dump(2));
+    std::map<std::string, std::string> before;
+    for (const auto& e : fs::directory_iterator(dir))
+      if (e.is_regular_file() && e.path().extension() != ".txt")  // not run_insitu's stdout.txt, stderr.txt
+        before[e.path().string()] = test::slurp(e.path().string());
+    test::expect_one_line_error(run_insitu(b.fx.dir, "batch " + batch), c.says);
+    for (const auto& [file, text] : before) EXPECT_EQ(test::slurp(file), text) << c.says << ": " << file << " changed";
+    EXPECT_EQ(test::slurp(b.fx.dir.file("out/e0.exr")), "a previous run's image") << c.says;
+    EXPECT_FALSE(fs::exists(b.out(1))) << c.says << ": an entry was rendered";
+    fs::remove(batch);
+  }
+}
+
+// docs/farm.md's batch example is a batch insitu reads (issue 46: it used "rotate_deg", which the
+// parser refuses): its JSON block, with the fixture's room and quad as its meshes.
+TEST(Batch, TheFarmPagesExampleIsABatchInsituReads) {
+  BatchFixture b;
+  const std::string doc = test::slurp(test::source_dir() + "/docs/farm.md");
+  const std::size_t section = doc.find("## Batches"), begin = doc.find("```json\n", section), end = doc.find("```\n", begin + 8);
+  ASSERT_NE(section, std::string::npos);
+  ASSERT_NE(end, std::string::npos);
+  auto batch = nlohmann::json::parse(doc.substr(begin + 8, end - begin - 8));
+  batch["scene"] = "scene.json";
+  for (const char* mesh : {"sofa.obj", "table.obj"}) fs::copy_file(b.fx.dir.path() / "good_quad.obj", b.fx.dir.path() / mesh);
+  const test::CliRun r = run_insitu(b.fx.dir, "batch " + b.fx.dir.write("farm.json", batch.dump()) + " --count");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, fmt::format("{}\n", batch["entries"].size()));
 }
 
 }  // namespace

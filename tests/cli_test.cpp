@@ -33,6 +33,12 @@ TEST(Cli, UsageErrorsAreOneLine) {
   expect_one_line_error(run_insitu(dir, "render"), "scene");
   expect_one_line_error(run_insitu(dir, "paint scene.json"), "");
   expect_one_line_error(run_insitu(dir, "render x.json --spp 0"), "spp");
+  // A range a person can read (issue 46: --index -1 named the range 0 to a 309-digit double).
+  for (const char* args : {"batch b.json --index -1", "batch b.json --per-task 0"}) {
+    const CliRun r = run_insitu(dir, args);
+    expect_one_line_error(r, "2147483647");
+    EXPECT_LT(r.err.size(), 120u) << r.err;
+  }
 }
 
 TEST(Cli, MissingSceneFile) {
@@ -79,6 +85,19 @@ TEST(Cli, RendersAScene) {
   // No temporary files are left behind.
   for (const auto& e : std::filesystem::recursive_directory_iterator(fx.dir.path()))
     EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+}
+
+// A scene file whose name is not UTF-8 (Linux allows any bytes) renders, and its report names it
+// with U+FFFD for the bad byte. Before: the image written, then "internal error" (exit 1) and no
+// report, as json::dump refused the name (issue 46).
+TEST(Cli, ASceneFileNamedInAnotherEncodingRenders) {
+  test::SceneFixture fx;
+  const std::string latin1 = fx.dir.file("sc\xe8ne.json");  // "scène" in Latin-1
+  std::filesystem::copy_file(fx.write(), latin1);
+  const CliRun r = run_insitu(fx.dir, "render '" + latin1 + "' -o " + fx.dir.file("c.png") + " --spp 1");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json report = nlohmann::json::parse(test::slurp(fx.dir.file("c.png.report.json")));
+  EXPECT_NE(report.dump().find("sc\xef\xbf\xbdne.json"), std::string::npos) << report.dump();  // U+FFFD
 }
 
 // Writes points.json: seven points as a known camera of the fixture's photo size sees them, with

@@ -62,6 +62,12 @@ TEST(Registry, ErrorsNameTheKey) {
             "scene.json:$.render.path.max_dept: unknown key (the path integrator reads: max_depth)");
   EXPECT_NE(error_of("path", {{"max_dept", 4}}).find("scene.json:$.render.max_dept: unknown key (expected one of: "),
             std::string::npos);
+  // "irradiance" is a key twice over, once in each role (issue 46: the list named it twice, as if
+  // by mistake): the integrators' objects are listed apart, from the registry.
+  std::string blocks;
+  for (const auto& e : integrator_registry()) blocks += std::string(blocks.empty() ? "" : ", ") + e.name;
+  EXPECT_NE(error_of("path", {{"max_dept", 4}}).find("; or an integrator's object of parameters: " + blocks + ")"),
+            std::string::npos) << error_of("path", {{"max_dept", 4}});
   EXPECT_EQ(error_of("path", {{"max_depth", 0}}), "scene.json:$.render.max_depth: 0 is out of range [1, 1000]");
   EXPECT_EQ(error_of("path", {{"irradiance", "best"}}),
             "scene.json:$.render.irradiance: expected \"gaussian\", \"sh9\", \"exact\" or \"volume\"");

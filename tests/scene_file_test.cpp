@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include <tbb/global_control.h>
 
 #include "output/composite.h"
@@ -10,6 +12,7 @@ namespace insitu {
 namespace {
 
 using test::SceneFixture;
+namespace fs = std::filesystem;
 
 // Expects parse+load of `j` to fail with an InputError whose place ends with `where` (after the
 // scene file's path) and whose message contains `what`.
@@ -33,6 +36,25 @@ TEST(SceneFile, ValidSceneLoads) {
   EXPECT_EQ(s.objects->meshes().size(), 1u);
   EXPECT_EQ(s.spec.render.spp, 4);
   EXPECT_EQ(s.spec.render.integrator, "realtime");
+}
+
+// The layers' default (issue 46): out/layers.exr beside the default image; beside an image of
+// the scene's own, IMAGE_STEM.layers.exr (variants in one folder wrote one out/layers.exr over
+// each other's); as given, or none, when output.layers says so.
+TEST(SceneFile, TheLayersFollowTheImage) {
+  using Paths = std::pair<std::string, std::string>;  // the image's and the layers', in the scene's folder
+  SceneFixture fx;
+  const auto outputs = [&](const nlohmann::json& output) {
+    auto j = fx.scene;
+    if (!output.is_null()) j["output"] = output;
+    const OutputSpec o = parse_scene_file(fx.write(j)).output;
+    return Paths{fs::path(o.image).lexically_relative(fx.dir.path()).string(),
+                     o.layers.empty() ? "" : fs::path(o.layers).lexically_relative(fx.dir.path()).string()};
+  };
+  EXPECT_EQ(outputs(nullptr), Paths("out/composite.png", "out/layers.exr"));
+  EXPECT_EQ(outputs({{"image", "out/sofa.png"}}), Paths("out/sofa.png", "out/sofa.layers.exr"));
+  EXPECT_EQ(outputs({{"image", "out/sofa.png"}, {"layers", "l.exr"}}), Paths("out/sofa.png", "l.exr"));
+  EXPECT_EQ(outputs({{"image", "out/sofa.png"}, {"layers", "none"}}), Paths("out/sofa.png", ""));
 }
 
 TEST(SceneFile, MalformedJsonNamesLineAndColumn) {
@@ -179,6 +201,45 @@ TEST(SceneFile, MissingFilesAndKeys) {
   j = fx.scene;
   j.erase("camera");
   expect_error(fx, j, ":$", "missing required key 'camera'");
+  // A missing "faced" says what it is (issue 46).
+  j = fx.scene;
+  j["environment"] = {{"shots", {{"+x", "photo.png"}, {"-x", "photo.png"}, {"+z", "photo.png"}, {"-z", "photo.png"},
+                                 {"up", "photo.png"}, {"down", "photo.png"}}}};
+  expect_error(fx, j, ":$.environment.shots", "the wall you faced when you shot the ceiling and the floor");
+}
+
+// One tiny shot among six limits every cube face: said, naming it (issue 46: a 1×1 shot shrank
+// the environment to six texels without a word); six shots of one size say nothing.
+TEST(SceneFile, AShotThatShrinksTheEnvironmentIsNamed) {
+  SceneFixture fx;
+  nlohmann::json shots = {{"faced", "-z"}};
+  for (const char* k : {"+x", "-x", "+z", "-z", "up", "down"}) {
+    const std::string name = std::string("shot") + (k[0] == '+' ? "p" : k[0] == '-' ? "n" : "") + (k + (k[0] == '+' || k[0] == '-')) + ".png";
+    write_image(fx.dir.file(name), Image(64, 64, 3, 0.4f));
+    shots[k] = name;
+  }
+  auto j = fx.scene;
+  j["environment"] = {{"shots", shots}};
+  const auto warned = [&](const std::string& about) {
+    const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
+    for (const std::string& w : s.warnings.items)
+      if (w.find("limits every cube face") != std::string::npos) return w.find(about) != std::string::npos;
+    return false;
+  };
+  EXPECT_FALSE(warned(""));
+  write_image(fx.dir.file("tiny.png"), Image(1, 1, 3, 0.4f));
+  j["environment"]["shots"]["+z"] = "tiny.png";
+  EXPECT_TRUE(warned("tiny.png: 1 × 1 pixels: it limits every cube face to"));
+}
+
+// Context is prepended once: an error named at the same place twice on its way out (issue 46:
+// "sh.json:$.environment.shots.+x: sh.json:$.environment.shots.+x: ...").
+TEST(SceneFile, ContextIsNamedOnce) {
+  const InputError inner("sh.json:$.shots.+x: bad.jpg", "cannot read image");
+  EXPECT_EQ(inner.with_context("sh.json:$.shots.+x").where(), "sh.json:$.shots.+x: bad.jpg");
+  EXPECT_EQ(inner.with_context("sh.json").where(), "sh.json:$.shots.+x: bad.jpg");
+  EXPECT_EQ(inner.with_context("batch.json:$.entries[0]").where(), "batch.json:$.entries[0]: sh.json:$.shots.+x: bad.jpg");
+  EXPECT_EQ(InputError("bad.jpg", "x").with_context("sh.json:$.shots.+x").what(), std::string("sh.json:$.shots.+x: bad.jpg: x"));
 }
 
 TEST(SceneFile, BadMeshErrorCarriesJsonPathAndObjLine) {

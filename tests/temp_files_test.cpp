@@ -6,7 +6,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/image.h"
 #include "core/temp_files.h"
+#include "core/text_file.h"
 #include "test_util.h"
 
 namespace insitu {
@@ -37,6 +39,25 @@ TEST(TempFiles, InterruptRemovesTemporaryOutputs) {
     EXPECT_FALSE(std::filesystem::exists(tmp)) << "the interrupted write left " << tmp;
     EXPECT_TRUE(std::filesystem::exists(done));
   }
+}
+
+// A SIGKILL during a write leaves its temporary (no handler runs): the next write of the same
+// output removes it, once its process is gone (issue 46), and leaves a live process's alone.
+TEST(TempFiles, AKilledWritersTemporaryIsRemovedByTheNextWrite) {
+  test::TempDir dir;
+  const pid_t dead = fork();
+  if (dead == 0) _exit(0);
+  ASSERT_GT(dead, 0);
+  waitpid(dead, nullptr, 0);  // its PID now names no process (until reused)
+  const std::string image_tmp = dir.file(".c.tmp-" + std::to_string(dead) + "-0.png");
+  const std::string report_tmp = dir.file(".c.png.report.json.tmp-" + std::to_string(dead));
+  const std::string live_tmp = dir.file(".c.tmp-" + std::to_string(::getpid()) + "-99.png");
+  for (const std::string& f : {image_tmp, report_tmp, live_tmp}) std::ofstream(f) << "half";
+  write_image(dir.file("c.png"), Image(4, 4, 3, 0.5f));
+  write_text_file(dir.file("c.png.report.json"), "{}\n");
+  EXPECT_FALSE(std::filesystem::exists(image_tmp));
+  EXPECT_FALSE(std::filesystem::exists(report_tmp));
+  EXPECT_TRUE(std::filesystem::exists(live_tmp)) << "a live process's temporary was removed";
 }
 
 }  // namespace

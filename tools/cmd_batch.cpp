@@ -25,6 +25,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
+#include <limits>
 #include <memory>
 
 #include "commands.h"
@@ -32,6 +33,7 @@
 #include "core/json_reader.h"
 #include "core/output_paths.h"
 #include "progress.h"
+#include "render/checkpoint.h"
 #include "scene/output_layers.h"
 #include "scene/pipeline.h"
 
@@ -49,6 +51,24 @@ struct Entry {
   json scene;  // the room's scene file with the entry's patch
   SceneSpec spec;
 };
+
+// The whole batch before its first render, as `render` checks one scene: no entry's output (image,
+// layers, report) is the batch file, the room's scene file, or any entry's input (photo, shots,
+// points, meshes), and no two outputs of the batch are one file, however spelled (same_file:
+// symlinks, "..", hard links). An entry checked alone could not see the others (issue 46: a
+// report on the batch file or another entry's photo, with exit 0). The files an OBJ names (MTL,
+// textures) are known once it loads: load_scene checks them against that entry's outputs.
+void check_batch_outputs(const std::string& batch, const std::string& room, const std::vector<Entry>& entries) {
+  std::vector<NamedPath> inputs = {{batch, "the batch file"}, {room, "the room's scene file"}}, outputs;
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    for (NamedPath& in : scene_input_files(entries[i].spec))
+      if (in.path != entries[i].spec.path) inputs.push_back({in.path, fmt::format("{} of entry {}", in.role, i)});
+    for (NamedPath& out : scene_output_files(entries[i].spec))
+      if (out.path != checkpoint_path(entries[i].spec.output.image))  // a batch writes no checkpoint
+        outputs.push_back({out.path, fmt::format("{} of entry {}", out.role, i)});
+  }
+  check_outputs(inputs, outputs);
+}
 
 // The room's scene file, then each entry merged into it and parsed (every error names the entry).
 std::vector<Entry> read_batch(const std::string& path) {
@@ -73,10 +93,7 @@ std::vector<Entry> read_batch(const std::string& path) {
     merged.merge_patch(patch);
     entries.push_back({merged, parse_scene_json(merged, where, scene_path.parent_path().string())});
   }
-  for (std::size_t i = 0; i < entries.size(); ++i)
-    for (std::size_t k = 0; k < i; ++k)
-      if (same_file(entries[i].spec.output.image, entries[k].spec.output.image))
-        throw InputError(entries[i].spec.path, fmt::format("output.image {} is entry {}'s too", entries[i].spec.output.image, k));
+  check_batch_outputs(path, scene_path.string(), entries);
   return entries;
 }
 
@@ -92,7 +109,7 @@ void hash_file(Fnv1a& h, const std::string& path) {
 // The entry's inputs hash (see the top of the file), in hex; `mesh_files`: what its meshes read.
 std::string inputs_hash(const Entry& e, const std::vector<std::string>& mesh_files) {
   Fnv1a h;
-  h.text("insitu batch entry 2"), h.text(INSITU_VERSION), h.text(e.scene.dump());
+  h.text("insitu batch entry 2"), h.text(INSITU_VERSION), h.text(json_text(e.scene));
   for (const NamedPath& in : scene_input_files(e.spec)) hash_file(h, in.path);
   h.text("mesh files");
   for (const std::string& path : mesh_files) hash_file(h, path);
@@ -184,9 +201,9 @@ Command add_batch_command(CLI::App& app) {
   auto a = std::make_shared<BatchArgs>();
   CLI::App* cmd = app.add_subcommand("batch", "render the entries of a batch file: one room, many objects and outputs");
   cmd->add_option("batch", a->batch, "the batch file (JSON: the room's scene file and its entries)")->required();
-  cmd->add_option("--index", a->index, "render entry I only (a Slurm array task's $SLURM_ARRAY_TASK_ID)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--index", a->index, "render entry I only (a Slurm array task's $SLURM_ARRAY_TASK_ID)")->check(CLI::Range(0, std::numeric_limits<int>::max()));
   cmd->add_option("--per-task", a->per_task, "entries per --index: task I renders entries I*K to I*K+K-1 (default 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, std::numeric_limits<int>::max()));
   cmd->add_flag("--force", a->force, "render entries whose outputs are there, of the same inputs, again");
   cmd->add_flag("--count", a->count, "print the number of tasks (entries, or groups of --per-task) and render nothing (for sbatch --array=0-(N-1))");
   return [cmd, a] { return cmd->parsed() ? run_batch(*a) : -1; };

@@ -10,6 +10,7 @@
 #include "calib/calibration_summary.h"
 #include "commands.h"
 #include "core/image.h"
+#include "core/json_reader.h"
 #include "core/output_paths.h"
 #include "core/text_file.h"
 #include "calib/view_correlation.h"
@@ -64,7 +65,7 @@ int run_calibrate(const CalibrateArgs& a) {
   std::printf("%s", summary.report.c_str());
   const nlohmann::json& camera_json = summary.camera_json;
   if (!a.output.empty()) {
-    write_text_file(a.output, camera_json.dump(2) + "\n");
+    write_text_file(a.output, json_text(camera_json, 2) + "\n");
     std::printf("wrote %s\n", a.output.c_str());
   }
   if (!a.blender.empty()) {

@@ -19,6 +19,7 @@
 #include <fmt/format.h>
 #include <memory>
 
+#include "core/json_reader.h"
 #include "core/output_paths.h"
 #include "core/temp_files.h"
 #include "render/checkpoint.h"
@@ -91,7 +92,7 @@ int run_part(const RenderArgs& a, const SceneSpec& spec) {
   const nlohmann::json record = {{"args", sum_args_json(a)},
                                   {"prepare_seconds", result.prepare_seconds},
                                   {"render_seconds", result.layers.seconds}};
-  write_checkpoint(part, state, fingerprint, record.dump());
+  write_checkpoint(part, state, fingerprint, json_text(record));
   std::error_code ignored;
   std::filesystem::remove(checkpoint, ignored);
   std::printf("%s\n", part.c_str());

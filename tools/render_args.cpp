@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/json_reader.h"
 #include "core/output_paths.h"
 #include "integrators/registry.h"
 #include "output/tonemap.h"
@@ -59,7 +60,7 @@ PartRecord part_record_from_json(const std::string& text, const std::string& whe
   try {
     const nlohmann::json j = nlohmann::json::parse(text);
     const nlohmann::json& a = j.at("args");
-    r.args_text = a.dump();
+    r.args_text = json_text(a);
     r.args.scene = a.at("scene").get<std::string>();
     r.args.spp = a.at("spp").get<int>();
     r.args.seed = a.at("seed").get<long>();

@@ -5,6 +5,7 @@
 #include "calib/blender_camera.h"
 #include "calib/calibration_summary.h"
 #include "calib/view_correlation.h"
+#include "core/json_reader.h"
 #include "core/output_paths.h"
 
 using namespace insitu;
@@ -46,7 +47,7 @@ void fill(const Camera& c, insitu_camera& out) {
 void summarize(insitu_calibration& c) {
   const CalibrationSummary s = summarize_calibration(c.result, c.boxes);
   c.report = s.report;
-  c.json = s.camera_json.dump(2) + "\n";
+  c.json = json_text(s.camera_json, 2) + "\n";
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "api/api_internal.h"
+#include "core/json_reader.h"
 #include "core/output_paths.h"
 #include "core/file_check.h"
 #include "render/checkpoint.h"
@@ -72,7 +73,7 @@ insitu_status render(insitu_scene* scene, const char* checkpoint, insitu_progres
     if (checkpoint && r->result.layers.interrupted) write_checkpoint(checkpoint, state, fingerprint);
     if (checkpoint && !r->result.layers.interrupted) std::filesystem::remove(checkpoint);
     r->layers = output_layers(l, r->result);
-    r->report = render_report(l, r->result).dump(2) + "\n";
+    r->report = json_text(render_report(l, r->result), 2) + "\n";
     cancelled = r->result.layers.interrupted;
     *result = r.release();
   });

@@ -17,9 +17,11 @@ class InputError : public std::runtime_error {
         where_(std::move(where)), what_(std::move(what)) {}
   const std::string& where() const { return where_; }
   const std::string& message() const { return what_; }
-  // A copy with `outer` prepended to the place: "outer: where: what".
+  // A copy with `outer` prepended to the place: "outer: where: what". A place that already begins
+  // with `outer` (an error named at the same place twice on its way out) keeps it once: not
+  // "sh.json:$.shots.+x: sh.json:$.shots.+x: ...".
   InputError with_context(const std::string& outer) const {
-    if (outer.empty()) return *this;
+    if (outer.empty() || where_ == outer || where_.rfind(outer + ":", 0) == 0) return *this;
     return InputError(where_.empty() ? outer : outer + ": " + where_, what_);
   }
 

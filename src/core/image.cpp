@@ -336,6 +336,7 @@ void write_atomically(const std::string& path, const std::string& format, const 
                       const std::function<bool(ImageOutput&)>& write_pixels) {
   const fs::path p(path);
   make_parent(p);
+  remove_stale_temporaries(path, p.stem().string());
   const std::string tmp = temporary_name(p);
   auto out = ImageOutput::create(format.empty() ? tmp : format);
   if (!out) throw InputError(path, "no image format for '" + p.extension().string() + "'");

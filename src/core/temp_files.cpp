@@ -4,7 +4,10 @@
 
 #include <atomic>
 #include <csignal>
+#include <cerrno>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
 
 namespace insitu {
 namespace {
@@ -47,6 +50,24 @@ void install_interrupt_cleanup() {
 void arm_graceful_stop(bool armed) { g_graceful.store(armed); }
 
 const std::atomic<bool>& graceful_stop_flag() { return g_stop; }
+
+void remove_stale_temporaries(const std::string& final_path, const std::string& prefix) {
+  const std::filesystem::path p(final_path);
+  const std::filesystem::path dir = p.parent_path().empty() ? "." : p.parent_path();
+  const std::string start = "." + prefix + ".tmp-";
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.compare(0, start.size(), start) != 0) continue;
+    char* digits_end = nullptr;
+    const long pid = std::strtol(name.c_str() + start.size(), &digits_end, 10);
+    if (pid <= 0 || digits_end == name.c_str() + start.size()) continue;
+    if (::kill(pid_t(pid), 0) != 0 && errno == ESRCH) {
+      std::error_code ignored;
+      std::filesystem::remove(it->path(), ignored);
+    }
+  }
+}
 
 TempFileGuard::TempFileGuard(const std::string& path) {
   if (path.size() >= kPathMax) return;  // not protected; still removed on ordinary failures

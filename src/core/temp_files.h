@@ -19,6 +19,12 @@ void install_interrupt_cleanup();
 void arm_graceful_stop(bool armed);
 const std::atomic<bool>& graceful_stop_flag();
 
+// The temporaries of an output that a killed process left (SIGKILL cannot be caught): the files
+// beside `final_path` named ".<prefix>.tmp-<pid>..." (<prefix> its stem for images, its whole name
+// for text files) whose process no longer runs (kill(pid, 0) says ESRCH). A live process's,
+// another insitu writing the same name, is left alone. Called before each write of `final_path`.
+void remove_stale_temporaries(const std::string& final_path, const std::string& prefix);
+
 // A temporary file for as long as the object lives: registered on construction, unregistered on
 // destruction (after the rename, or after a failed write has removed it).
 class TempFileGuard {

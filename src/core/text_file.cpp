@@ -19,6 +19,7 @@ void write_binary_file(const std::string& path, const std::string& text) {
   const fs::path p(path);
   std::error_code ec;
   if (!p.parent_path().empty()) fs::create_directories(p.parent_path(), ec);
+  remove_stale_temporaries(path, p.filename().string());
   const fs::path tmp = p.parent_path() / fmt::format(".{}.tmp-{}", p.filename().string(), ::getpid());
   const TempFileGuard guard(tmp.string());  // removed if the process is interrupted meanwhile
   {

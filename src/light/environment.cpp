@@ -204,8 +204,25 @@ bool apply_exif_exposure(const EnvironmentSpec& spec, const ImageFile* photo, Li
   return false;
 }
 
+// The smallest shot sets every face's size (natural_face_size). One far smaller than the others
+// (a thumbnail, a 1×1 image among six photos) shrinks the whole environment without a word
+// (issue 46): said, naming the shot, when it halves (or worse) the faces the others would give.
+void warn_if_one_shot_limits(const EnvironmentSpec& spec, const ShotSet& set, int n, Warnings& warnings) {
+  int smallest = 0, others = 1024;
+  for (int f = 1; f < 6; ++f)
+    if (shot_face_size(set, f) < shot_face_size(set, smallest)) smallest = f;
+  for (int f = 0; f < 6; ++f)
+    if (f != smallest) others = std::min(others, shot_face_size(set, f));
+  if (2 * n > others) return;
+  warnings.add(spec.shots[std::size_t(smallest)].files.front(),
+               fmt::format("{} × {} pixels: it limits every cube face to {} × {} texels (the other shots give {}); "
+                           "give a larger shot, or environment.face_size", set.shots[std::size_t(smallest)].width,
+                           set.shots[std::size_t(smallest)].height, n, n, others));
+}
+
 CubeMap assemble(const EnvironmentSpec& spec, const ShotSet& set, EnvironmentInfo& info, Warnings& warnings) {
   const int n = spec.face_size > 0 ? spec.face_size : natural_face_size(set);
+  if (spec.face_size <= 0) warn_if_one_shot_limits(spec, set, n, warnings);
   AssemblyInfo assembly;
   CubeMap cube;
   try {

@@ -26,12 +26,14 @@ ShotBasis shot_basis(int face, int faced_face) {
   return b;
 }
 
+int shot_face_size(const ShotSet& set, int f) {
+  const double scale = 1.0 / std::tan(0.5 * deg_to_rad(set.hfov_deg[std::size_t(f)]));  // tan 45° / tan(hfov/2)
+  return std::max(1, int(std::lround(set.shots[std::size_t(f)].width * scale)));
+}
+
 int natural_face_size(const ShotSet& set, int max_face_size) {
   int n = max_face_size;
-  for (int f = 0; f < 6; ++f) {
-    const double scale = 1.0 / std::tan(0.5 * deg_to_rad(set.hfov_deg[std::size_t(f)]));  // tan 45° / tan(hfov/2)
-    n = std::min(n, std::max(1, int(std::lround(set.shots[std::size_t(f)].width * scale))));
-  }
+  for (int f = 0; f < 6; ++f) n = std::min(n, shot_face_size(set, f));
   return n;
 }
 

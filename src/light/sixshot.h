@@ -48,6 +48,8 @@ void fill_uncovered(CubeMap& cube, const CubeMap& weight);
 // The face size that keeps one shot pixel per texel: min over shots of
 // width · tan(45°) / tan(hfov/2), capped at max_face_size.
 int natural_face_size(const ShotSet& set, int max_face_size = 1024);
+// Shot f's own face size at one shot pixel per texel: width · tan(45°) / tan(hfov/2), at least 1.
+int shot_face_size(const ShotSet& set, int f);
 
 // Assembles the cube; a face its shot covers less than fully is filled (AssemblyInfo::coverage).
 // Throws InputError naming a shot that covers none of its face.

@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "core/json_reader.h"
+
 namespace insitu {
 namespace {
 
@@ -45,7 +47,7 @@ std::string material_line(const Material& m, const std::string& object_name) {
 
 }  // namespace
 
-std::string py_string(const std::string& s) { return nlohmann::json(s).dump(); }
+std::string py_string(const std::string& s) { return json_text(nlohmann::json(s)); }
 
 std::string py_rgb(const Rgb& c) { return fmt::format("({:.9g}, {:.9g}, {:.9g})", c[0], c[1], c[2]); }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/json_reader.h"
 #include "core/output_paths.h"
 #include "core/text_file.h"
 #include "output/composite.h"
@@ -99,7 +100,7 @@ void write_outputs(const LoadedScene& scene, const RenderResult& r, const Output
   }
   nlohmann::json report = render_report(scene, r, &out);
   if (report_extra.is_object()) report.update(report_extra);
-  write_text_file(report_path(out.image), report.dump(2) + "\n");
+  write_text_file(report_path(out.image), json_text(report, 2) + "\n");
 }
 
 }  // namespace insitu

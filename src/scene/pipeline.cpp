@@ -333,10 +333,6 @@ nlohmann::json adaptive_report(double noise_target, const RenderLayers& layers) 
 
 std::string report_path(const std::string& image_path) { return image_path + ".report.json"; }
 
-std::string layers_path_for(const std::string& image_path) {
-  const std::filesystem::path p(image_path);
-  return (p.parent_path() / (p.stem().string() + ".layers.exr")).string();
-}
 
 nlohmann::json render_report(const LoadedScene& s, const RenderResult& r, const OutputSpec* output) {
   using nlohmann::json;

@@ -98,8 +98,6 @@ void write_outputs(const LoadedScene& scene, const RenderResult& result, const O
 nlohmann::json render_report(const LoadedScene& scene, const RenderResult& result, const OutputSpec* output = nullptr);
 // The report of an image: its whole name + ".report.json" (a.png and a.exr keep their own).
 std::string report_path(const std::string& image_path);
-// The layers that go with an image given by -o: IMAGE_STEM.layers.exr beside it.
-std::string layers_path_for(const std::string& image_path);
 
 // Whether a world-space box lies entirely outside the camera's view frustum (conservative: a box
 // that straddles a corner of the frustum may still be out of view).

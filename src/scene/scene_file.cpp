@@ -217,6 +217,16 @@ EnvironmentSpec::RoomBox parse_room_box(const JsonValue& v) {
   return box;
 }
 
+// "faced": the wall the photographer faced when shooting the ceiling and the floor. A missing one
+// says what it is (the key's name alone did not).
+JsonValue faced_wall(JsonObject& shots) {
+  if (!shots.has("faced"))
+    shots.fail("missing required key 'faced': the wall you faced when you shot the ceiling and the floor (\"-z\", "
+               "\"+x\", ..., or \"front\", ...): the ceiling shot's bottom edge and the floor shot's top edge point "
+               "toward it");
+  return shots.get("faced");
+}
+
 // The walls as "front", "right", "back", "left" plus which world axis "front" faces (right =
 // front × up); `shot(face, key)` reads each. Returns the faced wall ("front", ... or an axis).
 template <class ReadShot>
@@ -231,7 +241,7 @@ int parse_walls_by_turn(JsonObject& s, const ReadShot& shot) {
   const int walls[4] = {ring[k], ring[(k + 1) % 4], ring[(k + 2) % 4], ring[(k + 3) % 4]};
   const char* names[4] = {"front", "right", "back", "left"};
   for (int i = 0; i < 4; ++i) shot(walls[i], names[i]);
-  const JsonValue faced = s.get("faced");
+  const JsonValue faced = faced_wall(s);
   const std::string name = faced.string();
   for (int i = 0; i < 4; ++i)
     if (name == names[i]) return walls[i];
@@ -279,7 +289,7 @@ EnvironmentSpec parse_environment(const JsonValue& v, const fs::path& dir) {
     shot(kNegX, "-x");
     shot(kPosZ, "+z");
     shot(kNegZ, "-z");
-    e.faced_face = parse_axis(s.get("faced"));
+    e.faced_face = parse_axis(faced_wall(s));
   }
   if (e.faced_face == kPosY || e.faced_face == kNegY) s.get("faced").fail("the faced wall must be horizontal");
   // The ceiling and floor shots: "up" and "down", or by their axes "+y" and "-y".
@@ -458,13 +468,17 @@ void parse_tonemap_settings(const JsonValue& tm, SceneSpec& scene) {
   t.finish();
 }
 
-// output: the composite (default out/composite.png), the layers (out/layers.exr, or "none").
+// output: the composite (default out/composite.png), the layers (out/layers.exr with the default
+// image; beside a given image, IMAGE_STEM.layers.exr; or "none").
 void parse_output(const std::optional<JsonValue>& out, const fs::path& dir, SceneSpec& scene) {
   scene.output.image = resolve(dir, "out/composite.png");
   scene.output.layers = resolve(dir, "out/layers.exr");
   if (!out) return;
   JsonObject oo(*out);
-  if (auto img = oo.find("image")) scene.output.image = output_file(*img, dir, {".png", ".jpg", ".jpeg", ".exr", ".tif", ".tiff"});
+  if (auto img = oo.find("image")) {
+    scene.output.image = output_file(*img, dir, {".png", ".jpg", ".jpeg", ".exr", ".tif", ".tiff"});
+    scene.output.layers = layers_path_for(scene.output.image);
+  }
   if (auto layers = oo.find("layers"))
     scene.output.layers = layers->is_string() && layers->string() == "none" ? "" : output_file(*layers, dir, {".exr"});
   if (auto tm = oo.find("tonemap")) parse_tonemap_settings(*tm, scene);
@@ -472,6 +486,11 @@ void parse_output(const std::optional<JsonValue>& out, const fs::path& dir, Scen
 }
 
 }  // namespace
+
+std::string layers_path_for(const std::string& image_path) {
+  const fs::path p(image_path);
+  return (p.parent_path() / (p.stem().string() + ".layers.exr")).string();
+}
 
 SceneSpec parse_scene_file(const std::string& path) {
   return parse_scene_json(read_json_file(path), path, fs::path(path).parent_path().string());

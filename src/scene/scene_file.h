@@ -17,6 +17,10 @@ SceneSpec parse_scene_json(const json& doc, const std::string& path, const std::
 
 // Outputs whose format ignores the tone map: EXR and TIFF stay linear, scene-referred.
 bool is_linear_output(const std::string& image_path);
+// The layers that go with an image (-o, or a scene file's output.image without output.layers):
+// IMAGE_STEM.layers.exr beside it, so that scenes and batch entries with images of their own do
+// not write one out/layers.exr over each other's.
+std::string layers_path_for(const std::string& image_path);
 // A JSON file holding just an environment object (the scene file's "environment" value).
 EnvironmentSpec parse_environment_file(const std::string& path);
 
