@@ -133,6 +133,13 @@ int call_progress(const insitu_progress* p, void* user) {
   }
 }
 
+// A Scene is used by one call at a time (the C API's rule, include/insitu/insitu.h). render()
+// releases the GIL, so another Python thread could call into the same scene meanwhile: set()
+// freed what the render read (issue 46: a use-after-free). Such a call is refused with an
+// insitu.Error instead (serialising it would deadlock: the waiting thread holds the GIL, which
+// the render's progress callback needs); cancel() alone may come from another thread. `busy_` is
+// set and cleared with the GIL held, and every other method runs with the GIL held throughout,
+// so the check cannot race.
 class Scene {
  public:
   explicit Scene(const std::string& path) {
@@ -148,15 +155,18 @@ class Scene {
     return Scene(s);
   }
   void set(const std::string& key, const py::object& value) {
+    require_idle();
     check(insitu_scene_set(s_.get(), key.c_str(), json_text(value).c_str()));
   }
   void add_obj(const std::string& path, const py::object& m) {
+    require_idle();
     const auto M = matrix(m);
     check(insitu_scene_add_obj(s_.get(), path.c_str(), M ? M->data() : nullptr));
   }
   void add_mesh(const py::object& positions, const py::object& indices, const py::object& normals, const py::object& uvs,
                 std::array<float, 3> kd, std::array<float, 3> ks, float ns, const py::object& map_kd, const py::object& m,
                 const std::optional<std::string>& name) {
+    require_idle();
     const FloatArray p = floats(positions, 3, "positions");
     const auto idx = py::array_t<std::uint32_t, py::array::c_style | py::array::forcecast>::ensure(indices);
     if (!idx || idx.size() % 3 != 0) throw py::value_error("indices: expected an array of shape (n, 3)");
@@ -179,6 +189,7 @@ class Scene {
     check(insitu_scene_add_mesh(s_.get(), &mesh, M ? M->data() : nullptr, name ? name->c_str() : nullptr));
   }
   void set_camera(const py::dict& c) {
+    require_idle();
     insitu_camera cam{};
     cam.width = c["width"].cast<int>(), cam.height = c["height"].cast<int>();
     cam.fx = c["fx"].cast<double>(), cam.fy = c["fy"].cast<double>(), cam.cx = c["cx"].cast<double>(), cam.cy = c["cy"].cast<double>();
@@ -189,20 +200,25 @@ class Scene {
     check(insitu_scene_set_camera(s_.get(), &cam));
   }
   void set_control_points(const py::object& points, const std::optional<std::string>& model) {
+    require_idle();
     const auto pts = control_points(points);
     check(insitu_scene_set_control_points(s_.get(), pts.data(), pts.size(), model ? model->c_str() : nullptr));
   }
   py::dict camera() {
+    require_idle();
     insitu_camera c;
     check(insitu_scene_camera(s_.get(), &c));
     return camera_dict(c);
   }
   std::string text(insitu_status (*get)(insitu_scene*, const char**)) {
+    require_idle();
     const char* t = nullptr;
     check(get(s_.get(), &t));
     return t;
   }
   Result render(const std::optional<py::function>& progress, const std::optional<std::string>& checkpoint) {
+    require_idle();
+    const Busy busy(busy_);
     Progress prog{progress ? *progress : py::function(), std::nullopt};
     insitu_result* r = nullptr;
     insitu_status status;
@@ -219,6 +235,16 @@ class Scene {
   void cancel() { insitu_scene_cancel(s_.get()); }
 
  private:
+  struct Busy {
+    explicit Busy(bool& b) : b_(b) { b_ = true; }
+    ~Busy() { b_ = false; }
+    bool& b_;
+  };
+  void require_idle() const {
+    if (busy_) throw Error(INSITU_ERROR_ARGUMENT, "insitu.Scene: a render of this scene is under way in another thread; "
+                                                  "wait for it, or cancel() it first");
+  }
+  bool busy_ = false;
   explicit Scene(insitu_scene* s) : s_(s, insitu_scene_free) {}
   std::unique_ptr<insitu_scene, decltype(&insitu_scene_free)> s_{nullptr, insitu_scene_free};
 };

@@ -135,6 +135,30 @@ class Module(unittest.TestCase):
         t.join()
         self.assertTrue(result.cancelled)
 
+    def test_a_scene_rendering_in_another_thread_refuses_other_calls(self):
+        """render() releases the GIL; a call on the same scene from another thread meanwhile was a
+        use-after-free (issue 46). It is refused with insitu.Error, and the scene is usable again
+        once the render has ended."""
+        scene = insitu.Scene(DEMO)
+        scene.set("render.spp", 4096)
+        started, checked = threading.Event(), threading.Event()
+        results = []
+        t = threading.Thread(target=lambda: results.append(scene.render(progress=lambda p: started.set() and False)))
+        t.start()
+        self.assertTrue(started.wait(300))
+        try:
+            for call in (lambda: scene.set("render.spp", 1), lambda: scene.render(), lambda: scene.camera,
+                         lambda: scene.warnings, lambda: scene.add_obj(os.path.join(SOURCE, "scenes", "demo", "ball.obj"))):
+                with self.assertRaises(insitu.Error) as caught:
+                    call()
+                self.assertEqual(caught.exception.code, insitu.ARGUMENT_ERROR)
+                self.assertIn("under way in another thread", str(caught.exception))
+        finally:
+            scene.cancel()
+            t.join()
+        self.assertTrue(results[0].cancelled)
+        scene.set("render.spp", 1)  # idle again
+
     def test_mesh_and_calibration_from_numpy(self):
         scene = insitu.Scene(DEMO)
         scene.set("render.spp", 1)
