@@ -111,6 +111,19 @@ TEST(StudioRender, StreamsEveryPassToTheEndAndRemapsWithoutRendering) {
   EXPECT_EQ(cv::imread((studio.folder() / "out/composite.png").string()).cols, 640);
   EXPECT_TRUE(fs::exists(studio.folder() / "out/layers.exr"));
   EXPECT_TRUE(fs::exists(studio.folder() / "out/composite.png.report.json"));
+  // Saved again over what exists (a final render, say): asked first, not replaced (issue 46).
+  const std::string saved_report = test::slurp((studio.folder() / "out/composite.png.report.json").string());
+  const auto asked = c.Post("/api/render/save", "{}", "application/json");
+  ASSERT_TRUE(asked);
+  ASSERT_EQ(asked->status, 409) << asked->body;
+  const json question = json::parse(asked->body);
+  EXPECT_EQ(question["existing"], json({"out/composite.png", "out/layers.exr", "out/composite.png.report.json"}));
+  EXPECT_EQ(question["existing_spp"], 2);
+  EXPECT_NE(question["what"].get<std::string>().find("replace it"), std::string::npos) << asked->body;
+  EXPECT_EQ(test::slurp((studio.folder() / "out/composite.png.report.json").string()), saved_report);
+  const auto replaced = c.Post("/api/render/save", R"({"overwrite": true})", "application/json");
+  ASSERT_TRUE(replaced);
+  EXPECT_EQ(replaced->status, 200) << replaced->body;
   // A/B: realtime beside it; the path image stays.
   post_render(studio, {{"integrator", "realtime"}, {"spp", 2}});
   const json ab = wait_for_render(studio);

@@ -145,19 +145,37 @@ std::optional<std::string> RenderJob::light_png(bool irradiance) const {
   return irradiance ? light_->irradiance_png : light_->cube_png;
 }
 
-std::vector<std::string> RenderJob::save_outputs() const {
+namespace {
+
+std::vector<std::string> paths_of(const OutputSpec& out) {
+  std::vector<std::string> paths = {out.image};
+  if (!out.layers.empty()) paths.push_back(out.layers);
+  paths.push_back(report_path(out.image));
+  return paths;
+}
+
+}  // namespace
+
+std::shared_ptr<const RenderJob::Finished> RenderJob::finished() const {
   std::shared_ptr<const Finished> f;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     f = finished_;
   }
   if (!f) throw InputError("", "no finished render of the scene's own integrator to save yet");
+  return f;
+}
+
+std::vector<std::string> RenderJob::output_paths(int* spp) const {
+  const auto f = finished();
+  if (spp) *spp = f->result.layers.spp_done;
+  return paths_of(f->scene->spec.output);
+}
+
+std::vector<std::string> RenderJob::save_outputs() const {
+  const auto f = finished();
   write_outputs(*f->scene, f->result);
-  const OutputSpec& out = f->scene->spec.output;
-  std::vector<std::string> paths = {out.image};
-  if (!out.layers.empty()) paths.push_back(out.layers);
-  paths.push_back(report_path(out.image));
-  return paths;
+  return paths_of(f->scene->spec.output);
 }
 
 }  // namespace insitu

@@ -68,6 +68,9 @@ class RenderJob {
   // `insitu render` does (write_outputs: atomic, never over an input); their paths. Throws
   // InputError when there is none yet.
   std::vector<std::string> save_outputs() const;
+  // What save_outputs would write (image, layers, report), and the spp of the render it would
+  // save. Throws InputError when there is no finished render yet.
+  std::vector<std::string> output_paths(int* spp = nullptr) const;
 
  private:
   struct Slot {
@@ -98,6 +101,7 @@ class RenderJob {
   mutable std::optional<LightPreview> light_;
   struct Finished;  // a scene and its finished render, for save_outputs
   std::shared_ptr<const Finished> finished_;
+  std::shared_ptr<const Finished> finished() const;  // finished_, or InputError when none yet
 };
 
 }  // namespace insitu

@@ -5,6 +5,7 @@
 #include "calib/control_points.h"
 #include "integrators/registry.h"
 #include "output/settings.h"
+#include "core/json_reader.h"
 #include "scene/pipeline.h"
 #include "scene/scene_file.h"
 #include "studio/calibration_view.h"
@@ -39,7 +40,11 @@ json state_json(const StudioServer::Impl& s) {
           {"points", points},
           {"points_text", p.text},
           {"version", p.version},
-          {"model", s.scene.camera.model.value_or("auto")}};
+          {"model", s.scene.camera.model.value_or("auto")},
+          // The scene's tone map: the page shows it first, as "Save outputs" writes it.
+          {"tonemap", {{"op", tonemap_name(s.scene.output.tonemap.op)},
+                       {"key", s.scene.output.tonemap.key.value_or(-1)},
+                       {"bias", s.scene.output.tonemap.bias}}}};
 }
 
 // Runs `handler`, turning bad input into a 400 with the CLI's message.
@@ -189,6 +194,43 @@ void post_render(StudioServer::Impl& s, const httplib::Request& req, httplib::Re
   reply_json(res, s.render.status());
 }
 
+// The spp of the render whose report is `path` (-1 when it cannot be read).
+int reported_spp(const std::string& path) {
+  try {
+    return read_json_file(path).at("render").at("spp").get<int>();
+  } catch (const std::exception&) {
+    return -1;
+  }
+}
+
+// {} | {"overwrite": true}: the last finished render written to the scene's outputs. Outputs that
+// exist already (a final render, say) are replaced only when asked: else 409 with
+// {"error", "existing": [paths], "spp": this render's, "existing_spp": theirs or -1}, and the page
+// asks the user (issue 46: a 16-spp preview replaced a final render without a word).
+void post_save(StudioServer::Impl& s, const httplib::Request& req, httplib::Response& res) {
+  const json body = req.body.empty() ? json::object() : body_json(req);
+  if (!body.is_object() || (body.contains("overwrite") && !body["overwrite"].is_boolean()))
+    throw InputError(req.path, "expected {} or {\"overwrite\": true}");
+  int spp = 0;
+  const std::vector<std::string> paths = s.render.output_paths(&spp);
+  json existing = json::array();
+  for (const std::string& p : paths)
+    if (fs::exists(p)) existing.push_back(fs::relative(p, s.folder).string());
+  if (!existing.empty() && !body.value("overwrite", false)) {
+    const int theirs = reported_spp(report_path(paths.front()));
+    const std::string where = existing[0].get<std::string>();
+    const std::string what = theirs > 0 ? fmt::format("exists, a render of {} spp: replace it with this one of {} spp?", theirs, spp)
+                                        : fmt::format("exists: replace it with this render of {} spp?", spp);
+    res.status = 409;
+    reply_json(res, json{{"error", where + ": " + what}, {"where", where}, {"what", what}, {"existing", existing},
+                         {"spp", spp}, {"existing_spp", theirs}});
+    return;
+  }
+  json written = json::array();
+  for (const std::string& p : s.render.save_outputs()) written.push_back(fs::relative(p, s.folder).string());
+  reply_json(res, json{{"written", written}});
+}
+
 }  // namespace
 
 void StudioServer::Impl::add_render_routes() {
@@ -199,12 +241,8 @@ void StudioServer::Impl::add_render_routes() {
     render.stop();
     reply_json(res, render.status());
   });
-  http.Post("/api/render/save", [this](const httplib::Request&, httplib::Response& res) {
-    guarded(res, [&] {
-      json written = json::array();
-      for (const std::string& p : render.save_outputs()) written.push_back(fs::relative(p, folder).string());
-      reply_json(res, json{{"written", written}});
-    });
+  http.Post("/api/render/save", [this](const httplib::Request& req, httplib::Response& res) {
+    guarded(res, [&] { post_save(*this, req, res); });
   });
   http.Get("/api/render", [this](const httplib::Request&, httplib::Response& res) {
     reply_json(res, render.status());

@@ -41,7 +41,7 @@ struct StudioServer::Impl {
 // A 400 (or other) reply with the CLI's message: {"error", "where", "what"}.
 void reply_error(httplib::Response& res, int status, const std::string& where, const std::string& what);
 // A JSON reply. Text that is not UTF-8 (a message quoting a request's bytes, a file's text) is
-// sent with U+FFFD in place of the bad bytes: json::dump would otherwise throw.
+// sent with U+FFFD in place of the bad bytes (json_text): json::dump would otherwise throw.
 void reply_json(httplib::Response& res, const json& body);
 
 }  // namespace insitu

@@ -79,7 +79,7 @@ RequestHeaders headers_of(const httplib::Request& req) {
 }  // namespace
 
 void reply_json(httplib::Response& res, const json& body) {
-  res.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
+  res.set_content(json_text(body), "application/json");
 }
 
 void reply_error(httplib::Response& res, int status, const std::string& where, const std::string& what) {

@@ -310,6 +310,11 @@ def run_render(browser, shots, scene_dir, spp_text):
     WebDriverWait(browser, RENDER_WAIT_S).until(lambda b: "done, 100 %" in b.find_element(By.ID, "render-state").text)
     WebDriverWait(browser, 30).until(lambda b: image_loaded(b, "render-image", "/api/render/path.png")
                                      and image_loaded(b, "light-irradiance", "irradiance.png"))
+    # The page opens on the scene's own tone map, the one "Save outputs" writes (the demo's: photo).
+    assert browser.find_element(By.ID, "tonemap").get_attribute("value") == "photo"
+    browser.execute_script("const t = document.getElementById('tonemap'); t.value = 'adaptive_log';"
+                           "t.dispatchEvent(new Event('input'));")
+    WebDriverWait(browser, 30).until(lambda b: image_loaded(b, "render-image", "tonemap=adaptive_log"))
     # The key slider re-maps the image without a render: a new query, the same pass.
     before = browser.find_element(By.ID, "render-image").get_attribute("src")
     browser.execute_script("const k = document.getElementById('key'); k.value = '0.7';"

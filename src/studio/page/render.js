@@ -77,9 +77,23 @@ for (const id of ["tonemap", "key", "bias"]) $(id).oninput = () => {
   $("bias-value").textContent = Number($("bias").value).toFixed(2);
   show_image();
 };
+// Save asks before it replaces outputs that exist (a final render, say): the server answers 409
+// with what exists and both renders' spp.
 $("render-save").onclick = async () => {
-  const { status: code, data } = await api("POST", "/api/render/save");
+  let { status: code, data } = await api("POST", "/api/render/save", {});
+  if (code === 409 && data.existing && window.confirm(`${data.existing.join(", ")}: ${data.what}`))
+    ({ status: code, data } = await api("POST", "/api/render/save", { overwrite: true }));
   if (code === 200) $("saved").replaceChildren(Object.assign(document.createElement("span"), { className: "ok", textContent: `wrote ${data.written.join(", ")}` }));
   else $("saved").replaceChildren(error_span(data.error));
 };
+
+// The tone map shown first is the scene's own, the one "Save outputs" writes.
+api("GET", "/api/state").then(({ status: code, data }) => {
+  if (code !== 200 || !data.tonemap) return;
+  $("tonemap").value = data.tonemap.op;
+  if (data.tonemap.key > 0) $("key").value = Math.log(data.tonemap.key);
+  if (data.tonemap.bias > 0) $("bias").value = data.tonemap.bias;
+  $("key-value").textContent = Math.exp(Number($("key").value)).toFixed(2);
+  $("bias-value").textContent = Number($("bias").value).toFixed(2);
+});
 PANELS.render = poll;
