@@ -75,6 +75,13 @@ echo "check-fresh-install: README command 1: $first"
 in_root "$first" || die "the README's first command failed on a fresh Debian 12 root"
 in_root "test -s scenes/demo/out/composite.png" || die "the first command rendered no scenes/demo/out/composite.png"
 lap "README command 1 (install, build, demo) passed"
+# Packages that tests need only in CI (INSITU_CI_PACKAGES, from .ci/run: Debian's blender, whose
+# Cycles the Blender tests render with), installed after the user's first command, never by it.
+if [ -n "${INSITU_CI_PACKAGES:-}" ]; then
+  in_root "DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $INSITU_CI_PACKAGES >/dev/null" ||
+    die "could not install $INSITU_CI_PACKAGES in the fresh root"
+  lap "CI's own packages ($INSITU_CI_PACKAGES) installed"
+fi
 echo "check-fresh-install: README command 2: $second"
 in_root "$second" || die "the README's test command failed on a fresh Debian 12 root"
 lap "README command 2 (the test suite) passed"

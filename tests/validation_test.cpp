@@ -172,7 +172,26 @@ std::function<void(SceneSpec&)> grey_ball_on_a_plate(const std::string& name, co
   };
 }
 
-TEST(Validation, OpenGroundAgainstCyclesWithinTheGoal) { check_against_cycles("open_ground", 0.03); }
+constexpr double kOpenGroundGoal = 0.03;
+
+// The grey-ball scenes' bounds: issue 13's, 1.5 × the same scene's error from its HDR shots, and an
+// absolute one of their own (issue 46: a regression of both renders kept the ratio): neither the
+// HDR render nor the JPEG one beyond 1.5 × the open ground's goal (4.5 %; measured 2.5 to 3.2 %
+// from HDR shots, 2.9 to 3.9 % from JPEG shots).
+constexpr double kBallAbsoluteGoal = 1.5 * kOpenGroundGoal;
+double ball_jpeg_goal(double hdr) { return std::min(1.5 * hdr, kBallAbsoluteGoal); }
+
+// The open ground from its HDR shots. Then, from its JPEG shots, the grey ball of the edge scene
+// (tools/validate/open_ground_ball_edge; AGreyBallAtACheckEdgeFromJpegShots below) on a plate of
+// its own: the photo and the truth are the open ground's, the plate the edge scene's photo, its
+// shadow zone divided by the clean photo (divide_by_clean_photo) and its underside lit by the
+// plate's floor. Held to the grey ball's bounds against this HDR render's error (here, so that the
+// open ground's HDR render is made once).
+TEST(Validation, OpenGroundAgainstCyclesWithinTheGoal) {
+  const double hdr = check_against_cycles("open_ground", kOpenGroundGoal);
+  if (hdr < 0) return;  // skipped: no Cycles truth, or under AddressSanitizer
+  check_against_cycles("open_ground", ball_jpeg_goal(hdr), true, grey_ball_on_a_plate("open_ground_ball_edge", Vec3d(1.4, 0.15, 0.6)));
+}
 
 // A closed room: a low sun through the window (an opening of the room box), a ceiling lamp, the
 // sofa near a wall that catches its shadow.
@@ -205,11 +224,11 @@ TEST(Validation, OpenGroundWithAGreyBallFromJpegShots) {
 #ifdef INSITU_UNDER_ASAN
   GTEST_SKIP() << "the ball's fit runs sanitized in InverseLighting.AGreyBall*";
 #endif
-  const double hdr = check_against_cycles("open_ground_ball", 0.0, false);
+  const double hdr = check_against_cycles("open_ground_ball", kBallAbsoluteGoal, false);
   if (hdr < 0) return;  // skipped: no Cycles truth
-  const double in_photo = check_against_cycles("open_ground_ball", 1.5 * hdr, true);
+  const double in_photo = check_against_cycles("open_ground_ball", ball_jpeg_goal(hdr), true);
   const double on_plate =
-      check_against_cycles("open_ground", 0.0, true, grey_ball_on_a_plate("open_ground_ball", Vec3d(-0.6, 0.15, 1.6)));
+      check_against_cycles("open_ground", kBallAbsoluteGoal, true, grey_ball_on_a_plate("open_ground_ball", Vec3d(-0.6, 0.15, 1.6)));
   if (on_plate >= 0) {
     EXPECT_LT(on_plate, 1.3 * in_photo) << "on a plate";
   }
@@ -227,8 +246,8 @@ TEST(Validation, OpenGroundWithARaisedGreyBallFromJpegShots) {
 #ifdef INSITU_UNDER_ASAN
   GTEST_SKIP() << "the ball's fit runs sanitized in InverseLighting.AGreyBall*";
 #endif
-  const double hdr = check_against_cycles("open_ground_raised_ball", 0.0, false);
-  if (hdr >= 0) check_against_cycles("open_ground_raised_ball", 1.5 * hdr, true);
+  const double hdr = check_against_cycles("open_ground_raised_ball", kBallAbsoluteGoal, false);
+  if (hdr >= 0) check_against_cycles("open_ground_raised_ball", ball_jpeg_goal(hdr), true);
 }
 
 // The grey ball resting near the photo's right edge, on a dark check at the edge of a light one
@@ -238,19 +257,14 @@ TEST(Validation, OpenGroundWithARaisedGreyBallFromJpegShots) {
 // a window at −x to a speck toward −z (from the CLI's JPEG shots 11.8 %, against 2.6 % from HDR
 // shots). Lit by the floor the photo shows (light_balls_from_the_floor): 2.9 %. Held to issue 13's
 // goal, 1.5 × the same scene's error from its HDR shots, rendered here too.
-//
-// The same ball on a plate of its own: the photo and the truth are the open ground's, the plate the
-// edge scene's photo, its shadow zone divided by the clean photo (divide_by_clean_photo) and its
-// underside lit by the plate's floor. Held to 1.5 × the open ground's error from its HDR shots.
+// The same ball on a plate of its own: in OpenGroundAgainstCyclesWithinTheGoal.
 TEST(Validation, AGreyBallAtACheckEdgeFromJpegShots) {
 #ifdef INSITU_UNDER_ASAN
   GTEST_SKIP() << "the ball's fit runs sanitized in InverseLighting.AGreyBall*";
 #endif
-  const double hdr = check_against_cycles("open_ground_ball_edge", 0.0, false);
+  const double hdr = check_against_cycles("open_ground_ball_edge", kBallAbsoluteGoal, false);
   if (hdr < 0) return;  // skipped: no Cycles truth
-  check_against_cycles("open_ground_ball_edge", 1.5 * hdr, true);
-  const double open_hdr = check_against_cycles("open_ground", 0.0, false);
-  check_against_cycles("open_ground", 1.5 * open_hdr, true, grey_ball_on_a_plate("open_ground_ball_edge", Vec3d(1.4, 0.15, 0.6)));
+  check_against_cycles("open_ground_ball_edge", ball_jpeg_goal(hdr), true);
 }
 
 }  // namespace
