@@ -27,8 +27,9 @@ cmake --build "$work/examples" > "$work/build.log" || { cat "$work/build.log"; e
 [ -s "$work/minimal.png" ] && [ -s "$work/render.png" ] && [ -s "$work/render.png.report.json" ]
 echo "== pkg-config"
 PKG_CONFIG_PATH=$prefix/lib/pkgconfig cc -std=c99 -Wall -Werror "$source/examples/minimal.c" \
-  $(PKG_CONFIG_PATH=$prefix/lib/pkgconfig pkg-config --cflags --libs insitu) -Wl,-rpath,"$prefix/lib" -o "$work/minimal-pc"
-"$work/minimal-pc" "$demo" "$work/minimal-pc.png"
+  $(PKG_CONFIG_PATH=$prefix/lib/pkgconfig pkg-config --cflags --libs insitu) -o "$work/minimal-pc"
+# As the README says to build it, with no LD_LIBRARY_PATH: insitu.pc carries the run path.
+env -u LD_LIBRARY_PATH "$work/minimal-pc" "$demo" "$work/minimal-pc.png"
 echo "== the installed CLI and Python module"
 "$prefix/bin/insitu" --version
 PYTHONPATH=$prefix/lib/python3/dist-packages python3 -c "import insitu; print('python module', insitu.version())"
