@@ -66,8 +66,8 @@ Validation.ClosedRoomFromJpegShotsWithinTheGoal:Composite.ContactShadowHasNoFire
 # ctest starts the costliest tests first when it knows their costs (Testing/Temporary/
 # CTestCostData.txt, which each run writes); a fresh build knows none and ran the shards in order,
 # the heaviest (248 s) second to last, one core idle for the last minute (CI of cc5cb8d: 906 s against
-# 843 s of work per core). tests/sanitizer/ctest-costs.txt holds a sanitized run's costs (2026-11-26,
-# 854 s on this machine); where a test was added since, the order is a guess, never an error. To
+# 843 s of work per core). tests/sanitizer/ctest-costs.txt holds a sanitized run's costs (the
+# fresh-clone CI of 0479e17: 478 s, 944 s of work); where a test was added since, the order is a guess, never an error. To
 # refresh it: copy $build/Testing/Temporary/CTestCostData.txt after a run.
 mkdir -p "$build/Testing/Temporary"
 [ -s "$build/Testing/Temporary/CTestCostData.txt" ] || cp tests/sanitizer/ctest-costs.txt "$build/Testing/Temporary/CTestCostData.txt"
