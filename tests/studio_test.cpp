@@ -218,18 +218,40 @@ TEST(Studio, ListensOnTheLoopbackOnly) {
   EXPECT_TRUE(found);
 }
 
-TEST(Studio, RefusesASceneWhoseCameraIsNotFromPoints) {
+// A scene whose camera is not a "points" camera in JSON (eye and look here; fSpy and camera files
+// take the same path) opens: its points panel says why it edits nothing, every points route
+// answers 409 naming the scene's camera once, and the shots and references panels work.
+TEST(Studio, OpensASceneWhoseCameraIsNotFromPoints) {
   TempDir dir;
   fs::copy(fs::path(test::source_dir()) / "scenes/demo", dir.path() / "demo", fs::copy_options::recursive);
   json scene = read_json_file(dir.file("demo/scene.json"));
   scene["camera"] = {{"eye", {1, 1, 1}}, {"look", {0, 0, 0}}, {"hfov_deg", 60}};
   std::ofstream(dir.file("demo/scene.json")) << scene.dump();
-  try {
-    StudioServer server(StudioOptions{dir.file("demo/scene.json"), 0});
-    FAIL() << "accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("scene.json:$.camera"), std::string::npos) << e.what();
+  const std::string points_before = test::slurp(dir.file("demo/points.json"));
+  StudioServer server(StudioOptions{dir.file("demo/scene.json"), 0});
+  const int port = server.bind();
+  std::thread serving([&] { server.run(); });
+  httplib::Client c("127.0.0.1", port);
+  c.set_default_headers({{"Authorization", "token " + server.token()}, {"Origin", "http://127.0.0.1:" + std::to_string(port)}});
+  c.set_read_timeout(300, 0);
+  const json state = test::get_json(c, "/api/state");
+  EXPECT_TRUE(state["points_file"].is_null()) << state.dump();
+  ASSERT_TRUE(state["points_refusal"].is_string()) << state.dump();
+  EXPECT_NE(state["points_refusal"].get<std::string>().find("eye and look"), std::string::npos) << state.dump();
+  for (const auto& [method, path] : {std::pair{"PUT", "/api/points"}, std::pair{"POST", "/api/calibrate"}}) {
+    const auto r = std::string(method) == "PUT" ? c.Put(path, R"({"version": "", "points": []})", "application/json")
+                                                : c.Post(path, R"({"points": []})", "application/json");
+    ASSERT_TRUE(r) << path;
+    EXPECT_EQ(r->status, 409) << path << ": " << r->body;
+    const std::string error = json::parse(r->body)["error"];
+    EXPECT_EQ(error.rfind(dir.file("demo/scene.json") + ":$.camera: ", 0), 0u) << error;  // named once
+    EXPECT_EQ(error.find("scene.json", error.find("scene.json") + 1), std::string::npos) << error;
   }
+  EXPECT_EQ(test::get_json(c, "/api/shots")["shots"].size(), 6u);
+  EXPECT_TRUE(test::get_json(c, "/api/references")["references"].is_array());
+  server.stop();
+  serving.join();
+  EXPECT_EQ(test::slurp(dir.file("demo/points.json")), points_before);
   const auto run = test::run_insitu(dir, "studio " + dir.file("missing.json"));
   EXPECT_EQ(run.exit_code, 2) << run.err;
   EXPECT_NE(run.err.find("missing.json"), std::string::npos) << run.err;

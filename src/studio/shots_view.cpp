@@ -97,7 +97,7 @@ json shots_view(const std::string& scene_path) {
 std::string shot_preview_png(const std::string& scene_path, int face, int max_side_px) {
   const SceneSpec spec = parse_scene_file(scene_path);
   const EnvironmentSpec& env = spec.environment;
-  if (!env.from_shots()) throw InputError(scene_path + ":" + env.where, "this scene has no six shots");
+  if (!env.from_shots()) throw InputError(env.where, "this scene has no six shots");  // where names the file
   const ShotSpec& s = env.shots[std::size_t(face)];
   std::vector<ImageFile> files;
   for (const std::string& path : s.files) {

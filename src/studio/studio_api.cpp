@@ -26,25 +26,42 @@ constexpr const char* kConflict = "changed since this page read it (another tab 
 // The request's body as JSON; its name in messages is the route's.
 json body_json(const httplib::Request& req) { return parse_json_text(req.body, req.path); }
 
-json state_json(const StudioServer::Impl& s) {
-  const FileVersion p = s.points.read();
+// The points panel's part of /api/state: the file, its points and version, or (for a camera
+// the panel does not edit) nulls and the reason.
+json points_state(const StudioServer::Impl& s) {
+  if (!s.points)
+    return {{"points_file", nullptr}, {"points", nullptr}, {"points_text", ""}, {"version", ""}, {"points_refusal", s.points_refusal}};
+  const FileVersion p = s.points->read();
   json points;
   try {
-    points = parse_json_text(p.text, s.points.path());
+    points = parse_json_text(p.text, s.points->path());
   } catch (const InputError&) {
     points = nullptr;  // the page shows the file's own error from /api/calibrate's read
   }
-  return {{"scene", fs::path(s.scene.path).filename().string()},
-          {"photo", {{"url", "/api/photo.png"}, {"width", s.width}, {"height", s.height}}},
-          {"points_file", fs::relative(s.points.path(), s.folder).string()},
+  return {{"points_file", fs::relative(s.points->path(), s.folder).string()},
           {"points", points},
           {"points_text", p.text},
           {"version", p.version},
-          {"model", s.scene.camera.model.value_or("auto")},
-          // The scene's tone map: the page shows it first, as "Save outputs" writes it.
-          {"tonemap", {{"op", tonemap_name(s.scene.output.tonemap.op)},
-                       {"key", s.scene.output.tonemap.key.value_or(-1)},
-                       {"bias", s.scene.output.tonemap.bias}}}};
+          {"points_refusal", nullptr}};
+}
+
+json state_json(const StudioServer::Impl& s) {
+  json state = points_state(s);
+  state.update(json{{"scene", fs::path(s.scene.path).filename().string()},
+                    {"photo", {{"url", "/api/photo.png"}, {"width", s.width}, {"height", s.height}}},
+                    {"model", s.scene.camera.model.value_or("auto")},
+                    // The scene's tone map: the page shows it first, as "Save outputs" writes it.
+                    {"tonemap", {{"op", tonemap_name(s.scene.output.tonemap.op)},
+                                 {"key", s.scene.output.tonemap.key.value_or(-1)},
+                                 {"bias", s.scene.output.tonemap.bias}}}});
+  return state;
+}
+
+// PUT /api/points and /api/calibrate on a scene whose camera the points panel does not edit.
+bool refuse_without_points(StudioServer::Impl& s, httplib::Response& res) {
+  if (s.points) return false;
+  reply_error(res, 409, s.scene.camera.where, s.points_refusal);  // where names the file already
+  return true;
 }
 
 // Runs `handler`, turning bad input into a 400 with the CLI's message.
@@ -58,18 +75,20 @@ void guarded(httplib::Response& res, F&& handler) {
 }
 
 void put_points(StudioServer::Impl& s, const httplib::Request& req, httplib::Response& res) {
+  if (refuse_without_points(s, res)) return;
   const json body = body_json(req);
   if (!body.is_object() || !body.contains("points") || !body.contains("version") || !body["version"].is_string())
     throw InputError(req.path, "expected {\"version\": \"...\", \"points\": [...]}");
-  const VersionedFile::UpdateResult r = s.points.save(body["points"], body["version"].get<std::string>());
+  const VersionedFile::UpdateResult r = s.points->save(body["points"], body["version"].get<std::string>());
   if (!r.saved) {
-    reply_error(res, 409, s.points.path(), kConflict);
+    reply_error(res, 409, s.points->path(), kConflict);
     return;
   }
   reply_json(res, json{{"version", r.now.version}});
 }
 
 void post_calibrate(StudioServer::Impl& s, const httplib::Request& req, httplib::Response& res) {
+  if (refuse_without_points(s, res)) return;
   const json body = body_json(req);
   if (!body.is_object() || !body.contains("points")) throw InputError(req.path, "expected {\"points\": [...], \"model\": \"auto\"}");
   std::optional<CameraModel> model;
@@ -77,12 +96,12 @@ void post_calibrate(StudioServer::Impl& s, const httplib::Request& req, httplib:
     model = body["model"].is_string() ? parse_model(body["model"].get<std::string>()) : std::nullopt;
     if (!model) throw InputError(req.path + ":$.model", "expected \"auto\", \"f\", \"f+c\" or \"f+c+a\"");
   }
-  const auto points = control_points_from_json(body["points"], s.points.path());
+  const auto points = control_points_from_json(body["points"], s.points->path());
   try {
     reply_json(res, calibration_view(points, s.width, s.height, model, s.scene));
   } catch (const InputError& e) {
     if (!e.where().empty()) throw;  // a point's own place names the file already
-    throw e.with_context(fs::path(s.points.path()).filename().string());
+    throw e.with_context(fs::path(s.points->path()).filename().string());
   }
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 #include <atomic>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 
 #include "scene/spec.h"
@@ -23,7 +24,10 @@ struct StudioServer::Impl {
   int width = 0, height = 0;
   std::string photo_png;   // the photo, encoded once
   cv::Mat gray;            // its luminance, sRGB-encoded, CV_32F: for corner snapping
-  PointsStore points;
+  // The points panel's file; none when the camera is not a "points" camera in JSON, and then
+  // `points_refusal` says why (the page shows it; PUT /api/points and /api/calibrate answer 409).
+  std::optional<PointsStore> points;
+  std::string points_refusal;
   VersionedFile scene_file;  // the scene file, which the shots panel edits
   RenderJob render;          // the light and render panel's render (stopped before the server goes)
   httplib::Server http;

@@ -30,14 +30,20 @@ std::string content_type(const std::string& name) {
   return "application/octet-stream";
 }
 
-std::string points_path(const SceneSpec& scene) {
-  if (scene.camera.kind != CameraSpec::Kind::Points)
-    throw InputError(scene.path + ":" + scene.camera.where, "the studio edits control points: give \"camera\": {\"points\": \"points.json\"}");
-  if (fs::path(scene.camera.points).extension() != ".json")
-    throw InputError(scene.path + ":" + scene.camera.where, "the studio saves points as JSON; this scene's points are in " + scene.camera.points);
-  if (scene.camera.bottom_left_origin)
-    throw InputError(scene.path + ":" + scene.camera.where, "the studio writes top-left pixel coordinates: remove \"origin\": \"bottom_left\"");
-  return scene.camera.points;
+// Why the points panel cannot edit this scene's camera, or "" when it can (a "points" camera
+// whose points are a JSON file in top-left pixels). The shots, references and render still work.
+std::string points_refusal(const SceneSpec& scene) {
+  const CameraSpec& c = scene.camera;
+  switch (c.kind) {
+    case CameraSpec::Kind::Fspy: return "this scene's camera comes from fSpy (" + fs::path(c.file).filename().string() + "): the points panel edits a \"points\" camera only";
+    case CameraSpec::Kind::File: return "this scene's camera comes from " + fs::path(c.file).filename().string() + ": the points panel edits a \"points\" camera only";
+    case CameraSpec::Kind::LookAt:
+    case CameraSpec::Kind::Explicit: return "this scene's camera is given by numbers (eye and look, or R and t): the points panel edits a \"points\" camera only";
+    case CameraSpec::Kind::Points: break;
+  }
+  if (fs::path(c.points).extension() != ".json") return "the studio saves points as JSON; this scene's points are in " + fs::path(c.points).filename().string();
+  if (c.bottom_left_origin) return "the studio writes top-left pixel coordinates; this scene's points have \"origin\": \"bottom_left\"";
+  return "";
 }
 
 // The photo as the page shows it (sRGB, 8-bit PNG) and its luminance for corner snapping.
@@ -89,7 +95,8 @@ void reply_error(httplib::Response& res, int status, const std::string& where, c
 
 StudioServer::Impl::Impl(const StudioOptions& o)
     : options(o), scene(parse_scene_file(o.scene)), folder(fs::absolute(o.scene).parent_path().string()),
-      points(points_path(scene)), scene_file(o.scene, ""), render(o.scene), guard{random_token(), 0} {
+      points_refusal(insitu::points_refusal(scene)), scene_file(o.scene, ""), render(o.scene), guard{random_token(), 0} {
+  if (points_refusal.empty()) points.emplace(scene.camera.points);
   load_photo(*this);
   secure_server();
   for (const StudioAsset* a = kStudioAssets; a->name; ++a)

@@ -4,7 +4,10 @@
 //
 // The server (cpp-httplib, Debian's libcpp-httplib-dev) answers:
 //   GET  /, /studio.js, ...           the page (src/studio/page/, compiled in)
-//   GET  /api/state                   the scene's photo size, points.json's text and version
+//   GET  /api/state                   the scene's photo size, points.json's text and version, its
+//                                     tone map; for a camera not from points.json (fSpy, a camera
+//                                     file, eye and look) "points_refusal" says why, and PUT
+//                                     /api/points and /api/calibrate answer 409
 //   GET  /api/photo.png               the photo, sRGB 8-bit (any photo format the CLI reads)
 //   GET  /files/PATH                  a file under the scene's folder (file_under.h), else 404
 //   PUT  /api/points                  {"version", "points"}: saved atomically, or 409 on conflict
@@ -17,7 +20,9 @@
 //   POST /api/references              {"version", "op": add | remove, ...}: scene_edit.h, read as the
 //                                     CLI reads it (corners within the photo), or 409
 //   POST /api/render                  {"integrator", "spp"}: a render started (render_job.h)
-//   POST /api/render/stop, /save      stop it; write the scene's outputs from the last finished one
+//   POST /api/render/stop             stop it (within one sample per pixel)
+//   POST /api/render/save             {"overwrite"}: write the scene's outputs from the last finished
+//                                     render; 409 if they exist and "overwrite" is not true
 //   GET  /api/render                  its state, progress, noise and each integrator's slot
 //   GET  /api/render/NAME.png         slot NAME's latest image, ?tonemap=&key=&bias=
 //   GET  /api/light/cube.png, /api/light/irradiance.png   the light the render used

@@ -120,6 +120,7 @@ def main():
         run_attack(browser, url, scene_dir)
         run_shots(browser, os.path.join(scene_dir, "scene.json"), shots)
         run_render(browser, shots, scene_dir, sys.argv[3] if len(sys.argv) > 3 else "16")
+        run_fixed_camera(browser, insitu, source, work, shots)
     finally:
         browser.quit()
         studio.terminate()
@@ -189,6 +190,38 @@ async function attack() {
 }
 attack();
 </script>"""
+
+
+def run_fixed_camera(browser, insitu, source, work, shots):
+    """A scene whose camera is eye and look opens: the points panel says why it has no points, a click
+    on the photo adds none, and the shots panel shows the six shots."""
+    scene_dir = os.path.join(work, "fixed")
+    shutil.copytree(source, scene_dir, ignore=shutil.ignore_patterns("out"))
+    scene_file = os.path.join(scene_dir, "scene.json")
+    scene = json.load(open(scene_file))
+    scene["camera"] = {"eye": [0, 1.2, 3], "look": [0, 0.5, 0], "hfov_deg": 60}
+    json.dump(scene, open(scene_file, "w"))
+    studio, url = start_studio(insitu, scene_file)
+    try:
+        browser.get(url)
+        WebDriverWait(browser, 30).until(lambda b: b.execute_script("return S.width > 0 && S.photo.complete"))
+        refusal = browser.find_element(By.ID, "points-refusal")
+        said = refusal.text
+        assert refusal.is_displayed() and "eye and look" in said, said
+        assert not browser.find_element(By.ID, "points-editor").is_displayed()
+        assert browser.find_element(By.ID, "status").text == "", browser.find_element(By.ID, "status").text
+        click_image_point(browser, browser.find_element(By.ID, "photo"), [100, 100])
+        time.sleep(1)
+        assert browser.execute_script("return S.points.length") == 0
+        browser.save_screenshot(os.path.join(shots, "studio-fixed-camera.png"))
+        browser.find_element(By.ID, "tab-shots").click()
+        all_shown = "const i = [...document.querySelectorAll('#cube .cell img')];" \
+                    "return i.length === 6 && i.every((x) => x.complete && x.naturalWidth > 0);"
+        WebDriverWait(browser, 60).until(lambda b: b.execute_script(all_shown))
+        print(f"browser_test: a scene with an eye/look camera opens: {said}")
+    finally:
+        studio.terminate()
+        studio.wait()
 
 
 def run_attack(browser, url, scene_dir):

@@ -4,7 +4,7 @@
 "use strict";
 
 const GAIN = 10;  // residual vectors are drawn this many times their length
-const S = { width: 0, height: 0, photo: new Image(), points: [], version: "", calib: null,
+const S = { width: 0, height: 0, photo: new Image(), points: [], version: "", calib: null, editable: true,
             errors: {}, selected: -1, view: { scale: 1, ox: 0, oy: 0 }, drag: null };
 const canvas = $("photo"), ctx = canvas.getContext("2d");
 
@@ -27,13 +27,19 @@ async function load() {
   const { status: code, data } = await api("GET", "/api/state");
   if (code !== 200) { status(data.error, "error"); return; }
   $("scene").textContent = data.scene;
+  // A camera from fSpy, a camera file or numbers: no points to edit, the references still are.
+  S.editable = data.points_refusal === null;
+  $("points-editor").hidden = !S.editable;
+  $("points-refusal").hidden = S.editable;
+  $("points-refusal").textContent = S.editable ? "" : `${data.points_refusal}. The references, the shots and the render work as usual.`;
+  $("click-hint").hidden = !S.editable;
   $("points-file").textContent = data.points_file;
   $("model").value = data.model;
   S.width = data.photo.width; S.height = data.photo.height; S.version = data.version;
   const list = Array.isArray(data.points) ? data.points : (data.points && data.points.points) || [];
   S.points = list.map((p, i) => ({ name: p.name || `#${i + 1}`, uv: p.uv, xyz: p.xyz, snap: null }));
   S.errors = {};
-  if (data.points === null) status(`${data.points_file} is not valid JSON; saving will replace it`, "error");
+  if (S.editable && data.points === null) status(`${data.points_file} is not valid JSON; saving will replace it`, "error");
   S.photo.onload = () => { fit(); changed(false, true); };
   S.photo.src = data.photo.url + "?v=" + Date.now();
 }
@@ -87,6 +93,7 @@ async function calibrate() {
 // typed in keeps its focus and its text.
 async function changed(write = true, rebuild = false) {
   S.errors = {};
+  if (!S.editable) { draw(); return; }
   const incomplete = S.points.filter((p) => !complete(p)).length;
   if (write) await save();
   if (incomplete) $("save-state").textContent = `${incomplete} point(s) need x, y and z before they are saved.`;
@@ -232,6 +239,7 @@ canvas.addEventListener("mouseup", async (ev) => {
   const { status: code, data } = await api("POST", "/api/snap", { uv: [u, v] });
   const snap = code === 200 ? data : null;
   if (reference_click(snap ? snap.uv : [u, v])) return;  // a corner of a reference (references.js)
+  if (!S.editable) return;
   S.points.push({ name: `#${S.points.length + 1}`, uv: snap ? snap.uv : [u, v], xyz: [null, null, null], snap });
   S.selected = S.points.length - 1;
   table(); draw();
