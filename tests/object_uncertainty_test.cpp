@@ -93,6 +93,32 @@ TEST(ObjectUncertainty, NinetyFivePercentRadiusCoversTheTrueErrorAtTheFurniture)
   EXPECT_GT(c.objects_outside, trials * 9 / 10);  // the sofa is nearer than every click
 }
 
+// `calibrate --at` and `--box` print one figure at one point (issue 46: they disagreed by up to 3×).
+// The insertion point's 95 % radius is the objects' (the model's own error included), and like it
+// covers the true error in at least 90 % of rooms, where the noise alone does not.
+TEST(ObjectUncertainty, TheInsertionPointGetsTheObjectsFigure) {
+  std::mt19937 rng(4601);
+  int trials = 0, within = 0, within_noise = 0;
+  for (int t = 0; t < 120; ++t) {
+    const CornerRoom s = corner_room(rng, 0.7);
+    if (s.clicks.size() < 13) continue;
+    CalibrationOptions options;
+    options.insertion_world = s.sofa_lo;  // the sofa's nearest foot: outside the clicks' span
+    const CalibrationResult r = calibrate(s.clicks, 1200, 900, options);
+    const PointUncertainty at = object_uncertainty(r, "sofa", {{"foot", s.sofa_lo}}).points.at(0);
+    EXPECT_DOUBLE_EQ(r.insertion_radius95_px, at.radius95_px);
+    EXPECT_DOUBLE_EQ(r.insertion_noise_radius95_px, at.noise_radius95_px);
+    const double error_px = (s.truth.project(s.sofa_lo) - r.insertion_px).norm();
+    ++trials;
+    within += error_px <= r.insertion_radius95_px;
+    within_noise += error_px <= r.insertion_noise_radius95_px;
+  }
+  ASSERT_GT(trials, 100);
+  std::printf("insertion point: covered by r95 in %d of %d rooms, by the noise alone in %d\n", within, trials, within_noise);
+  EXPECT_GE(within, trials * 9 / 10);
+  EXPECT_LT(within_noise, trials * 9 / 10);
+}
+
 // The worst true error at the sofa's corners under a calibration.
 double worst_error_px(const CalibrationResult& r, const CornerRoom& s) {
   double worst = 0;

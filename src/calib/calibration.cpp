@@ -17,6 +17,7 @@
 #include "calib/f_test.h"
 #include "calib/camera_params.h"
 #include "calib/fit_state.h"
+#include "calib/object_uncertainty.h"
 #include "calib/reprojection_cost.h"
 
 namespace insitu {
@@ -419,23 +420,23 @@ void report_points(const std::vector<ControlPoint>& points, const std::vector<bo
 }
 
 // g(θ): what the report gives a σ for — fx, fy, cx, cy, aspect, eye (3), hfov, forward (3),
-// up (3), the insertion point's pixel (u, v) — and its Jacobian by central differences.
-using Derived = Eigen::Matrix<double, 18, 1>;
-Derived derived_quantities(const Params& q, const Frames& fr, int width, int height, const Vec3d& insertion_world) {
+// up (3) — and its Jacobian by central differences. (The insertion point's pixel is an object's
+// point: object_uncertainty.h.)
+using Derived = Eigen::Matrix<double, 16, 1>;
+Derived derived_quantities(const Params& q, const Frames& fr, int width, int height) {
   const Camera c = to_camera(q, fr, width, height);
   Derived out;
   const Vec3d eye = c.eye_world(), fwd = c.forward_world(), up = c.up_world();
-  const Vec2d ins = c.project(insertion_world);
-  out << c.fx, c.fy, c.cx, c.cy, c.fy / c.fx, eye, c.hfov_deg(), fwd, up, ins;
+  out << c.fx, c.fy, c.cx, c.cy, c.fy / c.fx, eye, c.hfov_deg(), fwd, up;
   return out;
 }
 
-Eigen::Matrix<double, 18, 10> derived_jacobian(const Params& P, const Frames& fr, int width, int height, const Vec3d& insertion_world) {
-  return numeric_jacobian<18>(P, [&](const Params& q) { return derived_quantities(q, fr, width, height, insertion_world); });
+Eigen::Matrix<double, 16, 10> derived_jacobian(const Params& P, const Frames& fr, int width, int height) {
+  return numeric_jacobian<16>(P, [&](const Params& q) { return derived_quantities(q, fr, width, height); });
 }
 
 // The standard deviations of the derived quantities from their covariance G = J C Jᵀ.
-void set_sigmas(const Eigen::Matrix<double, 18, 18>& G, CalibrationResult& result) {
+void set_sigmas(const Eigen::Matrix<double, 16, 16>& G, CalibrationResult& result) {
   auto sd = [&](int i) { return std::sqrt(std::max(0.0, G(i, i))); };
   CalibrationUncertainty& s = result.sigma;
   s.known = true;
@@ -445,10 +446,6 @@ void set_sigmas(const Eigen::Matrix<double, 18, 18>& G, CalibrationResult& resul
   // Angular spread of a unit vector: sqrt(trace of its covariance), in degrees.
   s.view_direction_deg = rad_to_deg(std::sqrt(std::max(0.0, G.block<3, 3>(9, 9).trace())));
   s.roll_deg = rad_to_deg(std::sqrt(std::max(0.0, G.block<3, 3>(12, 12).trace())));
-  const Eigen::Matrix2d Ci = G.block<2, 2>(15, 15);
-  const double lmax = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(Ci).eigenvalues().maxCoeff();
-  result.insertion_sigma_px = std::sqrt(std::max(0.0, lmax));
-  result.insertion_radius95_px = std::sqrt(std::max(0.0, 5.991 * lmax));  // χ²₂(0.95) = 5.991
 }
 
 // Step 5. Uncertainty: the chosen model's covariance (model_covariance), propagated to the derived
@@ -477,7 +474,7 @@ void estimate_uncertainty(const std::vector<Params>& fitted, CameraModel chosen,
                                 std::string(model_name(chosen)));
     return;
   }
-  const Eigen::Matrix<double, 18, 10> Jg = derived_jacobian(fitted[std::size_t(idx)], fr, width, height, result.insertion_world);
+  const Eigen::Matrix<double, 16, 10> Jg = derived_jacobian(fitted[std::size_t(idx)], fr, width, height);
   set_sigmas(Jg * state.chosen->C * Jg.transpose(), result);
 }
 
@@ -577,6 +574,14 @@ CalibrationResult calibrate(const std::vector<ControlPoint>& points, int width, 
   set_click_span(points, outliers.outlier, result.camera, *state);
   estimate_uncertainty(fitted, chosen, inl, fr, width, height, result, *state);
   result.state = std::move(state);
+  // One figure at the insertion point, the one the objects' corners get (object_uncertainty.h).
+  const PointUncertainty at = object_uncertainty(result, "insertion", {{"insertion", result.insertion_world}}).points.at(0);
+  if (result.sigma.known) {
+    result.insertion_sigma_px = at.noise_sigma_px;
+    result.insertion_noise_radius95_px = at.noise_radius95_px;
+    result.insertion_radius95_px = at.radius95_px;
+    result.insertion_model_shift_px = at.model_shift_px;
+  }
   return result;
 }
 

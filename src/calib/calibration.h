@@ -77,8 +77,12 @@ struct CalibrationResult {
   CalibrationUncertainty sigma;
   Vec3d insertion_world = Vec3d::Zero();
   Vec2d insertion_px = Vec2d::Zero();
-  double insertion_sigma_px = 0;     // 1σ along the major axis of the projected uncertainty
-  double insertion_radius95_px = 0;  // radius of the 95% ellipse along its major axis
+  double insertion_sigma_px = 0;           // 1σ along the major axis of the projected noise
+  double insertion_noise_radius95_px = 0;  // the 95 % radius of the noise alone
+  // The 95 % radius with the model's own error, as at the objects' corners (object_uncertainty.h):
+  // max(noise, shift to the next richer model + its radius); infinite when nothing bounds it.
+  double insertion_radius95_px = 0;
+  double insertion_model_shift_px = 0;
   Warnings warnings;  // each without a location: the caller adds the points file's
   std::shared_ptr<const CalibrationFitState> state;
 };

@@ -1,5 +1,6 @@
 // The calibration's result for people and programs: the camera file's JSON (with the fit, the
 // per-point residuals and the uncertainties) and the text report `insitu calibrate` prints.
+#include <cmath>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -41,7 +42,10 @@ nlohmann::json calibration_to_json(const CalibrationResult& r) {
       {"insertion", {{"world", {r.insertion_world.x(), r.insertion_world.y(), r.insertion_world.z()}},
                      {"uv", {r.insertion_px.x(), r.insertion_px.y()}},
                      {"sigma_px", r.insertion_sigma_px},
-                     {"radius95_px", r.insertion_radius95_px}}},
+                     {"noise_radius95_px", r.insertion_noise_radius95_px},
+                     {"model_shift_px", r.insertion_model_shift_px},
+                     // null: the model's own error is not bounded (object_uncertainty.h)
+                     {"radius95_px", std::isfinite(r.insertion_radius95_px) ? nlohmann::json(r.insertion_radius95_px) : nlohmann::json()}}},
       {"warnings", r.warnings.items},
   };
   return cam;
@@ -81,7 +85,11 @@ std::string calibration_report(const CalibrationResult& r) {
                        p.outlier ? "  OUTLIER" : "", p.behind ? "  BEHIND" : "");
   out += fmt::format("insertion    ({:.3f}, {:.3f}, {:.3f}) m at pixel ({:.1f}, {:.1f})", r.insertion_world.x(),
                      r.insertion_world.y(), r.insertion_world.z(), r.insertion_px.x(), r.insertion_px.y());
-  out += s.known ? fmt::format(": moves by {:.2g} px (1σ), up to {:.2g} px (95%)\n", r.insertion_sigma_px, r.insertion_radius95_px) : "\n";
+  // The 95 % radius is the objects' one (the model's own error included); the 1σ is the noise's.
+  const std::string r95 = std::isfinite(r.insertion_radius95_px) ? fmt::format("{:.2g} px", r.insertion_radius95_px) : "unbounded";
+  out += s.known ? fmt::format(": up to {} (95%, the model's own error included); noise alone {:.2g} px (1σ), {:.2g} px (95%)\n",
+                               r95, r.insertion_sigma_px, r.insertion_noise_radius95_px)
+                 : "\n";
   for (const auto& w : r.warnings.items) out += "warning: " + w + "\n";
   return out;
 }
