@@ -263,8 +263,21 @@ void write_shots(const fs::path& out, const Vec3f& shot_origin, const Exposure& 
 
 }
 
-// Control points: room corners and window corners a user would click, projected by the true
-// camera, with about 1 px of click noise (σ = 0.7 px per axis), rounded to 0.1 px.
+// The corner where the end of the plank under (x_m, z_m) meets its back edge (albedo_at's floor):
+// the middle of the end gap, nearest x_m, on the gap line between two planks. A user finds it with
+// a tape from the back and left walls; the floor points put the span of the clicked points under
+// the furniture, so the camera is not extrapolated there (calibration's uncertainty at objects).
+Vec3d plank_end_corner(double x_m, double z_m) {
+  const int plank = int(std::floor((z_m + 10.0) / 0.16));
+  const double offset = double(hash01(std::uint64_t(plank), 1)) * 1.5;
+  const double seg = std::round((x_m + 10.0 + offset) / 1.5);
+  const double x_end_m = seg * 1.5 - offset - 10.0 + 0.5 * 0.004 * 1.5;
+  return {std::round(x_end_m * 1000) / 1000, 0.0, std::round((plank * 0.16 - 10.0) * 1000) / 1000};  // to the mm
+}
+
+// Control points: room corners and window corners a user would click, and five plank ends
+// measured on the floor around the furniture, projected by the true camera, with about 1 px of
+// click noise (σ = 0.7 px per axis), rounded to 0.1 px.
 void write_points(const fs::path& out, const Camera& cam) {
   const std::vector<std::pair<std::string, Vec3d>> landmarks = {
       {"floor corner, back left", {-2.5, 0.0, -3.0}},       {"floor corner, back right", {2.5, 0.0, -3.0}},
@@ -274,6 +287,11 @@ void write_points(const fs::path& out, const Camera& cam) {
       {"window, mullion cross", {-2.5, 1.5, -1.4}},         {"skirting top, back left", {-2.5, 0.1, -3.0}},
       {"door, bottom left", {0.3, 0.0, -3.0}},              {"door, bottom right", {1.2, 0.0, -3.0}},
       {"door, top left", {0.3, 2.05, -3.0}},                {"door, top right", {1.2, 2.05, -3.0}},
+      {"plank end, front left", plank_end_corner(-0.5, 0.6)},
+      {"plank end, front", plank_end_corner(0.0, 0.9)},
+      {"plank end, by the ball", plank_end_corner(1.0, 0.6)},
+      {"plank end, right of the sofa", plank_end_corner(1.9, -1.6)},
+      {"plank end, behind the sofa", plank_end_corner(2.0, -2.4)},
   };
   nlohmann::ordered_json points = nlohmann::ordered_json::array();
   std::uint64_t k = 0;
@@ -312,7 +330,7 @@ void write_scene(const fs::path& out, const Vec3f& shot_origin) {
       {"local_scene", {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}}},
       {"objects",
        {{{"mesh", "table.obj"}, {"translate", {-0.2, 0, -1.2}}, {"rotate", 12}},
-        {{"mesh", "sofa.obj"}, {"translate", {0.9, 0, -2.35}}, {"rotate", -8}},
+        {{"mesh", "sofa.obj"}, {"translate", {0.6, 0, -2.35}}, {"rotate", -8}},
         {{"mesh", "ball.obj"}, {"translate", {0.95, 0, -0.2}}}}},
       {"render", {{"integrator", "path"}, {"spp", 144}}},
   };
