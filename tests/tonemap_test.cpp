@@ -96,6 +96,32 @@ TEST(ToneMapping, DragoAgreesWithOpenCvOnGreyImages) {
   EXPECT_LT(worst, 0.01);
 }
 
+// Where the photo clipped, its colour is unknown (a white window is pink in linear light through
+// the response curves): that share of the pixel is shown neutral at its luminance, as a grey
+// pixel of that luminance is; elsewhere (weight 0) nothing changes, bit for bit.
+TEST(ToneMapping, ClippedPhotoIsShownNeutral) {
+  Image img(8, 4, 3, 0.2f), weight(8, 4, 1, 0.0f);
+  const Rgb pink = Rgb(3.18f, 2.33f, 2.85f) / 4;  // the demo photo's code 255 through its response curves
+  img.set_rgb(1, 1, pink);
+  img.set_rgb(2, 1, Rgb::Constant(luminance(pink)));
+  img.set_rgb(3, 1, pink);
+  *weight.at(1, 1) = 1.0f;
+  *weight.at(3, 1) = 0.5f;
+  for (ToneMap op : kOps) {
+    const Image plain = tonemap(img, with(op)), shown = tonemap(img, with(op), &weight);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(shown.at(1, 1)[k], shown.at(2, 1)[k], 1e-6f) << tonemap_name(op);
+    EXPECT_GT(plain.at(1, 1)[0] - plain.at(1, 1)[1], 0.005f) << tonemap_name(op);  // pink without the weight
+    const float half_spread = shown.at(3, 1)[0] - shown.at(3, 1)[1];  // half-way: less pink, not grey
+    EXPECT_GT(half_spread, 0.0f) << tonemap_name(op);
+    EXPECT_LT(half_spread, plain.at(1, 1)[0] - plain.at(1, 1)[1]) << tonemap_name(op);
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 8; ++x) {
+        if (*weight.at(x, y) != 0.0f) continue;
+        for (int k = 0; k < 3; ++k) ASSERT_EQ(shown.at(x, y)[k], plain.at(x, y)[k]) << x << "," << y;
+      }
+  }
+}
+
 TEST(ToneMapping, SelectedInTheSceneFile) {
   test::SceneFixture fx;
   auto j = fx.scene;

@@ -83,6 +83,23 @@ float inverse_response(const ResponseCurve& r, int channel, float v) {
   return 1.0f;
 }
 
+// The top tenth of the codes, where the HDR merge's hat weight min(z, 1 − z) (Debevec and Malik
+// 1997) falls to zero and the response curves are least constrained, ramps to fully clipped.
+constexpr float kClipRamp = 0.1f;
+
+Image clipped_photo_weight(const RenderLayers& l, const ImageFile& photo) {
+  Image w(l.alpha.width, l.alpha.height, 1, 0.0f);
+  if (!photo.display_referred) return w;  // radiance (EXR, HDR): nothing clipped
+  for (int y = 0; y < w.height; ++y)
+    for (int x = 0; x < w.width; ++x) {
+      const float* code = photo.stored.at(x, y);
+      const float top = std::max({code[0], code[1], code[2]});
+      const float clipped = std::clamp((top - (1.0f - kClipRamp)) / kClipRamp, 0.0f, 1.0f);
+      *w.at(x, y) = clipped * (1.0f - std::clamp(*l.alpha.at(x, y), 0.0f, 1.0f));
+    }
+  return w;
+}
+
 Image encode_composite(const Image& c, const Image& touched, const ImageFile& photo, const ResponseCurve* response) {
   const bool use_response = response && photo.display_referred && photo.bits == 8;
   Image out(c.width, c.height, 3);

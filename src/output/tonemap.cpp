@@ -25,7 +25,8 @@ double log_average_luminance(const Image& img) {
   return n > 0 ? std::exp(sum / double(n)) : kDelta;
 }
 
-Image tonemap(const Image& img, const ToneMapSettings& s) {
+Image tonemap(const Image& img, const ToneMapSettings& s, const Image* clipped_photo) {
+  const bool weighted = clipped_photo && clipped_photo->width == img.width && clipped_photo->height == img.height;
   Image out(img.width, img.height, 3);
   const double lavg = log_average_luminance(img);
   // Scaled luminance of every pixel, and its maximum.
@@ -38,8 +39,12 @@ Image tonemap(const Image& img, const ToneMapSettings& s) {
   const double drago_scale = lmax > 0 ? 1.0 / std::log10(lmax + 1) : 0.0;
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
-      const Rgb c = clean(img.rgb(x, y));
+      Rgb c = clean(img.rgb(x, y));
       const double lw = luminance(c);
+      if (weighted) {  // the clipped share neutral: C' = (1 − w)·C + w·Lw keeps the luminance Lw
+        const float w = std::clamp(*clipped_photo->at(x, y), 0.0f, 1.0f);
+        c = (1.0f - w) * c + Rgb::Constant(w * float(lw));
+      }
       Rgb d = Rgb::Zero();
       if (s.op == ToneMap::kLinear) {
         d = c * float(key);

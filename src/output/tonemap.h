@@ -11,7 +11,10 @@
 //   reinhard      Reinhard et al. 2002, global: L = key·Lw/L̄w, Ld = L/(1 + L) (key 0.18).
 //   linear        C·key (key 1), clipped, then the sRGB curve.
 // Luminance is Rec.709 (DESIGN.md). Negative and non-finite inputs count as 0; an all-black
-// frame maps to black.
+// frame maps to black. Where the photo clipped (`clipped_photo`, composite.h: a weight w per
+// pixel) the colour is unknown, and that share of the pixel is shown neutral at its luminance:
+// C' = (1 − w)·C + w·Lw before the operator's scale Ld/Lw (the sRGB curve and `photo` keep the
+// photo's own white there already).
 #pragma once
 #include "core/image.h"
 #include "output/settings.h"
@@ -20,7 +23,7 @@ namespace insitu {
 
 // Display-referred values in [0, 1] (sRGB-encoded) for every operator but `photo`, which the
 // pipeline encodes itself.
-Image tonemap(const Image& linear, const ToneMapSettings& settings);
+Image tonemap(const Image& linear, const ToneMapSettings& settings, const Image* clipped_photo = nullptr);
 
 // The log-average luminance exp(mean(ln(δ + Y))), δ = 10⁻⁶, over finite non-negative pixels.
 double log_average_luminance(const Image& linear);

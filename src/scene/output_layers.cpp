@@ -35,7 +35,7 @@ Image rgba(const Image& rgb, const Image& alpha) {
 // hold the linear composite.
 Image display_image(const RenderResult& r, const OutputSpec& output) {
   if (is_linear_output(output.image)) return r.composite_linear;
-  return output.tonemap.op == ToneMap::kPhoto ? r.composite_encoded : tonemap(r.composite_linear, output.tonemap);
+  return output.tonemap.op == ToneMap::kPhoto ? r.composite_encoded : tonemap(r.composite_linear, output.tonemap, &r.clipped_photo);
 }
 
 }  // namespace

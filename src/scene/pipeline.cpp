@@ -314,6 +314,7 @@ RenderResult finish_render(const LoadedScene& scene, RenderLayers layers, double
   r.composite_linear = composite(scene.photo_linear, r.layers, scene.spec.composite);
   r.composite_encoded = encode_composite(r.composite_linear, touched_mask(r.layers), scene.photo,
                                          scene.environment_info.response ? &*scene.environment_info.response : nullptr);
+  r.clipped_photo = clipped_photo_weight(r.layers, scene.photo);
   return r;
 }
 

@@ -76,11 +76,11 @@ void RenderJob::run(const std::string& integrator, int spp) {
       shown = p.spp_done;
       // Between passes: the threads are idle and the state holds the samples so far.
       RenderResult r = finish_render(scene, layers_from_state(state));
-      publish(name, {std::move(r.composite_linear), std::move(r.composite_encoded), p.spp_done, spec.render.spp, ++passes, p.noise,
+      publish(name, {std::move(r.composite_linear), std::move(r.composite_encoded), std::move(r.clipped_photo), p.spp_done, spec.render.spp, ++passes, p.noise,
                      seconds(), false});
     };
     const RenderResult last = render_scene(scene, progress, control);
-    Slot final_slot{last.composite_linear, last.composite_encoded, last.layers.spp_done, spec.render.spp, passes,
+    Slot final_slot{last.composite_linear, last.composite_encoded, last.clipped_photo, last.layers.spp_done, spec.render.spp, passes,
                     last.layers.mean_relative_noise, seconds(), !last.layers.interrupted};
     if (passes > 0 || !last.layers.interrupted) publish(name, std::move(final_slot));  // stopped before a pass: nothing
     auto finished = last.layers.interrupted || !integrator.empty() ? nullptr : std::make_shared<const Finished>(Finished{loaded, last});
@@ -107,14 +107,15 @@ json RenderJob::status() const {
 }
 
 std::optional<std::string> RenderJob::png(const std::string& name, const ToneMapSettings& tonemap) const {
-  Image image;
+  Image image, clipped;
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     const auto it = slots_.find(name);
     if (it == slots_.end() || it->second.linear.data.empty()) return std::nullopt;
     image = tonemap.op == ToneMap::kPhoto ? it->second.encoded : it->second.linear;
+    if (tonemap.op != ToneMap::kPhoto) clipped = it->second.clipped_photo;
   }
-  return display_png(tonemap.op == ToneMap::kPhoto ? image : insitu::tonemap(image, tonemap));
+  return display_png(tonemap.op == ToneMap::kPhoto ? image : insitu::tonemap(image, tonemap, &clipped));
 }
 
 // The irradiance preview's radiance, per face: E within 7.1 ∫ L dω / 128 = 5.5 % of ∫ L dω

@@ -74,7 +74,7 @@ class RenderJob {
 
  private:
   struct Slot {
-    Image linear, encoded;
+    Image linear, encoded, clipped_photo;
     int spp_done = 0, spp = 0, passes = 0;
     double noise = -1, seconds = 0;
     bool done = false;
