@@ -95,6 +95,21 @@ TEST(Mesh, DegenerateTrianglesAreDroppedAndCounted) {
   EXPECT_NE(w.items[0].find("1 degenerate triangle(s) dropped (first at line 5)"), std::string::npos) << w.items[0];
 }
 
+// 10⁵ copies of one triangle (other vertex indices, other windings, other first corners) are one
+// surface: the mesh keeps the quad's two triangles and says how many it dropped, and where.
+TEST(Mesh, CopiesOfATriangleAreDroppedAndCounted) {
+  test::TempDir dir;
+  std::string obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1 0 0\nf 1 2 3\nf 1 3 4\n";  // lines 6, 7
+  const char* copies[] = {"f 1 2 3\n", "f 3 2 1\n", "f 2 3 1\n", "f 1 5 3\n"};  // v 5 is v 2's position
+  for (int i = 0; i < 100000; ++i) obj += copies[i % 4];
+  Warnings w;
+  const Mesh m = load_obj(dir.write("copies.obj", obj), w);
+  EXPECT_EQ(m.triangles.size(), 2u);
+  ASSERT_EQ(w.items.size(), 1u);
+  EXPECT_NE(w.items[0].find("100000 triangle(s) dropped that repeat another's three corners exactly (first at line 8)"),
+            std::string::npos) << w.items[0];
+}
+
 TEST(Mesh, RelativeIndices) {
   Warnings w;
   const Mesh m = load_obj(test_data("relative_indices.obj"), w);

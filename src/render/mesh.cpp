@@ -3,13 +3,16 @@
 
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cstring>
 #include <cstdlib>
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <unordered_set>
 
 namespace insitu {
 namespace fs = std::filesystem;
@@ -182,12 +185,42 @@ bool index_in_range(int index, std::size_t count, bool may_be_absent) {
   return (may_be_absent && index == -1) || (index >= 0 && std::size_t(index) < count);
 }
 
+// A triangle's three corners as positions, in a fixed order: two triangles with the same key are
+// one surface whatever their vertex indices, winding or first corner.
+using CornerKey = std::array<float, 9>;
+CornerKey corner_key(const Mesh& mesh, const Triangle& tri) {
+  std::array<std::array<float, 3>, 3> c;
+  for (int k = 0; k < 3; ++k) {
+    const Vec3f& p = mesh.positions[tri.v[std::size_t(k)]];
+    c[std::size_t(k)] = {p.x(), p.y(), p.z()};
+  }
+  std::sort(c.begin(), c.end());
+  CornerKey key;
+  for (int k = 0; k < 9; ++k) key[std::size_t(k)] = c[std::size_t(k / 3)][std::size_t(k % 3)];
+  return key;
+}
+
+struct CornerKeyHash {
+  std::size_t operator()(const CornerKey& k) const {
+    std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the nine floats' bytes
+    for (float f : k) {
+      std::uint32_t bits;
+      std::memcpy(&bits, &f, sizeof bits);
+      for (int b = 0; b < 4; ++b) h = (h ^ ((bits >> (8 * b)) & 0xffu)) * 1099511628211ull;
+    }
+    return std::size_t(h);
+  }
+};
+
 // Polygons fanned into triangles, each keeping its OBJ line; degenerate ones, |e1 × e2| ≤
-// 1e-12 (|e1|² + |e2|²) in double (scale-free), are dropped and counted in one warning.
+// 1e-12 (|e1|² + |e2|²) in double (scale-free), are dropped and counted in one warning. So are
+// copies of a triangle already read (the same three corners): a copy adds no surface, only a hit
+// that every ray through it must also test (10⁶ copies of one triangle rendered 1000× slower).
 void add_triangles(const std::vector<tinyobj::shape_t>& shapes, const ObjScan& scan, int default_material,
                    const std::string& path, Mesh& mesh, Warnings& warnings) {
-  std::size_t face_no = 0, degenerate = 0;
-  int first_degenerate_line = 0;
+  std::size_t face_no = 0, degenerate = 0, copies = 0;
+  int first_degenerate_line = 0, first_copy_line = 0;
+  std::unordered_set<CornerKey, CornerKeyHash> seen;
   for (const auto& shape : shapes) {
     std::size_t offset = 0;
     for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++face_no) {
@@ -215,6 +248,10 @@ void add_triangles(const std::vector<tinyobj::shape_t>& shapes, const ObjScan& s
           if (degenerate++ == 0) first_degenerate_line = line;
           continue;
         }
+        if (!seen.insert(corner_key(mesh, tri)).second) {
+          if (copies++ == 0) first_copy_line = line;
+          continue;
+        }
         mesh.triangles.push_back(tri);
       }
       offset += nfv;
@@ -223,6 +260,9 @@ void add_triangles(const std::vector<tinyobj::shape_t>& shapes, const ObjScan& s
   if (degenerate > 0)
     warnings.add(path, fmt::format("{} degenerate triangle(s) dropped (first at line {})", degenerate,
                                    first_degenerate_line));
+  if (copies > 0)
+    warnings.add(path, fmt::format("{} triangle(s) dropped that repeat another's three corners exactly (first at line {}): a "
+                                   "copy adds no surface and slows every ray through it", copies, first_copy_line));
 }
 
 }  // namespace

@@ -4,7 +4,8 @@
 // lets through silently, so that every error names its line: non-finite or missing coordinates
 // (`v`, `vn`, `vt`), face indices that are 0 or out of range, faces with fewer than three
 // vertices. Polygons are split into fans (0, i, i+1); degenerate triangles (zero area relative
-// to their edge lengths) are dropped and counted as a warning.
+// to their edge lengths) and exact copies of a triangle already read (the same three corners, in
+// any order) are dropped and counted as a warning.
 #pragma once
 #include <array>
 #include <cstdint>
