@@ -66,6 +66,31 @@ TEST(FullDisk, NoImageFormatGetsItsNameWhenTheDiskIsFull) {
   }
 }
 
+// The outputs land together: when the last of them (the report) cannot take its name, the image
+// and the layers written before it keep their old bytes, and no temporary is left. Before, the
+// new layers and image were in place beside the old report.
+TEST(FullDisk, OutputsLandTogetherOrNotAtAll) {
+  SceneFixture fx = noisy_scene();
+  SceneSpec spec = parse_scene_file(fx.dir.file("scene.json"));
+  spec.output.image = fx.dir.file("out/c.png");
+  spec.output.layers = fx.dir.file("out/c.layers.exr");
+  const LoadedScene scene = load_scene(spec);
+  const RenderResult r = render_scene(scene);
+  fs::create_directories(fx.dir.path() / "out");
+  fx.dir.write("out/c.png", "old image");
+  fx.dir.write("out/c.layers.exr", "old layers");
+  fs::create_directories(fx.dir.path() / "out/c.png.report.json/inside");  // a folder where the report goes
+  EXPECT_THROW(write_outputs(scene, r), InputError);
+  EXPECT_EQ(test::slurp(fx.dir.file("out/c.png")), "old image");
+  EXPECT_EQ(test::slurp(fx.dir.file("out/c.layers.exr")), "old layers");
+  EXPECT_TRUE(hidden_files(fx.dir.path() / "out").empty()) << "a temporary file was left";
+  fs::remove_all(fx.dir.path() / "out/c.png.report.json");
+  write_outputs(scene, r);  // with the way clear, all three
+  EXPECT_NE(test::slurp(fx.dir.file("out/c.png")), "old image");
+  EXPECT_NE(test::slurp(fx.dir.file("out/c.layers.exr")), "old layers");
+  EXPECT_TRUE(fs::exists(fx.dir.path() / "out/c.png.report.json"));
+}
+
 TEST(FullDisk, AResumeThatCannotWriteKeepsItsCheckpoint) {
   SceneFixture fx = noisy_scene();
   const std::string image = fx.dir.file("out/c.png"), checkpoint = checkpoint_path(image);

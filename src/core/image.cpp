@@ -1,6 +1,7 @@
 #include "core/output_paths.h"
 #include "core/file_check.h"
 #include "core/image.h"
+#include "core/staged_writes.h"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/filesystem.h>
@@ -290,9 +291,10 @@ TypeDesc storage_type(const std::string& ext_lower) {
 }
 
 // Reads a written image back to its last row, in bands (bounded memory at any size): "" when it
-// decodes whole with the shape written, else why not. OpenImageIO's PNG writer ignores libpng's
-// short writes, so on a full disk (or past `ulimit -f`) it returned success for a truncated file
-// (issue 46); a file that reads back whole was written whole.
+// decodes whole with the shape written, else why not. For the formats whose library writes the
+// file itself (EXR, TIFF, HDR; PNG and JPEG go through memory, write_through_memory): OpenImageIO's
+// writers do not all report short writes (its PNG writer returned success for a file cut short
+// by a full disk, issue 46), and a file that reads back whole was written whole.
 std::string read_back_failure(const std::string& path, const ImageSpec& spec) {
   StderrCapture capture;  // libpng prints its own "libpng error" before OpenImageIO reports it
   auto in = ImageInput::open(path);
@@ -320,27 +322,27 @@ std::string read_back_failure(const std::string& path, const ImageSpec& spec) {
 // write_binary_file, whose every write and fsync is checked. libjpeg, writing a file itself, ends
 // the process on a full disk (exit 1, its own message, a temporary file left behind).
 void write_through_memory(const std::string& path, const ImageSpec& spec, ImageOutput& out,
-                          const std::function<bool(ImageOutput&)>& write_pixels) {
+                          const std::function<bool(ImageOutput&)>& write_pixels, StagedWrites* stage) {
   std::vector<unsigned char> bytes;
   Filesystem::IOVecOutput memory(bytes);
   if (!out.set_ioproxy(&memory) || !out.open(path, spec) || !write_pixels(out) || !out.close())
     throw InputError(path, "cannot write image: " + one_line(out.geterror()));
-  write_binary_file(path, std::string(bytes.begin(), bytes.end()));
+  write_binary_file(path, std::string(bytes.begin(), bytes.end()), stage);
 }
 
 // Writes an image with `spec` under a temporary name, flushes it to the disk, reads it back whole,
-// then renames it to `path`; `write_pixels` writes the pixels through the open output (false:
-// failed, with its error). On any failure the temporary file is removed and an InputError names
-// `path`: no image that does not open ever gets its final name.
+// then renames it to `path` (or stages it: core/staged_writes.h); `write_pixels` writes the pixels
+// through the open output (false: failed, with its error). On any failure the temporary file is
+// removed and an InputError names `path`: no image that does not open ever gets its final name.
 void write_atomically(const std::string& path, const std::string& format, const ImageSpec& spec,
-                      const std::function<bool(ImageOutput&)>& write_pixels) {
+                      const std::function<bool(ImageOutput&)>& write_pixels, StagedWrites* stage) {
   const fs::path p(path);
   make_parent(p);
-  remove_stale_temporaries(path, p.stem().string());
   const std::string tmp = temporary_name(p);
   auto out = ImageOutput::create(format.empty() ? tmp : format);
   if (!out) throw InputError(path, "no image format for '" + p.extension().string() + "'");
-  if (spec.format == TypeDesc::UINT8 && out->supports("ioproxy")) return write_through_memory(path, spec, *out, write_pixels);
+  if (spec.format == TypeDesc::UINT8 && out->supports("ioproxy")) return write_through_memory(path, spec, *out, write_pixels, stage);
+  remove_stale_temporaries(path, p.stem().string());  // (write_binary_file's own for the above)
   const TempFileGuard guard(tmp);  // removed if the process is interrupted meanwhile
   std::string err;
   if (!out->open(tmp, spec) || !write_pixels(*out) || !out->close()) err = out->geterror();
@@ -352,12 +354,13 @@ void write_atomically(const std::string& path, const std::string& format, const 
     fs::remove(tmp, ec);
     throw InputError(path, "cannot write image: " + err);
   }
-  commit(tmp, path);
+  if (stage) stage->add(tmp, path);
+  else commit(tmp, path);
 }
 
 }  // namespace
 
-void write_image(const std::string& path, const Image& img, const Exposure* exposure) {
+void write_image(const std::string& path, const Image& img, const Exposure* exposure, StagedWrites* stage) {
   const std::string ext = lower_extension(path);
   ImageSpec spec(img.width, img.height, img.channels, storage_type(ext));
   if (ext == ".jpg" || ext == ".jpeg") spec.attribute("CompressionQuality", 92);
@@ -367,11 +370,11 @@ void write_image(const std::string& path, const Image& img, const Exposure* expo
     if (exposure->iso) spec.attribute("Exif:PhotographicSensitivity", int(*exposure->iso));
     if (exposure->focal_35mm_mm) spec.attribute("Exif:FocalLengthIn35mmFilm", int(*exposure->focal_35mm_mm));
   }
-  write_atomically(path, "", spec, [&](ImageOutput& out) { return out.write_image(TypeDesc::FLOAT, img.data.data()); });
+  write_atomically(path, "", spec, [&](ImageOutput& out) { return out.write_image(TypeDesc::FLOAT, img.data.data()); }, stage);
 }
 
 void write_exr_channels(const std::string& path, int width, int height,
-                        const std::vector<ExrChannel>& channels, bool half_float) {
+                        const std::vector<ExrChannel>& channels, bool half_float, StagedWrites* stage) {
   const int nc = int(channels.size());
   ImageSpec spec(width, height, nc, half_float ? TypeDesc::HALF : TypeDesc::FLOAT);
   spec.channelnames.clear();
@@ -396,7 +399,7 @@ void write_exr_channels(const std::string& path, int width, int height,
       if (!out.write_scanlines(y0, y1, 0, TypeDesc::FLOAT, block.data())) return false;
     }
     return true;
-  });
+  }, stage);
 }
 
 Image resize(const Image& img, int width, int height, const std::string& filter) {

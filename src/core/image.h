@@ -12,6 +12,9 @@
 
 namespace insitu {
 
+class StagedWrites;  // core/staged_writes.h
+
+
 struct Image {
   int width = 0, height = 0, channels = 0;
   std::vector<float> data;  // row-major, row 0 at the top, channels interleaved
@@ -84,7 +87,10 @@ std::size_t sanitize(Image& img);
 // Writes RGB(A) float pixels; the format follows the extension. 8-bit formats get the values
 // rounded to k/255 after clamping to [0,1] (the caller encodes with sRGB first).
 // `exposure`, when given, is written as EXIF (ExposureTime, FNumber, ISO, 35 mm focal length).
-void write_image(const std::string& path, const Image& img, const Exposure* exposure = nullptr);
+// With `stage`, the verified file waits under its temporary name for stage->commit()
+// (core/staged_writes.h); without, it is renamed at once.
+void write_image(const std::string& path, const Image& img, const Exposure* exposure = nullptr,
+                 StagedWrites* stage = nullptr);
 
 // A multi-part EXR written as one file: named channel groups ("R","G","B","A",
 // "objects.R", ...), all of width x height, stored as half or float.
@@ -94,7 +100,7 @@ struct ExrChannel {
   int channel;         // which of its channels
 };
 void write_exr_channels(const std::string& path, int width, int height,
-                        const std::vector<ExrChannel>& channels, bool half_float = false);
+                        const std::vector<ExrChannel>& channels, bool half_float = false, StagedWrites* stage = nullptr);
 
 // Resampling with a proper filter (OpenImageIO's ImageBufAlgo::resize); filter "" is OpenImageIO's
 // default (Blackman-Harris), "box" the area average (keeps a radiance map's integral).

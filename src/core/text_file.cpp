@@ -8,14 +8,17 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/staged_writes.h"
 #include "core/temp_files.h"
 
 namespace insitu {
 namespace fs = std::filesystem;
 
-void write_text_file(const std::string& path, const std::string& text) { write_binary_file(path, text); }
+void write_text_file(const std::string& path, const std::string& text, StagedWrites* stage) {
+  write_binary_file(path, text, stage);
+}
 
-void write_binary_file(const std::string& path, const std::string& text) {
+void write_binary_file(const std::string& path, const std::string& text, StagedWrites* stage) {
   const fs::path p(path);
   std::error_code ec;
   if (!p.parent_path().empty()) fs::create_directories(p.parent_path(), ec);
@@ -35,6 +38,7 @@ void write_binary_file(const std::string& path, const std::string& text) {
     fs::remove(tmp, ec);
     throw InputError(path, "cannot write: " + why);
   }
+  if (stage) return stage->add(tmp.string(), path);
   fs::rename(tmp, p, ec);
   if (ec) {
     const std::string why = is_directory_quietly(p.string()) ? "is a directory" : "cannot write: " + ec.message();

@@ -4,8 +4,11 @@
 
 namespace insitu {
 
-void write_text_file(const std::string& path, const std::string& text);
+class StagedWrites;  // core/staged_writes.h
+
+// With `stage`, the flushed file waits under its temporary name for stage->commit().
+void write_text_file(const std::string& path, const std::string& text, StagedWrites* stage = nullptr);
 // The same for raw bytes (binary mode; on POSIX the two are one).
-void write_binary_file(const std::string& path, const std::string& bytes);
+void write_binary_file(const std::string& path, const std::string& bytes, StagedWrites* stage = nullptr);
 
 }  // namespace insitu

@@ -5,6 +5,7 @@
 
 #include "core/json_reader.h"
 #include "core/output_paths.h"
+#include "core/staged_writes.h"
 #include "core/text_file.h"
 #include "output/composite.h"
 #include "output/tonemap.h"
@@ -87,20 +88,24 @@ void write_outputs(const LoadedScene& scene, const RenderResult& r, const Output
     spec.output = out;
     check_outputs(loaded_scene_inputs(scene), scene_output_files(spec));
   }
+  // All or nothing: the layers, the image and the report are renamed together once all three are
+  // written (a full disk while writing the report leaves the old image and layers, not new ones).
+  StagedWrites stage;
   if (out.layers.empty()) {  // "layers": "none": only the display layer is made (a batch's stills)
-    write_image(out.image, finite(display_image(r, out)));
+    write_image(out.image, finite(display_image(r, out)), nullptr, &stage);
   } else {
     const std::vector<OutputLayer> layers = output_layers(scene, r, &out);
     std::vector<ExrChannel> channels;
     for (const OutputLayer& layer : layers)
       if (layer.in_exr)
         for (std::size_t c = 0; c < layer.channels.size(); ++c) channels.push_back({layer.exr_channel(c), &layer.image, int(c)});
-    write_exr_channels(out.layers, r.composite_linear.width, r.composite_linear.height, channels);
-    write_image(out.image, layers.back().image);
+    write_exr_channels(out.layers, r.composite_linear.width, r.composite_linear.height, channels, false, &stage);
+    write_image(out.image, layers.back().image, nullptr, &stage);
   }
   nlohmann::json report = render_report(scene, r, &out);
   if (report_extra.is_object()) report.update(report_extra);
-  write_text_file(report_path(out.image), json_text(report, 2) + "\n");
+  write_text_file(report_path(out.image), json_text(report, 2) + "\n", &stage);
+  stage.commit();  // the report last: a batch counts an entry done by its report
 }
 
 }  // namespace insitu

@@ -86,10 +86,11 @@ RenderResult finish_render(const LoadedScene& scene, RenderLayers layers, double
 // tone map or the composite's form, which act after the sums.
 std::uint64_t render_fingerprint(const LoadedScene& scene);
 
-// Writes the layered EXR (scene/output_layers.h), the composite image and the JSON report, each
-// atomically, to the scene's outputs or to `output`'s (checked first against every input). The
-// report comes last: where it exists, the image and the layers are whole (a batch's mark of an
-// entry done). `report_extra`: keys added to the report (a batch entry's).
+// Writes the layered EXR (scene/output_layers.h), the composite image and the JSON report to the
+// scene's outputs or to `output`'s (checked first against every input), all or none: each is
+// written and verified under a temporary name, and the three are renamed only when all are
+// (core/staged_writes.h). The report is renamed last: where it exists, the image and the layers
+// are whole (a batch's mark of an entry done). `report_extra`: keys added to the report (a batch entry's).
 void write_outputs(const LoadedScene& scene, const RenderResult& result, const OutputSpec* output = nullptr,
                    const nlohmann::json& report_extra = {});
 
