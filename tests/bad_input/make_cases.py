@@ -175,6 +175,7 @@ def main():
          files={"tex.png": png[: len(png) // 2], "quad.mtl": "newmtl red\nKd 1 1 1\nmap_Kd tex.png\n"})
     systematic_cases()
     more_cases()
+    message_cases()
     print("wrote", sum(1 for d in os.listdir(HERE) if os.path.isfile(os.path.join(HERE, d, "case.json"))), "cases")
 
 
@@ -340,6 +341,25 @@ def more_cases():
     env = open(os.path.join(HERE, "_base", "env.exr"), "rb").read()
     case("export_blender_world_is_the_environment", ["export-blender", "scene.json", "-o", "s.py"], r"s.world.exr.*is the environment",
          ["s.world.exr"], files={"s.world.exr": env}, scene=scene_with(environment="s.world.exr"))
+
+
+def message_cases():
+    """Issue 46's messages: a place named once, a key's meaning said, a range of plain numbers."""
+    shots = {"shots": dict(SHOTS)}
+    case("missing_faced_says_what_it_means", ["render", "scene.json"],
+         r"scene\.json:\$\.environment\.shots: missing required key 'faced': the wall you faced when you shot the "
+         r"ceiling and the floor", files=six_shots(), scene=scene_with(environment=shots))
+    bad_shot = six_shots()
+    bad_shot["s0.png"] = "not a png"
+    case("shot_error_names_its_place_once", ["render", "scene.json"],
+         r"^insitu: error: scene\.json:\$\.environment\.shots\.\+x: s0\.png: (?!.*scene\.json)", files=bad_shot,
+         scene=scene_with(environment={"shots": dict(SHOTS, faced="-z")}))
+    case("unknown_key_lists_each_name_once", ["render", "scene.json"],
+         r"\$\.render\.irradiance_mod: unknown key \(expected one of: [^;]*irradiance[^;]*; or an integrator's object"
+         r" of parameters: (?!.*irradiance.*irradiance)", scene=scene_with(render={"irradiance_mod": "sh9"}))
+    case("batch_index_negative", ["batch", "b.json", "--index", "-1"], r"--index: Value -1 not in range 0 to [0-9]{1,10} ",
+         files={"b.json": json.dumps({"scene": "scene.json", "entries": [{"objects": [{"mesh": "quad.obj"}],
+                                                                          "output": "o.png"}]})})
 
 
 if __name__ == "__main__":
