@@ -215,6 +215,11 @@ TEST(Batch, NoEntryWritesOverAnInputOrAnotherEntrysOutput) {
   fs::create_directories(dir / "out");
   b.fx.dir.write("out/e0.exr", "a previous run's image");
   fs::create_symlink(dir / "out/e0.exr", dir / "out/link.exr");
+  // A textured mesh: its MTL and texture are known only by reading the OBJ (issue 46: an entry's
+  // output over another entry's texture was caught only when that entry loaded).
+  b.fx.dir.write("tex.obj", "mtllib tex.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl t\nf 1/1 2/2 3/3\n");
+  b.fx.dir.write("tex.mtl", "newmtl t\nKd 1 1 1\nmap_Kd tex.png\n");
+  fs::copy_file(dir / "photo.png", dir / "tex.png");
   struct Case {
     std::string batch_name, room, says;
     std::function<void(nlohmann::json&)> edit;
@@ -228,6 +233,10 @@ TEST(Batch, NoEntryWritesOverAnInputOrAnotherEntrysOutput) {
        }},
       {"batch.json", "scene.json", "the output image of entry 1", [](auto& e) { e[0]["output"]["layers"] = "out/e1.exr"; }},
       {"batch.json", "scene.json", "the output image of entry 0", [](auto& e) { e[2]["output"]["image"] = "out/link.exr"; }},
+      {"batch.json", "scene.json", "tex.obj of entry 2", [](auto& e) {
+         e[2]["objects"][0]["mesh"] = "tex.obj";
+         e[0]["output"]["image"] = "tex.png";
+       }},
   };
   for (const Case& c : cases) {
     nlohmann::json entries = b.entries;

@@ -61,7 +61,7 @@ struct Entry {
 void check_batch_outputs(const std::string& batch, const std::string& room, const std::vector<Entry>& entries) {
   std::vector<NamedPath> inputs = {{batch, "the batch file"}, {room, "the room's scene file"}}, outputs;
   for (std::size_t i = 0; i < entries.size(); ++i) {
-    for (NamedPath& in : scene_input_files(entries[i].spec))
+    for (NamedPath& in : scene_input_files_with_meshes(entries[i].spec))
       if (in.path != entries[i].spec.path) inputs.push_back({in.path, fmt::format("{} of entry {}", in.role, i)});
     for (NamedPath& out : scene_output_files(entries[i].spec))
       if (out.path != checkpoint_path(entries[i].spec.output.image))  // a batch writes no checkpoint

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <unordered_set>
 
@@ -266,6 +267,29 @@ void add_triangles(const std::vector<tinyobj::shape_t>& shapes, const ObjScan& s
 }
 
 }  // namespace
+
+std::vector<std::string> obj_dependencies(const std::string& obj_path) {
+  std::vector<std::string> files;
+  std::ifstream obj(obj_path);
+  if (!obj) return files;
+  const fs::path base_dir = fs::path(obj_path).parent_path();
+  for_each_statement(obj, [&](int, const std::vector<std::string>& tok) {
+    if (tok[0] == "mtllib")
+      for (std::size_t k = 1; k < tok.size(); ++k) files.push_back((base_dir / tok[k]).string());
+  });
+  const std::size_t mtl_count = files.size();
+  for (std::size_t i = 0; i < mtl_count; ++i) {
+    std::ifstream mtl(files[i]);
+    std::map<std::string, int> names;
+    std::vector<tinyobj::material_t> materials;
+    std::string warning, error;
+    if (!mtl) continue;
+    tinyobj::LoadMtl(&names, &materials, &mtl, &warning, &error);
+    for (const tinyobj::material_t& m : materials)
+      if (!m.diffuse_texname.empty()) files.push_back((base_dir / m.diffuse_texname).string());
+  }
+  return files;
+}
 
 Mesh load_obj(const std::string& path, Warnings& warnings) {
   const std::string ext = lower_extension(path);

@@ -50,6 +50,12 @@ struct Mesh {
 // Throws InputError("file:line", ...) on bad input; adds counted warnings.
 Mesh load_obj(const std::string& path, Warnings& warnings);
 
+// The files an OBJ reads besides itself, as load_obj resolves them: its MTL files (`mtllib`, beside
+// the OBJ) and their diffuse textures (`map_Kd`), found by reading only those statements (a batch
+// checks its outputs against them before it loads anything). Unreadable files list nothing more;
+// nothing throws: load_obj reports them.
+std::vector<std::string> obj_dependencies(const std::string& obj_path);
+
 // A triangle whose edges are parallel or zero: |e1 × e2| ≤ 1e-12 (|e1|² + |e2|²), in double.
 bool degenerate_triangle(const Mesh& mesh, const Triangle& tri);
 

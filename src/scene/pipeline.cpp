@@ -1,4 +1,6 @@
 #include "scene/pipeline.h"
+
+#include "render/mesh.h"
 #include "scene/light_recovery.h"
 
 #include <algorithm>
@@ -86,6 +88,17 @@ std::vector<NamedPath> scene_input_files(const SceneSpec& spec) {
   for (const auto& o : spec.objects) in.push_back({o.mesh, "a mesh (" + o.where + ")"});
   for (const auto& p : spec.local_scene)
     if (p.mesh) in.push_back({p.mesh->mesh, "a local-scene mesh (" + p.mesh->where + ")"});
+  return in;
+}
+
+std::vector<NamedPath> scene_input_files_with_meshes(const SceneSpec& spec) {
+  std::vector<NamedPath> in = scene_input_files(spec);
+  std::vector<std::string> meshes;
+  for (const auto& o : spec.objects) meshes.push_back(o.mesh);
+  for (const auto& p : spec.local_scene)
+    if (p.mesh) meshes.push_back(p.mesh->mesh);
+  for (const std::string& mesh : meshes)
+    for (std::string& file : obj_dependencies(mesh)) in.push_back({std::move(file), "read by " + mesh});
   return in;
 }
 

@@ -56,6 +56,9 @@ void check_references(const SceneSpec& spec, int width, int height);
 
 // The files a scene reads (before loading its meshes) and writes.
 std::vector<NamedPath> scene_input_files(const SceneSpec& spec);
+// scene_input_files and, for each mesh, the MTL files and textures it will read (render/mesh.h's
+// obj_dependencies, named "read by <mesh>" as after loading): known before anything is loaded.
+std::vector<NamedPath> scene_input_files_with_meshes(const SceneSpec& spec);
 std::vector<NamedPath> scene_output_files(const SceneSpec& spec);
 
 struct RenderResult {
