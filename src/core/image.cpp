@@ -338,11 +338,13 @@ void write_atomically(const std::string& path, const std::string& format, const 
                       const std::function<bool(ImageOutput&)>& write_pixels, StagedWrites* stage) {
   const fs::path p(path);
   make_parent(p);
+  // An image's temporaries are named by its stem (temporary_name); write_binary_file, which
+  // writes the PNG and JPEG encoded in memory, removes those named by the whole file name.
+  remove_stale_temporaries(path, p.stem().string());
   const std::string tmp = temporary_name(p);
   auto out = ImageOutput::create(format.empty() ? tmp : format);
   if (!out) throw InputError(path, "no image format for '" + p.extension().string() + "'");
   if (spec.format == TypeDesc::UINT8 && out->supports("ioproxy")) return write_through_memory(path, spec, *out, write_pixels, stage);
-  remove_stale_temporaries(path, p.stem().string());  // (write_binary_file's own for the above)
   const TempFileGuard guard(tmp);  // removed if the process is interrupted meanwhile
   std::string err;
   if (!out->open(tmp, spec) || !write_pixels(*out) || !out->close()) err = out->geterror();
