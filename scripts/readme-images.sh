@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the README's pictures and figures from the demo scene with the current build:
 # docs/images/demo-{photo,path,realtime,shadow-ratio,ab}.png and docs/tradeoff/ (the table in the
-# README's "Speed against accuracy" is printed by the last step). Run after the build:
+# "Speed against accuracy" of docs/performance.md is printed by the last step). Run after the build:
 #   bash scripts/readme-images.sh            (about 6 minutes on 2 cores; --no-tradeoff: 30 s)
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -6,6 +6,7 @@
 
 #include "output/composite.h"
 #include "scene/pipeline.h"
+#include "cli_util.h"
 #include "scene_fixture.h"
 
 namespace insitu {
@@ -41,6 +42,27 @@ TEST(SceneFile, ValidSceneLoads) {
 // The layers' default (issue 46): out/layers.exr beside the default image; beside an image of
 // the scene's own, IMAGE_STEM.layers.exr (variants in one folder wrote one out/layers.exr over
 // each other's); as given, or none, when output.layers says so.
+// The README's first scene is a scene file insitu reads: its JSON block under "A first scene of
+// your own", parsed as the CLI parses it, beside empty files of the names it gives (nothing is loaded).
+TEST(SceneFile, TheReadmesFirstSceneIsOneInsituReads) {
+  const std::string readme = test::slurp(test::source_dir() + "/README.md");
+  const std::size_t section = readme.find("## A first scene of your own"), begin = readme.find("```json\n", section),
+                    end = readme.find("```\n", begin + 8);
+  ASSERT_NE(section, std::string::npos);
+  ASSERT_NE(end, std::string::npos);
+  const json doc = json::parse(readme.substr(begin + 8, end - begin - 8));
+  test::TempDir room;
+  for (const char* f : {"room.jpg", "points.json", "east.jpg", "west.jpg", "south.jpg", "north.jpg", "ceiling.jpg", "floor.jpg",
+                        "chair.obj"})
+    room.write(f, "");
+  const SceneSpec spec = parse_scene_json(doc, "README.md", room.path().string());
+  EXPECT_EQ(spec.camera.kind, CameraSpec::Kind::Points);
+  EXPECT_TRUE(spec.environment.from_shots());
+  ASSERT_EQ(spec.objects.size(), 1u);
+  EXPECT_EQ(spec.output.image, room.file("out/chair.png"));
+  EXPECT_EQ(spec.render.integrator, "path");
+}
+
 TEST(SceneFile, TheLayersFollowTheImage) {
   using Paths = std::pair<std::string, std::string>;  // the image's and the layers', in the scene's folder
   SceneFixture fx;

@@ -56,7 +56,7 @@ INSITU_API const char* insitu_last_error(void);
 
 /* ---- Scenes --------------------------------------------------------------------------------- */
 
-/* A scene file (README "Scene file"); relative paths in it are relative to the file. */
+/* A scene file (docs/scene-file.md); relative paths in it are relative to the file. */
 INSITU_API insitu_status insitu_scene_from_file(const char* path, insitu_scene** scene);
 /* A scene as JSON text; relative paths are resolved against base_dir (NULL: the working
  * directory); `name` stands for the file in messages (NULL: "<json>"). */

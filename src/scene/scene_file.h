@@ -1,6 +1,6 @@
 // The scene file (DESIGN.md "Scene file"): JSON, paths relative to the file, unknown keys are
 // errors. parse_scene_file() checks types, ranges and that every named file exists; every error
-// names the file and the JSON path. The reference is in README.md.
+// names the file and the JSON path. The reference is docs/scene-file.md.
 #pragma once
 #include <string>
 

@@ -360,13 +360,13 @@ TEST(CApi, ResultBuffersAndFiles) {
 
 namespace {
 
-// The README's "Use as a library" listings are the example files the install test builds and runs.
-TEST(CApi, ReadmeShowsTheTestedExamples) {
-  const std::string readme = insitu::test::slurp(std::string(INSITU_SOURCE_DIR) + "/README.md");
+// docs/library.md's two listings are the example files the install test builds and runs.
+TEST(CApi, LibraryPageShowsTheTestedExamples) {
+  const std::string readme = insitu::test::slurp(std::string(INSITU_SOURCE_DIR) + "/docs/library.md");
   for (const auto& [file, fence] : {std::pair{"minimal.c", "```c\n"}, std::pair{"minimal.py", "```python\n"}}) {
     const std::string text = insitu::test::slurp(std::string(INSITU_SOURCE_DIR) + "/examples/" + file);
     ASSERT_FALSE(text.empty()) << file;
-    EXPECT_NE(readme.find(fence + text + "```\n"), std::string::npos) << "README.md does not show examples/" << file;
+    EXPECT_NE(readme.find(fence + text + "```\n"), std::string::npos) << "docs/library.md does not show examples/" << file;
     EXPECT_LE(std::count(text.begin(), text.end(), '\n'), std::string(file) == "minimal.c" ? 24 : 10) << file;
   }
 }
