@@ -1,6 +1,8 @@
 // Bracket merging and response recovery (light/hdr_merge.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <nlohmann/json.hpp>
 #include <random>
 
@@ -121,6 +123,27 @@ TEST(HdrMerge, ClippedFractionCounts) {
   f.bits = 8;
   f.stored = img;
   EXPECT_DOUBLE_EQ(clipped_fraction(f), 0.1);
+}
+
+// The degree ramps linearly in the largest channel from 0.9 of the range to the top code, where
+// it is 1 exactly where the mask says clipped; a float file clips nowhere.
+TEST(HdrMerge, ClippedDegreeRampsToTheMasksTopCode) {
+  const std::vector<float> codes = {0.5f, 229.0f / 255, 240.0f / 255, 250.0f / 255, 254.0f / 255, 1.0f};
+  Image img(int(codes.size()), 1, 3, 0.1f);
+  for (std::size_t i = 0; i < codes.size(); ++i) img.at(int(i), 0)[i % 3] = codes[i];  // one channel each
+  ImageFile f;
+  f.display_referred = true;
+  f.bits = 8;
+  f.stored = img;
+  const Image degree = clipped_degree(f), mask = clipped_mask(f);
+  const double top = 254.5 / 255;
+  for (std::size_t i = 0; i < codes.size(); ++i) {
+    const double expected = std::clamp((codes[i] - 0.9) / (top - 0.9), 0.0, 1.0);
+    EXPECT_NEAR(*degree.at(int(i), 0), expected, 1e-5) << i;
+    EXPECT_EQ(mask.at(int(i), 0)[0], expected >= 1 ? 1.0f : 0.0f) << i;
+  }
+  f.display_referred = false;
+  for (float d : clipped_degree(f).data) EXPECT_EQ(d, 0.0f);
 }
 
 }  // namespace

@@ -134,16 +134,30 @@ Image linearize_with_response(const ImageFile& file, const ResponseCurve& r) {
   return out;
 }
 
-Image clipped_mask(const ImageFile& file) {
+namespace {
+constexpr float kClipRampStart = 0.9f;
+}  // namespace
+
+Image clipped_degree(const ImageFile& file) {
   const Image& img = file.stored;
-  Image mask(img.width, img.height, 3);
-  if (!file.display_referred) return mask;
+  Image degree(img.width, img.height, 1, 0.0f);
+  if (!file.display_referred) return degree;
   const float top = file.bits == 8 ? 254.5f / 255.0f : 65534.5f / 65535.0f;
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
       const float* p = img.at(x, y);
-      if (p[0] >= top || p[1] >= top || p[2] >= top) mask.set_rgb(x, y, Rgb(1, 1, 1));
+      const float largest = std::max({p[0], p[1], p[2]});
+      *degree.at(x, y) = std::clamp((largest - kClipRampStart) / (top - kClipRampStart), 0.0f, 1.0f);
     }
+  return degree;
+}
+
+Image clipped_mask(const ImageFile& file) {
+  const Image degree = clipped_degree(file);
+  Image mask(degree.width, degree.height, 3);
+  for (int y = 0; y < degree.height; ++y)
+    for (int x = 0; x < degree.width; ++x)
+      if (*degree.at(x, y) >= 1.0f) mask.set_rgb(x, y, Rgb(1, 1, 1));
   return mask;
 }
 

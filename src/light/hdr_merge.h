@@ -30,10 +30,17 @@ Image merge_brackets(const std::vector<ImageFile>& brackets, const std::vector<d
 // An 8-bit image through a response curve.
 Image linearize_with_response(const ImageFile& file, const ResponseCurve& response);
 
-// The fraction of pixels with a channel at the top of the stored range (>= 254.5/255 for 8-bit):
-// radiance there is only a lower bound.
-double clipped_fraction(const ImageFile& file);
-// 1 (in every channel) where a pixel is clipped so, else 0; all 0 for float files.
+// A pixel is clipped where a channel is at the top of the stored range (>= 254.5/255 for 8-bit,
+// 65534.5/65535 for 16-bit): radiance there is only a lower bound. Float files clip nowhere.
+//
+// 1 channel: how near each pixel is to clipping. 0 where its largest channel is below 0.9 of the
+// range, rising linearly to 1 at the top code (clipped). The start is a choice: there the merge's
+// hat weight min(z, 1 − z) (Debevec and Malik 1997) is at most 0.1 and the response curves are
+// least constrained; the weight reaches zero only at the last code.
+Image clipped_degree(const ImageFile& file);
+// 1 (in every channel) where a pixel is clipped, else 0 (clipped_degree = 1).
 Image clipped_mask(const ImageFile& file);
+// The fraction of pixels clipped.
+double clipped_fraction(const ImageFile& file);
 
 }  // namespace insitu

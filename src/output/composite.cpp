@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/colour.h"
+#include "light/hdr_merge.h"
 
 namespace insitu {
 
@@ -83,20 +84,10 @@ float inverse_response(const ResponseCurve& r, int channel, float v) {
   return 1.0f;
 }
 
-// The top tenth of the codes, where the HDR merge's hat weight min(z, 1 − z) (Debevec and Malik
-// 1997) falls to zero and the response curves are least constrained, ramps to fully clipped.
-constexpr float kClipRamp = 0.1f;
-
 Image clipped_photo_weight(const RenderLayers& l, const ImageFile& photo) {
-  Image w(l.alpha.width, l.alpha.height, 1, 0.0f);
-  if (!photo.display_referred) return w;  // radiance (EXR, HDR): nothing clipped
+  Image w = clipped_degree(photo);
   for (int y = 0; y < w.height; ++y)
-    for (int x = 0; x < w.width; ++x) {
-      const float* code = photo.stored.at(x, y);
-      const float top = std::max({code[0], code[1], code[2]});
-      const float clipped = std::clamp((top - (1.0f - kClipRamp)) / kClipRamp, 0.0f, 1.0f);
-      *w.at(x, y) = clipped * (1.0f - std::clamp(*l.alpha.at(x, y), 0.0f, 1.0f));
-    }
+    for (int x = 0; x < w.width; ++x) *w.at(x, y) *= 1.0f - std::clamp(*l.alpha.at(x, y), 0.0f, 1.0f);
   return w;
 }
 

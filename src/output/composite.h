@@ -44,11 +44,10 @@ Image shadow_ratio(const RenderLayers& layers);
 // Whether the ratio form is the less noisy estimator at (x, y) (see above).
 bool ratio_is_reliable(const Image& photo_linear, const RenderLayers& layers, int x, int y);
 
-// 1 channel: how much of each pixel is the photo where it clipped (its largest channel in the top
-// tenth of the codes, ramping to 1 at the last code, in a photo that is display-referred), times
-// 1 − α of the objects; 0 elsewhere. A clipped
-// pixel's colour is unknown (the response curves map each channel's last code to a different
-// radiance, so a white window is pink in linear light); tonemap() shows that share neutral.
+// 1 channel: how much of each pixel is the photo where it clipped: light/hdr_merge.h's
+// clipped_degree of the photo times 1 − α of the objects. A clipped pixel's colour is unknown
+// (the response curves map each channel's last code to a different radiance, so a white window
+// is pink in linear light); tonemap() shows that share neutral.
 Image clipped_photo_weight(const RenderLayers& layers, const ImageFile& photo);
 
 Image encode_composite(const Image& composite_linear, const Image& touched, const ImageFile& photo,

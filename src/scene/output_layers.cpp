@@ -32,11 +32,13 @@ Image rgba(const Image& rgb, const Image& alpha) {
   return out;
 }
 
-// What the PNG or JPEG holds: the photo's own curve (photo), or another tone map; EXR and TIFF
-// hold the linear composite.
-Image display_image(const RenderResult& r, const OutputSpec& output) {
+// What the PNG or JPEG holds: the photo's own curve (photo), or another tone map, which shows
+// where the photo clipped neutral; EXR and TIFF hold the linear composite.
+Image display_image(const LoadedScene& scene, const RenderResult& r, const OutputSpec& output) {
   if (is_linear_output(output.image)) return r.composite_linear;
-  return output.tonemap.op == ToneMap::kPhoto ? r.composite_encoded : tonemap(r.composite_linear, output.tonemap, &r.clipped_photo);
+  if (output.tonemap.op == ToneMap::kPhoto) return r.composite_encoded;
+  const Image clipped = clipped_photo_weight(r.layers, scene.photo);
+  return tonemap(r.composite_linear, output.tonemap, &clipped);
 }
 
 }  // namespace
@@ -62,7 +64,7 @@ std::vector<OutputLayer> output_layers(const LoadedScene& scene, const RenderRes
   add("samples", {"Y"}, l.samples);
   add("variance", {"Y"}, finite(l.variance));
   add("photo", rgb, finite(scene.photo_linear));
-  add("display", rgb, finite(display_image(r, output ? *output : scene.spec.output)), false);
+  add("display", rgb, finite(display_image(scene, r, output ? *output : scene.spec.output)), false);
   return layers;
 }
 
@@ -92,7 +94,7 @@ void write_outputs(const LoadedScene& scene, const RenderResult& r, const Output
   // written (a full disk while writing the report leaves the old image and layers, not new ones).
   StagedWrites stage;
   if (out.layers.empty()) {  // "layers": "none": only the display layer is made (a batch's stills)
-    write_image(out.image, finite(display_image(r, out)), nullptr, &stage);
+    write_image(out.image, finite(display_image(scene, r, out)), nullptr, &stage);
   } else {
     const std::vector<OutputLayer> layers = output_layers(scene, r, &out);
     std::vector<ExrChannel> channels;

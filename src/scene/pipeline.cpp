@@ -1,24 +1,23 @@
 #include "scene/pipeline.h"
 
-#include "render/mesh.h"
-#include "scene/light_recovery.h"
-
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <limits>
-#include <functional>
 #include <filesystem>
+#include <functional>
+#include <limits>
 #include <map>
 #include <fmt/format.h>
 
-#include "output/composite.h"
-#include "render/checkpoint.h"
-#include "output/tonemap.h"
 #include "core/output_paths.h"
 #include "core/text_file.h"
 #include "light/irradiance.h"
+#include "output/composite.h"
+#include "output/tonemap.h"
+#include "render/checkpoint.h"
+#include "render/mesh.h"
+#include "scene/light_recovery.h"
 
 namespace insitu {
 
@@ -327,7 +326,6 @@ RenderResult finish_render(const LoadedScene& scene, RenderLayers layers, double
   r.composite_linear = composite(scene.photo_linear, r.layers, scene.spec.composite);
   r.composite_encoded = encode_composite(r.composite_linear, touched_mask(r.layers), scene.photo,
                                          scene.environment_info.response ? &*scene.environment_info.response : nullptr);
-  r.clipped_photo = clipped_photo_weight(r.layers, scene.photo);
   return r;
 }
 

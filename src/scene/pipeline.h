@@ -66,7 +66,6 @@ struct RenderResult {
   RenderLayers layers;
   Image composite_linear;
   Image composite_encoded;  // what goes into a PNG/JPEG
-  Image clipped_photo;      // composite.h's clipped_photo_weight: tonemap() shows it neutral
 };
 
 // How a render may be stopped and resumed (issue 15): `stop` ends it after the pass under way;

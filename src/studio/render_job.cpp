@@ -4,6 +4,7 @@
 
 #include "light/irradiance.h"
 #include "light/preview.h"
+#include "output/composite.h"
 #include "output/tonemap.h"
 #include "scene/pipeline.h"
 #include "studio/preview_png.h"
@@ -76,11 +77,11 @@ void RenderJob::run(const std::string& integrator, int spp) {
       shown = p.spp_done;
       // Between passes: the threads are idle and the state holds the samples so far.
       RenderResult r = finish_render(scene, layers_from_state(state));
-      publish(name, {std::move(r.composite_linear), std::move(r.composite_encoded), std::move(r.clipped_photo), p.spp_done, spec.render.spp, ++passes, p.noise,
+      publish(name, {std::move(r.composite_linear), std::move(r.composite_encoded), clipped_photo_weight(r.layers, scene.photo), p.spp_done, spec.render.spp, ++passes, p.noise,
                      seconds(), false});
     };
     const RenderResult last = render_scene(scene, progress, control);
-    Slot final_slot{last.composite_linear, last.composite_encoded, last.clipped_photo, last.layers.spp_done, spec.render.spp, passes,
+    Slot final_slot{last.composite_linear, last.composite_encoded, clipped_photo_weight(last.layers, scene.photo), last.layers.spp_done, spec.render.spp, passes,
                     last.layers.mean_relative_noise, seconds(), !last.layers.interrupted};
     if (passes > 0 || !last.layers.interrupted) publish(name, std::move(final_slot));  // stopped before a pass: nothing
     auto finished = last.layers.interrupted || !integrator.empty() ? nullptr : std::make_shared<const Finished>(Finished{loaded, last});

@@ -74,7 +74,7 @@ class RenderJob {
 
  private:
   struct Slot {
-    Image linear, encoded, clipped_photo;
+    Image linear, encoded, clipped_photo;  // clipped_photo: any tone map but photo may show the slot
     int spp_done = 0, spp = 0, passes = 0;
     double noise = -1, seconds = 0;
     bool done = false;
