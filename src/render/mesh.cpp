@@ -146,6 +146,18 @@ void scan_mtl(const std::string& path) {
 
 // ---- Conversion from tinyobjloader ----------------------------------------------------------
 
+// Where an OBJ's MTL files and their textures are read: beside the OBJ, as tinyobjloader's
+// mtl_search_path makes it. load_obj, convert_material and obj_dependencies all ask here, so the
+// files a batch checks before loading are the files loading reads.
+std::string beside_obj(const fs::path& base_dir, const std::string& name) { return (base_dir / name).string(); }
+
+// The texture files a material reads.
+std::vector<std::string> material_files(const tinyobj::material_t& m, const fs::path& base_dir) {
+  std::vector<std::string> files;
+  if (!m.diffuse_texname.empty()) files.push_back(beside_obj(base_dir, m.diffuse_texname));
+  return files;
+}
+
 Material convert_material(const tinyobj::material_t& m, const fs::path& base_dir,
                           const std::string& obj_path) {
   Material out;
@@ -158,7 +170,7 @@ Material convert_material(const tinyobj::material_t& m, const fs::path& base_dir
   if (!out.kd.allFinite() || (out.kd < 0).any())
     throw InputError(where, "Kd must be finite and non-negative");
   if (!m.diffuse_texname.empty()) {
-    const std::string tex = (base_dir / m.diffuse_texname).string();
+    const std::string tex = beside_obj(base_dir, m.diffuse_texname);
     try {
       out.map_kd = std::make_shared<Image>(linearize(read_image_file(tex, PixelGrid::kAsStored)));
       out.map_kd_path = tex;
@@ -275,7 +287,7 @@ std::vector<std::string> obj_dependencies(const std::string& obj_path) {
   const fs::path base_dir = fs::path(obj_path).parent_path();
   for_each_statement(obj, [&](int, const std::vector<std::string>& tok) {
     if (tok[0] == "mtllib")
-      for (std::size_t k = 1; k < tok.size(); ++k) files.push_back((base_dir / tok[k]).string());
+      for (std::size_t k = 1; k < tok.size(); ++k) files.push_back(beside_obj(base_dir, tok[k]));
   });
   const std::size_t mtl_count = files.size();
   for (std::size_t i = 0; i < mtl_count; ++i) {
@@ -286,7 +298,7 @@ std::vector<std::string> obj_dependencies(const std::string& obj_path) {
     if (!mtl) continue;
     tinyobj::LoadMtl(&names, &materials, &mtl, &warning, &error);
     for (const tinyobj::material_t& m : materials)
-      if (!m.diffuse_texname.empty()) files.push_back((base_dir / m.diffuse_texname).string());
+      for (std::string& f : material_files(m, base_dir)) files.push_back(std::move(f));
   }
   return files;
 }
@@ -298,7 +310,7 @@ Mesh load_obj(const std::string& path, Warnings& warnings) {
                                        ext.empty() ? "no extension" : ext));
   const ObjScan scan = scan_obj(path);
   const fs::path base_dir = fs::path(path).parent_path();
-  for (const auto& m : scan.mtllibs) scan_mtl((base_dir / m).string());
+  for (const auto& m : scan.mtllibs) scan_mtl(beside_obj(base_dir, m));
 
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;  // we fan polygons ourselves so each triangle keeps its line
@@ -318,7 +330,7 @@ Mesh load_obj(const std::string& path, Warnings& warnings) {
   Mesh mesh;
   mesh.source = path;
   mesh.files.push_back(path);
-  for (const auto& m : scan.mtllibs) mesh.files.push_back((base_dir / m).string());
+  for (const auto& m : scan.mtllibs) mesh.files.push_back(beside_obj(base_dir, m));
   for (std::size_t i = 0; i + 2 < attrib.vertices.size(); i += 3)
     mesh.positions.emplace_back(attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]);
   for (std::size_t i = 0; i + 2 < attrib.normals.size(); i += 3) {
@@ -329,7 +341,7 @@ Mesh load_obj(const std::string& path, Warnings& warnings) {
     mesh.uvs.emplace_back(attrib.texcoords[i], attrib.texcoords[i + 1]);
   for (const auto& m : reader.GetMaterials()) {
     mesh.materials.push_back(convert_material(m, base_dir, path));
-    if (!m.diffuse_texname.empty()) mesh.files.push_back((base_dir / m.diffuse_texname).string());
+    for (std::string& f : material_files(m, base_dir)) mesh.files.push_back(std::move(f));
   }
   const int default_material = int(mesh.materials.size());
   mesh.materials.push_back(Material{});
