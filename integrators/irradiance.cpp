@@ -25,12 +25,12 @@ class IrradianceIntegrator final : public Integrator {
  public:
   IrradianceIntegrator(const RenderInputs& in, IrradianceMode mode) : objects_(in.objects) {
     if (is_directional(mode)) {
-      field_ = make_irradiance(mode, *in.environment);
+      field_ = make_irradiance(mode, *in.environment, 32, in.stop);
       return;
     }
     if (!in.room) throw std::invalid_argument("the volume irradiance mode needs environment.room_box");
     room_ = std::make_unique<RoomLight>(*in.environment, in.room);
-    volume_ = std::make_unique<IrradianceVolume>(*room_, *in.room);
+    volume_ = std::make_unique<IrradianceVolume>(*room_, *in.room, 8, 2048, in.stop);
   }
 
   CameraSample sample(const Ray& ray, Sampler&) const override {

@@ -54,12 +54,13 @@
 #include <algorithm>
 #include <array>
 
+#include "core/sampling.h"
+#include "core/stop.h"
+#include "integrators/registry.h"
 #include "render/bsdf.h"
 #include "render/env_sampling.h"
 #include "render/plane_irradiance.h"
 #include "render/room_light.h"
-#include "core/sampling.h"
-#include "integrators/registry.h"
 
 namespace insitu {
 namespace {
@@ -72,21 +73,26 @@ class PathIntegrator final : public Integrator {
       : in_(in),
         objects_(in.objects),
         cache_(room_cache(in)),
-        room_light_(cache_->light()),
+        room_light_(room_light(*cache_, in.stop)),
         room_(*room_light_),
         max_depth_(std::max(1, max_depth)) {
     // In a room box the irradiance behind a photo-derived albedo varies over the plane.
     if (!in_.room) return;
     for (const CatcherPlane& p : in_.planes)
-      plane_irradiance_.push_back(p.albedo_from_photo ? cache_->plane(p.point, p.normal, 64) : nullptr);
+      plane_irradiance_.push_back(p.albedo_from_photo ? cache_->plane(p.point, p.normal, 64, in.stop) : nullptr);
     // The box's faces catch too (by face: +x, −x, +y, −y, +z, −z; normals into the room).
     for (int face = 0; face < 6; ++face) {
       const int axis = face / 2;
       Vec3f point = in_.room->min, normal = Vec3f::Zero();
       if (face % 2 == 0) point[axis] = in_.room->max[axis];
       normal[axis] = face % 2 == 0 ? -1.0f : 1.0f;
-      wall_irradiance_[std::size_t(face)] = cache_->plane(point, normal, 32);
+      wall_irradiance_[std::size_t(face)] = cache_->plane(point, normal, 32, in.stop);
     }
+  }
+
+  static std::shared_ptr<const RoomLight> room_light(RoomCache& cache, const std::atomic<bool>* stop) {
+    throw_if_stopped(stop);
+    return cache.light();
   }
 
   // The room's cache when the caller shares one of this room (a batch's entries), else our own.

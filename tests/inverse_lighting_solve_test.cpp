@@ -6,10 +6,12 @@
 
 #include <Eigen/Dense>
 
+#include <atomic>
 #include <cmath>
 #include <vector>
 
 #include "core/colour.h"
+#include "core/stop.h"
 #include "render/inverse_lighting_solve.h"
 
 namespace insitu {
@@ -68,6 +70,16 @@ double sigma_of_difference(const Fit& fit) {
   return std::sqrt(std::max(0.0, double(g.transpose() * cov * g))) * std::max(fit.sigma_r, 1e-12);
 }
 
+// A stop (core/stop.h) ends the solver at its next iteration, and the fit throws Stopped rather
+// than return the scales it had reached.
+TEST(InverseLightingSolve, AStopEndsTheFit) {
+  const std::vector<FitPixel> px = parts_a_degree_apart();
+  const std::vector<int> source{0, 0};
+  const std::atomic<bool> stop{true};
+  EXPECT_THROW(inverse_lighting_detail::solve(px, Columns{{0}, {1}}, reference_albedos(), &stop, nullptr, &source), Stopped);
+  EXPECT_THROW(inverse_lighting_detail::solve(px, Columns{{0}, {1}}, reference_albedos(), &stop), Stopped);
+}
+
 // Two parts a degree apart under 2 % noise. The photo gives their sum (truth a = 20 + 20) but not
 // their split: the free fit gives 17 and 23. The smoothing gives both the same scale and leaves the
 // sum to the data; JᵀJ, and so the σ that judges whether a part is determined, are the data's
@@ -76,8 +88,8 @@ TEST(InverseLightingSolve, ASourcesPartsThePhotoCannotTellApartShareItsScale) {
   const std::vector<FitPixel> px = parts_a_degree_apart();
   const Columns columns{{0}, {1}};
   const std::vector<int> source{0, 0};
-  const Fit smooth = inverse_lighting_detail::solve(px, columns, reference_albedos(), nullptr, &source);
-  const Fit free = inverse_lighting_detail::solve(px, columns, reference_albedos());
+  const Fit smooth = inverse_lighting_detail::solve(px, columns, reference_albedos(), nullptr, nullptr, &source);
+  const Fit free = inverse_lighting_detail::solve(px, columns, reference_albedos(), nullptr);
   ASSERT_TRUE(smooth.referenced);
   EXPECT_NEAR(std::log1p(smooth.a[0]), std::log1p(smooth.a[1]), 0.05) << smooth.a[0] << ", " << smooth.a[1];
   // The sum is the data's: within the σ of the free fit's sum, which the data determine.
@@ -103,8 +115,8 @@ TEST(InverseLightingSolve, PartsTheDataTellApartKeepTheirScales) {
   }
   const std::vector<FitPixel> px = reference_pixels(e1, e2, 1000, 10);
   const std::vector<int> source{0, 0};
-  const Fit fit = inverse_lighting_detail::solve(px, Columns{{0}, {1}}, reference_albedos(), nullptr, &source);
-  const Fit free = inverse_lighting_detail::solve(px, Columns{{0}, {1}}, reference_albedos());
+  const Fit fit = inverse_lighting_detail::solve(px, Columns{{0}, {1}}, reference_albedos(), nullptr, nullptr, &source);
+  const Fit free = inverse_lighting_detail::solve(px, Columns{{0}, {1}}, reference_albedos(), nullptr);
   EXPECT_NEAR(std::log(fit.a[0]), std::log(free.a[0]), 0.01) << fit.a[0] << " against " << free.a[0];
   EXPECT_NEAR(std::log(fit.a[1]), std::log(free.a[1]), 0.01) << fit.a[1] << " against " << free.a[1];
   EXPECT_NEAR(free.a[0], 1000, 0.03 * 1000);
@@ -118,8 +130,8 @@ TEST(InverseLightingSolve, WithoutAReferenceNothingIsSmoothed) {
   Albedos albedos = reference_albedos();
   albedos.reference = {false};
   const std::vector<int> source{0, 0};
-  const Fit with = inverse_lighting_detail::solve(px, Columns{{0}, {1}}, albedos, nullptr, &source);
-  const Fit without = inverse_lighting_detail::solve(px, Columns{{0}, {1}}, albedos);
+  const Fit with = inverse_lighting_detail::solve(px, Columns{{0}, {1}}, albedos, nullptr, nullptr, &source);
+  const Fit without = inverse_lighting_detail::solve(px, Columns{{0}, {1}}, albedos, nullptr);
   EXPECT_FALSE(with.referenced);
   EXPECT_EQ(with.a, without.a);
 }

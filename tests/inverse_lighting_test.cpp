@@ -6,12 +6,14 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <map>
 #include <optional>
 
+#include "core/stop.h"
 #include "cube_fixture.h"
 #include "light/clipped_sources.h"
 #include "light/irradiance.h"
@@ -290,6 +292,15 @@ TEST(InverseLighting, RecoversAClippedLampInABoxRoom) {
   // Applied: the lamp's texels carry about the true radiance again.
   const CubeMap fitted = r.apply(fx.clipped);
   EXPECT_NEAR(cube_power(fitted), cube_power(fx.truth), 0.1 * cube_power(fx.truth));
+}
+
+// A stop (core/stop.h) ends the recovery in its first parallel step; nothing is returned.
+TEST(InverseLighting, AStopEndsTheRecovery) {
+  Fixture fx;
+  make_room(fx);
+  const std::atomic<bool> stop{true};
+  fx.in.stop = &stop;
+  EXPECT_THROW(recover_clipped_sources(fx.in), Stopped);
 }
 
 // A warm lamp (a 2700 K bulb's orange: all three channels clipped, so the shots keep it white): the

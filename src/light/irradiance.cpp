@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "core/stop.h"
 #include "light/gaussian_irradiance.h"
 #include "light/texel_geometry.h"
 
@@ -179,7 +180,7 @@ class Sh9Field final : public IrradianceField {
 
 class ExactField final : public IrradianceField {
  public:
-  ExactField(const CubeMap& L, int size) : cube_(exact_irradiance_cube(L, size)) {}
+  ExactField(const CubeMap& L, int size, const std::atomic<bool>* stop) : cube_(exact_irradiance_cube(L, size, 512, stop)) {}
   Rgb irradiance(const Vec3f& n) const override { return cube_.lookup(n); }
 
  private:
@@ -188,7 +189,7 @@ class ExactField final : public IrradianceField {
 
 }  // namespace
 
-CubeMap exact_irradiance_cube(const CubeMap& radiance, int size, int max_face) {
+CubeMap exact_irradiance_cube(const CubeMap& radiance, int size, int max_face, const std::atomic<bool>* stop) {
   const CubeMap* L = &radiance;
   CubeMap reduced;
   if (radiance.size() > max_face) {
@@ -198,6 +199,7 @@ CubeMap exact_irradiance_cube(const CubeMap& radiance, int size, int max_face) {
   const RowPrefix P = build_prefix(*L);
   CubeMap out(size);
   tbb::parallel_for(0, 6 * size, [&](int fj) {
+    throw_if_stopped(stop);
     const int f = fj / size, j = fj % size;
     for (int i = 0; i < size; ++i) out.set_texel(f, i, j, exact_at(*L, P, texel_direction(f, i, j, size).cast<double>()));
   });
@@ -214,11 +216,12 @@ CubeMap irradiance_cube(const IrradianceField& field, int n, float scale) {
   return e;
 }
 
-std::unique_ptr<IrradianceField> make_irradiance(IrradianceMode mode, const CubeMap& radiance, int exact_size) {
+std::unique_ptr<IrradianceField> make_irradiance(IrradianceMode mode, const CubeMap& radiance, int exact_size,
+                                                 const std::atomic<bool>* stop) {
   switch (mode) {
     case IrradianceMode::kGaussian: return std::make_unique<GaussianField>(radiance);
     case IrradianceMode::kSh9: return std::make_unique<Sh9Field>(radiance);
-    case IrradianceMode::kExact: return std::make_unique<ExactField>(radiance, exact_size);
+    case IrradianceMode::kExact: return std::make_unique<ExactField>(radiance, exact_size, stop);
     case IrradianceMode::kVolume: break;
   }
   throw std::logic_error("make_irradiance: the volume mode needs a room box (render/irradiance_volume.h)");

@@ -14,6 +14,7 @@
 // irradiance_reference() is the brute-force integral at an arbitrary normal, every texel clipped
 // to the hemisphere and integrated by Lambert's formula; the others are measured against it.
 #pragma once
+#include <atomic>
 #include <array>
 #include <memory>
 #include <optional>
@@ -45,8 +46,9 @@ class IrradianceField {
   virtual Rgb irradiance(const Vec3f& normal_unit) const = 0;
 };
 
-// A directional mode's field (kVolume is a logic error here).
-std::unique_ptr<IrradianceField> make_irradiance(IrradianceMode mode, const CubeMap& radiance, int exact_size = 32);
+// A directional mode's field (kVolume is a logic error here). `stop`: core/stop.h.
+std::unique_ptr<IrradianceField> make_irradiance(IrradianceMode mode, const CubeMap& radiance, int exact_size = 32,
+                                                 const std::atomic<bool>* stop = nullptr);
 
 // The field as a cube of `n`² texels a face: E(texel direction) · scale (scale 1/π: the radiance of
 // a white Lambertian surface facing that way, for previews). Borders updated.
@@ -73,6 +75,8 @@ Rgb sh9_irradiance(const Sh9& sh, const Vec3f& normal_unit);
 // solid angle's variation across it (|∇ ln dΩ/ds dt| ≤ 3/2 on a face: 3√2/max_face), so E is off by
 // at most 7.1 ∫ L dω / max_face (5.5 % at 128, the light preview's; on the real HDRIs of ../shared
 // 4.6·10⁻⁴ at most: Irradiance.ExactOverReducedFacesWithinItsBound).
-CubeMap exact_irradiance_cube(const CubeMap& radiance, int size, int max_face = 512);
+// `stop` (core/stop.h) is looked at before each row of texels.
+CubeMap exact_irradiance_cube(const CubeMap& radiance, int size, int max_face = 512,
+                              const std::atomic<bool>* stop = nullptr);
 
 }  // namespace insitu

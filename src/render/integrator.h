@@ -46,6 +46,9 @@ struct RenderInputs {
   // The room's prepared light and grids, shared by every render of this room (room_cache.h);
   // null: the integrator prepares its own.
   std::shared_ptr<RoomCache> room_cache;
+  // Looked at during the preparation (core/stop.h): once set, creating the integrator throws
+  // Stopped. Null: the preparation runs to its end.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 // One camera sample: the objects' radiance where they cover the sample, and the coverage (0/1

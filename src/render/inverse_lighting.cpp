@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "core/colour.h"
+#include "core/stop.h"
 #include "render/inverse_lighting_pixels.h"
 #include "render/inverse_lighting_solve.h"
 #include "render/linear_variance.h"
@@ -179,7 +180,8 @@ std::vector<int> column_sources(const Columns& columns, const InverseLightingRes
 // bound.
 // `warm`: each fit starts from the parts' current scales (a column's mean a), not from the lower
 // bound.
-void fit_sources(const std::vector<FitPixel>& pixels, const Albedos& albedos, InverseLightingResult& res, bool warm = false) {
+void fit_sources(const std::vector<FitPixel>& pixels, const Albedos& albedos, InverseLightingResult& res,
+                 const std::atomic<bool>* stop, bool warm = false) {
   std::vector<Mode> mode(res.sources.size(), Mode::kFree);
   const std::vector<double> efficiency = efficiencies(pixels, res);
   std::vector<bool> held(res.parts.size(), false);
@@ -194,7 +196,7 @@ void fit_sources(const std::vector<FitPixel>& pixels, const Albedos& albedos, In
       start.push_back(std::max(0.0, a));
     }
     const std::vector<int> sources = column_sources(columns, res);
-    const Fit fit = solve(pixels, columns, albedos, warm ? &start : nullptr, &sources);
+    const Fit fit = solve(pixels, columns, albedos, stop, warm ? &start : nullptr, &sources);
     res.residual_rms = fit.sigma_r;
     std::vector<bool> tied(res.sources.size(), false);
     for (std::size_t k = 0; k < res.sources.size(); ++k) {
@@ -273,7 +275,7 @@ void fit_colours(const std::vector<FitPixel>& pixels, const InverseLightingInput
   for (int c = 0; c < 3; ++c) {
     const std::vector<FitPixel> px = channel_pixels(pixels, res, sources, c);
     if (px.size() < 16) return;
-    const Fit fit = solve(px, columns, initial_albedos(px, in));
+    const Fit fit = solve(px, columns, initial_albedos(px, in), in.stop);
     for (std::size_t k = 0; k < sources.size(); ++k) {
       Eigen::VectorXd g = Eigen::VectorXd::Zero(fit.jtj.rows());
       g[Eigen::Index(k)] = 1;
@@ -430,12 +432,13 @@ bool refine_concentrated_parts(std::vector<FitPixel>& pixels, const Albedos& alb
   const InverseLightingResult coarse = res;
   std::vector<std::unique_ptr<RoomLight>> lights(finer.size());
   tbb::parallel_for(std::size_t(0), finer.size(), [&](std::size_t k) {
+    throw_if_stopped(in.stop);
     lights[k] = std::make_unique<RoomLight>(source_only(*in.radiance, finer[k].texels), in.room);
   });
   inverse_lighting_detail::replace_part_estimates(pixels, replaced, lights, in, res.parts.size());
   for (auto r = replaced.rbegin(); r != replaced.rend(); ++r) res.parts.erase(res.parts.begin() + *r);
   for (PartFit& p : finer) res.parts.push_back(std::move(p));
-  fit_sources(pixels, albedos, res, true);
+  fit_sources(pixels, albedos, res, in.stop, true);
   for (std::size_t k = 0; k < res.sources.size(); ++k)
     if (coarse.sources[k].determined && !res.sources[k].determined) {
       pixels = coarse_pixels;
@@ -475,9 +478,11 @@ InverseLightingResult recover_clipped_sources(const InverseLightingInput& in) {
   std::vector<CubeMap> cubes(res.parts.size());
   std::vector<std::unique_ptr<RoomLight>> lights(res.parts.size());
   tbb::parallel_for(std::size_t(0), res.parts.size(), [&](std::size_t k) {
+    throw_if_stopped(in.stop);
     cubes[k] = source_only(*in.radiance, res.parts[k].texels);
     lights[k] = std::make_unique<RoomLight>(cubes[k], in.room);
   });
+  throw_if_stopped(in.stop);
   std::vector<FitPixel> pixels = gather_pixels(in, room0, res.references);
   estimate_irradiance(pixels, room0, lights, in);
   inverse_lighting_detail::light_balls_from_the_floor(pixels, rest, in);
@@ -489,7 +494,7 @@ InverseLightingResult recover_clipped_sources(const InverseLightingInput& in) {
   res.surfaces = albedos.surfaces;
   res.reference_surfaces = albedos.references;
   if (pixels.size() >= 16) {
-    fit_sources(pixels, albedos, res);
+    fit_sources(pixels, albedos, res, in.stop);
     refine_concentrated_parts(pixels, albedos, in, res);
   }
   fit_colours(pixels, in, res);

@@ -81,6 +81,7 @@
 // than the rest (it is small), leave the surface they lie on and fix the scale through
 // P_i = ρ/π E(x_i) at the geometry they see (the plane or wall under the sheet).
 #pragma once
+#include <atomic>
 #include <optional>
 #include <string>
 #include <vector>
@@ -137,6 +138,7 @@ struct InverseLightingInput {
   int reference_pixels = 256;                 // per reference, on its own finer grid
   int samples = 128;                          // per estimate of E0
   int part_samples = 64;                      // per estimate of a part's E (drawn on its few texels)
+  const std::atomic<bool>* stop = nullptr;    // core/stop.h: throws Stopped once set
 };
 
 struct SourceFit {

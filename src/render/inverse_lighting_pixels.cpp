@@ -9,6 +9,7 @@
 #include <map>
 
 #include "core/colour.h"
+#include "core/stop.h"
 #include "light/texel_geometry.h"
 #include "render/plane_irradiance.h"
 
@@ -273,7 +274,8 @@ std::vector<FitPixel> gather_pixels(const InverseLightingInput& in, const RoomLi
   uses.assign(masks.size(), {});
   const int step = std::max(1, int(std::sqrt(double(photo.width) * photo.height / std::max(1, in.max_pixels))));
   std::vector<FitPixel> out;
-  for (int y = step / 2; y < photo.height; y += step)
+  for (int y = step / 2; y < photo.height; y += step) {
+    throw_if_stopped(in.stop);
     for (int x = step / 2; x < photo.width; x += step) {
       FitPixel px;
       if (std::any_of(masks.begin(), masks.end(), [&](const ReferenceMask& m) { return !m.on_plate && m.contains(x, y); }))
@@ -282,6 +284,7 @@ std::vector<FitPixel> gather_pixels(const InverseLightingInput& in, const RoomLi
           ball_effect(in, in.camera->ray(Vec2d(x + 0.5, y + 0.5)), px) != BallEffect::kHidden)
         out.push_back(px);
     }
+  }
   gather_plate_shadows(in, room, step, out);
   gather_reference_pixels(in, room, masks, out, uses);
   if (out.empty()) return out;
@@ -310,6 +313,7 @@ void estimate_irradiance(std::vector<FitPixel>& pixels, const RoomLight& room0,
     else by_surface.emplace(p.surface, p);
   for (auto& [surface, p] : by_surface) todo.push_back(&p);
   tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {
+    throw_if_stopped(in.stop);
     FitPixel& p = *todo[i];
     const int scale = p.on_ball ? 4 : in.room ? 1 : 16;
     const std::uint64_t key = in.room ? i : p.on_ball ? (std::uint64_t(1) << 32) + i : std::uint64_t(p.surface);
@@ -341,11 +345,13 @@ void replace_part_estimates(std::vector<FitPixel>& pixels, const std::vector<int
   std::vector<int> surfaces;
   for (auto& [s, e] : by_surface) surfaces.push_back(s);
   tbb::parallel_for(std::size_t(0), surfaces.size(), [&](std::size_t i) {
+    throw_if_stopped(in.stop);
     const int s = surfaces[i];
     const auto p = std::find_if(pixels.begin(), pixels.end(), [&](const FitPixel& q) { return !q.on_ball && q.surface == s; });
     by_surface.at(s) = estimate(*p, std::uint64_t(s));
   });
   tbb::parallel_for(std::size_t(0), pixels.size(), [&](std::size_t i) {
+    throw_if_stopped(in.stop);
     const FitPixel& p = pixels[i];
     if (p.on_ball || in.room) fresh[i] = estimate(p, p.on_ball ? (std::uint64_t(1) << 32) + i : i);
   });
@@ -488,6 +494,7 @@ void light_balls_from_the_floor(std::vector<FitPixel>& pixels, const CubeMap& re
   if (std::none_of(pixels.begin(), pixels.end(), [&](const FitPixel& p) { return ball_ref(p) != nullptr; })) return;
   const std::vector<TexelLight> light = texel_lights(rest);
   tbb::parallel_for(std::size_t(0), pixels.size(), [&](std::size_t i) {
+    throw_if_stopped(in.stop);
     FitPixel& p = pixels[i];
     const FitReference* ref = ball_ref(p);
     if (!ref) return;
@@ -508,6 +515,7 @@ void shade_by_balls(std::vector<FitPixel>& pixels, const CubeMap& rest, const Cu
   std::vector<std::vector<TexelLight>> part_light;
   for (const ClippedSource* p : parts) part_light.push_back(texel_lights(radiance, &p->texels));
   tbb::parallel_for(std::size_t(0), pixels.size(), [&](std::size_t i) {
+    throw_if_stopped(in.stop);
     FitPixel& p = pixels[i];
     if (p.shadow_ball < 0) return;
     const FitBall& ball = *in.references[std::size_t(p.shadow_ball)].ball;

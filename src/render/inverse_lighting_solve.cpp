@@ -7,6 +7,7 @@
 #include <map>
 
 #include "core/colour.h"
+#include "core/stop.h"
 #include "render/inverse_lighting_costs.h"
 
 namespace insitu {
@@ -119,14 +120,30 @@ void add_residuals(ceres::Problem& problem, const std::vector<FitPixel>& pixels,
   }
 }
 
-// Solves `problem` with every a ≥ 0 (dense QR: at most ~120 unknowns).
-void solve_with_a_nonnegative(ceres::Problem& problem, std::vector<double>& a) {
+// Ends a solve at its next iteration once `stop` is set (Ceres calls it after iteration 0 too).
+class StopCallback : public ceres::IterationCallback {
+ public:
+  explicit StopCallback(const std::atomic<bool>* stop) : stop_(stop) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
+    return stop_ && stop_->load(std::memory_order_relaxed) ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const std::atomic<bool>* stop_;
+};
+
+// Solves `problem` with every a ≥ 0 (dense QR: at most ~120 unknowns); throws Stopped when
+// `stop` ended it.
+void solve_with_a_nonnegative(ceres::Problem& problem, std::vector<double>& a, const std::atomic<bool>* stop) {
   for (std::size_t c = 0; c < a.size(); ++c) problem.SetParameterLowerBound(a.data(), int(c), 0.0);
+  StopCallback callback(stop);
   ceres::Solver::Options options;
   options.max_num_iterations = 200;
   options.linear_solver_type = ceres::DENSE_QR;
+  options.callbacks.push_back(&callback);
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
+  throw_if_stopped(stop);
 }
 
 // One robust least-squares fit from `start` (a = 0 and the initial ρ when null). JᵀJ is the
@@ -134,7 +151,7 @@ void solve_with_a_nonnegative(ceres::Problem& problem, std::vector<double>& a) {
 // must not count as their precision (a σ from it would call a part determined that the photo
 // cannot see).
 Fit solve_pass(const std::vector<FitPixel>& pixels, const Columns& columns, const Albedos& albedos, const Weights& w,
-               const Fit* start, const std::vector<int>* column_source = nullptr) {
+               const Fit* start, const std::atomic<bool>* stop, const std::vector<int>* column_source = nullptr) {
   Fit fit;
   fit.a = start ? start->a : std::vector<double>(columns.size(), 0.0);
   fit.log_rho = start ? start->log_rho : albedos.log_rho;
@@ -149,7 +166,7 @@ Fit solve_pass(const std::vector<FitPixel>& pixels, const Columns& columns, cons
     if (albedos.known[s]) problem.SetParameterBlockConstant(&fit.log_rho[s]);
     else free_blocks.push_back(&fit.log_rho[s]);
   }
-  solve_with_a_nonnegative(problem, fit.a);
+  solve_with_a_nonnegative(problem, fit.a, stop);
   ceres::Problem::EvaluateOptions eval;
   eval.apply_loss_function = false;
   problem.Evaluate(eval, nullptr, &fit.residuals, nullptr, nullptr);
@@ -175,7 +192,8 @@ Weights reference_weights(const std::vector<FitPixel>& pixels, const Fit& fit, c
 // solver finds from anywhere (the log residuals' fit has several basins: from the lower bound,
 // the same scene's fit found the ceiling lamps × 17 with the ball in the photo and left them
 // undetermined with the ball on a plate).
-Fit convex_start(const std::vector<FitPixel>& pixels, const Columns& columns, const Albedos& albedos) {
+Fit convex_start(const std::vector<FitPixel>& pixels, const Columns& columns, const Albedos& albedos,
+                 const std::atomic<bool>* stop) {
   Fit start;
   start.a.assign(columns.size(), 0.0);
   start.log_rho = albedos.log_rho;
@@ -190,7 +208,7 @@ Fit convex_start(const std::vector<FitPixel>& pixels, const Columns& columns, co
                              nullptr, start.a.data());
   }
   if (problem.NumResidualBlocks() == 0) return start;
-  solve_with_a_nonnegative(problem, start.a);
+  solve_with_a_nonnegative(problem, start.a, stop);
   return start;
 }
 
@@ -219,19 +237,19 @@ std::vector<FitPixel> informative(const std::vector<FitPixel>& pixels, const Alb
 }  // namespace
 
 Fit solve(const std::vector<FitPixel>& all_pixels, const Columns& columns, const Albedos& albedos,
-          const std::vector<double>* a_start, const std::vector<int>* column_source) {
+          const std::atomic<bool>* stop, const std::vector<double>* a_start, const std::vector<int>* column_source) {
   if (std::none_of(all_pixels.begin(), all_pixels.end(), [&](const FitPixel& p) { return albedos.reference[std::size_t(p.surface)]; })) {
     Fit start;
     if (a_start) start.a = *a_start, start.log_rho = albedos.log_rho;
-    return solve_pass(all_pixels, columns, albedos, {0.1, {}}, a_start ? &start : nullptr);
+    return solve_pass(all_pixels, columns, albedos, {0.1, {}}, a_start ? &start : nullptr, stop);
   }
   const std::vector<FitPixel> pixels = informative(all_pixels, albedos);
-  const Fit convex = convex_start(pixels, columns, albedos);
-  const Fit coarse = solve_pass(pixels, columns, albedos, {1.0, {}, kReferenceSmoothing}, &convex, column_source);
-  const Fit first = solve_pass(pixels, columns, albedos, {0.1, {}, kReferenceSmoothing}, &coarse, column_source);
+  const Fit convex = convex_start(pixels, columns, albedos, stop);
+  const Fit coarse = solve_pass(pixels, columns, albedos, {1.0, {}, kReferenceSmoothing}, &convex, stop, column_source);
+  const Fit first = solve_pass(pixels, columns, albedos, {0.1, {}, kReferenceSmoothing}, &coarse, stop, column_source);
   Weights w = reference_weights(pixels, first, albedos);
   w.smoothing = kReferenceSmoothing;
-  Fit fit = solve_pass(pixels, columns, albedos, w, &first, column_source);
+  Fit fit = solve_pass(pixels, columns, albedos, w, &first, stop, column_source);
   fit.referenced = true;
   return fit;
 }

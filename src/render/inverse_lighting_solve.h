@@ -4,6 +4,7 @@
 #pragma once
 #include <Eigen/Core>
 
+#include <atomic>
 #include <optional>
 #include <vector>
 
@@ -56,8 +57,11 @@ struct Fit {
 // that is one part alone, −1 for any other): residuals √(λN) (log(1 + a_c) − the mean of
 // log(1 + a) over the single parts of c's source), N the fit's pixels, λ = kReferenceSmoothing.
 // JᵀJ and σ stay the data's alone.
+//
+// `stop` (core/stop.h) ends the solver at its next iteration, and solve throws Stopped.
 Fit solve(const std::vector<FitPixel>& all_pixels, const Columns& columns, const Albedos& albedos,
-          const std::vector<double>* a_start = nullptr, const std::vector<int>* column_source = nullptr);
+          const std::atomic<bool>* stop, const std::vector<double>* a_start = nullptr,
+          const std::vector<int>* column_source = nullptr);
 
 // The smoothing's weight in a fit with a reference: the prior weighs as much as N pixels at a log
 // residual of √λ (0.45 %). Made for open ground, where the floor sees every direction alike and

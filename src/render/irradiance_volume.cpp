@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/sampler.h"
+#include "core/stop.h"
 
 namespace insitu {
 namespace {
@@ -43,7 +44,8 @@ Sh9 IrradianceVolume::project(const RoomLight& room, const Vec3f& p, int samples
   return acc;
 }
 
-IrradianceVolume::IrradianceVolume(const RoomLight& room, const RoomBox& box, int cells, int samples) {
+IrradianceVolume::IrradianceVolume(const RoomLight& room, const RoomBox& box, int cells, int samples,
+                                   const std::atomic<bool>* stop) {
   const Vec3f extent = box.max - box.min, slack = 1e-3f * extent;
   const float spacing = extent.maxCoeff() / float(std::max(1, cells));
   for (int a = 0; a < 3; ++a) n_[a] = std::max(2, int(std::ceil(extent[a] / spacing)) + 1);
@@ -51,6 +53,7 @@ IrradianceVolume::IrradianceVolume(const RoomLight& room, const RoomBox& box, in
   step_ = (extent - 2 * slack).cwiseQuotient((n_ - Eigen::Vector3i::Ones()).cast<float>());
   probes_.resize(std::size_t(n_.prod()));
   tbb::parallel_for(0, n_.prod(), [&](int k) {
+    throw_if_stopped(stop);
     const Eigen::Vector3i i(k % n_.x(), (k / n_.x()) % n_.y(), k / (n_.x() * n_.y()));
     probes_[std::size_t(k)] = project(room, min_ + i.cast<float>().cwiseProduct(step_), samples, std::uint64_t(k));
   });

@@ -24,7 +24,9 @@ namespace insitu {
 
 class IrradianceVolume {
  public:
-  IrradianceVolume(const RoomLight& room, const RoomBox& box, int cells = 8, int samples = 2048);
+  // `stop` (core/stop.h) is looked at before each probe.
+  IrradianceVolume(const RoomLight& room, const RoomBox& box, int cells = 8, int samples = 2048,
+                   const std::atomic<bool>* stop = nullptr);
   Rgb irradiance(const Vec3f& x, const Vec3f& normal_unit) const;
   // The estimator at one point, for the grid and the tests.
   static Sh9 project(const RoomLight& room, const Vec3f& p, int samples, std::uint64_t key);

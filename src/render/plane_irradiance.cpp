@@ -7,6 +7,7 @@
 
 #include "core/sampler.h"
 #include "core/sampling.h"
+#include "core/stop.h"
 
 namespace insitu {
 
@@ -26,7 +27,7 @@ Rgb PlaneIrradiance::estimate(const RoomLight& room, const Vec3f& x, const Vec3f
 }
 
 PlaneIrradiance::PlaneIrradiance(const RoomLight& room, const RoomBox& box, const Vec3f& point, const Vec3f& normal,
-                                 int cells, int samples)
+                                 int cells, int samples, const std::atomic<bool>* stop)
     : normal_(normal.normalized()) {
   u_ = (std::abs(normal_.x()) < 0.9f ? Vec3f(1, 0, 0) : Vec3f(0, 1, 0)).cross(normal_).normalized();
   v_ = normal_.cross(u_);
@@ -46,6 +47,7 @@ PlaneIrradiance::PlaneIrradiance(const RoomLight& room, const RoomBox& box, cons
   // Nodes a little above the plane, pulled inside the box (a node on its face sees it edge-on).
   const Vec3f slack = 1e-4f * (box.max - box.min), lift = 1e-4f * (box.max - box.min).maxCoeff() * normal_;
   tbb::parallel_for(0, nv_, [&](int j) {
+    throw_if_stopped(stop);
     for (int i = 0; i < nu_; ++i) {
       const Vec3f x = (origin_ + float(i) * u_ + float(j) * v_ + lift).cwiseMax(box.min + slack).cwiseMin(box.max - slack);
       nodes_[std::size_t(j) * nu_ + i] = estimate(room, x, normal_, samples, std::uint64_t(j) * nu_ + i);

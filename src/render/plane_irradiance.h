@@ -14,6 +14,7 @@
 // apart, N = 256: a few per cent of noise, and a sunlit patch's edge blurred over one cell.
 // Other local-scene surfaces do not shade the plane here (its light from the room alone).
 #pragma once
+#include <atomic>
 #include <vector>
 
 #include "render/room_light.h"
@@ -22,8 +23,9 @@ namespace insitu {
 
 class PlaneIrradiance {
  public:
+  // `stop` (core/stop.h) is looked at before each row of nodes.
   PlaneIrradiance(const RoomLight& room, const RoomBox& box, const Vec3f& point, const Vec3f& normal,
-                  int cells = 64, int samples = 256);
+                  int cells = 64, int samples = 256, const std::atomic<bool>* stop = nullptr);
   Rgb at(const Vec3f& x) const;  // bilinear; clamped to the grid
   // The estimator at one point, for the grid and the tests.
   static Rgb estimate(const RoomLight& room, const Vec3f& x, const Vec3f& normal, int samples, std::uint64_t key);

@@ -30,7 +30,8 @@ std::shared_ptr<const RoomLight> RoomCache::light() {
 
 // Built outside the lock (the grids run in parallel); two threads asking for the same new grid
 // at once both build it, and the first one stored is kept: they are equal.
-std::shared_ptr<const PlaneIrradiance> RoomCache::plane(const Vec3f& point, const Vec3f& normal, int cells) {
+std::shared_ptr<const PlaneIrradiance> RoomCache::plane(const Vec3f& point, const Vec3f& normal, int cells,
+                                                        const std::atomic<bool>* stop) {
   if (!box_) throw std::logic_error("RoomCache::plane without a room box");
   const PlaneKey key{point.x(), point.y(), point.z(), normal.x(), normal.y(), normal.z(), cells};
   {
@@ -38,7 +39,7 @@ std::shared_ptr<const PlaneIrradiance> RoomCache::plane(const Vec3f& point, cons
     if (const auto it = planes_.find(key); it != planes_.end()) return it->second;
   }
   const std::shared_ptr<const RoomLight> room = light();
-  auto grid = std::make_shared<const PlaneIrradiance>(*room, *box_, point, normal, cells);
+  auto grid = std::make_shared<const PlaneIrradiance>(*room, *box_, point, normal, cells, 256, stop);
   const std::lock_guard<std::mutex> lock(mutex_);
   return planes_.emplace(key, std::move(grid)).first->second;
 }

@@ -30,7 +30,9 @@ class RoomCache {
   // The room light of the cube and the box (built on the first call).
   std::shared_ptr<const RoomLight> light();
   // The grid over the plane through `point` with `normal` (PlaneIrradiance's arguments); needs a box.
-  std::shared_ptr<const PlaneIrradiance> plane(const Vec3f& point, const Vec3f& normal, int cells);
+  // A build that `stop` ends (core/stop.h) throws Stopped and stores nothing.
+  std::shared_ptr<const PlaneIrradiance> plane(const Vec3f& point, const Vec3f& normal, int cells,
+                                               const std::atomic<bool>* stop = nullptr);
   // Grids built so far (for the tests).
   std::size_t plane_count();
 

@@ -85,11 +85,13 @@ void warn_of_references(LoadedScene& s) {
 
 }  // namespace
 
-void recover_clipped_light(LoadedScene& s) {
+void recover_clipped_light(LoadedScene& s, const std::atomic<bool>* stop) {
   if (!s.environment_info.clipped_cube || !s.spec.environment.inverse_lighting) return warn_of_references(s);
   const Image photo_clipped = clipped_mask(s.photo);
   const Plates plates = read_plates(s);
-  s.inverse_lighting = recover_clipped_sources(fit_input(s, photo_clipped, plates));
+  InverseLightingInput input = fit_input(s, photo_clipped, plates);
+  input.stop = stop;
+  s.inverse_lighting = recover_clipped_sources(input);
   if (s.inverse_lighting->any_determined()) s.environment = s.inverse_lighting->apply(s.environment);
   warn_of_references(s);
   if (s.inverse_lighting->status != "fitted" && s.inverse_lighting->status != "none")

@@ -2,6 +2,7 @@
 // (render/inverse_lighting.h) against the photo, on the local scene's planes and the room box,
 // by default whenever a shot clipped; and what determined the light, for the report.
 #pragma once
+#include <atomic>
 #include <nlohmann/json.hpp>
 
 #include "scene/pipeline.h"
@@ -10,7 +11,7 @@ namespace insitu {
 
 // Fits the clipped sources (when a shot clipped and environment.inverse_lighting is on), scales
 // them in s.environment, and warns when the photo does not determine them.
-void recover_clipped_light(LoadedScene& s);
+void recover_clipped_light(LoadedScene& s, const std::atomic<bool>* stop = nullptr);
 
 // What determined the light: "hdr image", "shots" (nothing clipped), "brackets", "inverse
 // lighting", "inverse lighting with a reference", or "lower bound" (clipped, not recovered).

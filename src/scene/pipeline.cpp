@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "core/output_paths.h"
+#include "core/stop.h"
 #include "core/text_file.h"
 #include "light/irradiance.h"
 #include "output/composite.h"
@@ -198,14 +199,16 @@ namespace {
 
 // The room: the photo, the environment (the photo linearized with its response), the camera, the
 // room box and the clipped light recovered against the photo.
-void load_room(const SceneSpec& spec, LoadedScene& s) {
+void load_room(const SceneSpec& spec, LoadedScene& s, const std::atomic<bool>* stop) {
   try {
     s.photo = read_image_file(spec.photo);
   } catch (const InputError& e) {
     throw e.with_context(spec.photo_where);
   }
+  throw_if_stopped(stop);
   // The environment first: brackets may recover the camera response that linearizes the photo.
   s.environment = load_environment(spec.environment, s.warnings, &s.environment_info, &s.photo);
+  throw_if_stopped(stop);
   std::size_t clamped = 0;
   s.photo_linear = linearize_photo(s.photo, s.environment_info, &clamped);
   if (clamped > 0) s.warnings.add(spec.photo, fmt::format("{} negative or non-finite values clamped to 0", clamped));
@@ -216,7 +219,8 @@ void load_room(const SceneSpec& spec, LoadedScene& s) {
     for (const auto& o : box->openings) room.openings.push_back({o.axis, o.min.cast<float>(), o.max.cast<float>()});
     s.room = room;
   }
-  recover_clipped_light(s);
+  throw_if_stopped(stop);
+  recover_clipped_light(s, stop);
   s.room_cache = std::make_shared<RoomCache>(s.environment, s.room);
 }
 
@@ -229,9 +233,10 @@ void copy_room(const LoadedScene& from, LoadedScene& s) {
 }
 
 // The objects (from the spec, then from memory) and the local scene's meshes.
-void load_objects(const SceneSpec& spec, std::vector<Mesh> memory_objects, LoadedScene& s) {
+void load_objects(const SceneSpec& spec, std::vector<Mesh> memory_objects, LoadedScene& s, const std::atomic<bool>* stop) {
   std::vector<Mesh> meshes;
   for (const ObjectSpec& obj : spec.objects) {
+    throw_if_stopped(stop);
     meshes.push_back(load_placed_mesh(obj, s.warnings));
     if (outside_view(s.camera, mesh_bounds(meshes.back())))
       s.warnings.add(obj.where, "the object lies entirely outside the camera's view (it covers no pixel): check translate and the camera");
@@ -243,18 +248,23 @@ void load_objects(const SceneSpec& spec, std::vector<Mesh> memory_objects, Loade
       s.warnings.add(m.source, "the object lies entirely outside the camera's view (it covers no pixel): check its transform and the camera");
     meshes.push_back(std::move(m));
   }
+  throw_if_stopped(stop);
   objects_uncertainty(spec, meshes, s);
   s.objects = std::make_unique<EmbreeScene>(std::move(meshes));
   std::vector<Mesh> catcher_meshes;
-  for (const PlaneSpec& p : spec.local_scene)
-    if (p.mesh) catcher_meshes.push_back(load_placed_mesh(*p.mesh, s.warnings));
+  for (const PlaneSpec& p : spec.local_scene) {
+    if (!p.mesh) continue;
+    throw_if_stopped(stop);
+    catcher_meshes.push_back(load_placed_mesh(*p.mesh, s.warnings));
+  }
   check_mesh_files(catcher_meshes, spec);
   s.catcher_meshes = std::make_unique<EmbreeScene>(std::move(catcher_meshes));
 }
 
 }  // namespace
 
-LoadedScene load_scene(const SceneSpec& spec, std::vector<Mesh> memory_objects, const LoadedScene* room) {
+LoadedScene load_scene(const SceneSpec& spec, std::vector<Mesh> memory_objects, const LoadedScene* room,
+                       const std::atomic<bool>* stop) {
   const auto start = std::chrono::steady_clock::now();
   // Before any work: no output may replace an input or another output.
   check_outputs(scene_input_files(spec), scene_output_files(spec));
@@ -270,10 +280,10 @@ LoadedScene load_scene(const SceneSpec& spec, std::vector<Mesh> memory_objects, 
     copy_room(*room, s);
   } else {
     const std::size_t before = s.warnings.items.size();
-    load_room(spec, s);
+    load_room(spec, s, stop);
     s.room_warnings.items.assign(s.warnings.items.begin() + long(before), s.warnings.items.end());
   }
-  load_objects(spec, std::move(memory_objects), s);
+  load_objects(spec, std::move(memory_objects), s, stop);
   s.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return s;
 }
@@ -286,6 +296,7 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress, 
   inputs.room = scene.room;
   inputs.camera = &scene.camera;
   inputs.room_cache = scene.room_cache;
+  if (control.stop_at_once) inputs.stop = control.stop;  // the studio's stop: also during the preparation
   // Everything before the sample loop is preparation: the catcher's irradiance included.
   const auto start = std::chrono::steady_clock::now();
   std::unique_ptr<IrradianceField> catcher_irradiance;
@@ -308,7 +319,7 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress, 
     inputs.planes.push_back(c);
   }
   if (!inputs.catcher_mesh_info.empty()) {
-    catcher_irradiance = make_irradiance(IrradianceMode::kExact, scene.environment);
+    catcher_irradiance = make_irradiance(IrradianceMode::kExact, scene.environment, 32, inputs.stop);
     inputs.catcher_meshes = scene.catcher_meshes.get();
     inputs.catcher_irradiance = catcher_irradiance.get();
   }

@@ -47,8 +47,11 @@ struct LoadedScene {
 // `memory_objects`: meshes given in memory (the C API), already placed, after the spec's objects.
 // `room`: a scene loaded already whose room (photo, camera, environment, room box, recovered
 // light) this one shares, not read again (a batch's entries: the caller checks that the room's
-// settings are the same).
-LoadedScene load_scene(const SceneSpec& spec, std::vector<Mesh> memory_objects = {}, const LoadedScene* room = nullptr);
+// settings are the same). `stop` (core/stop.h) is looked at between the stages (the photo, the
+// environment, the camera, the recovered light, each mesh) and within inverse lighting: once set,
+// load_scene throws Stopped.
+LoadedScene load_scene(const SceneSpec& spec, std::vector<Mesh> memory_objects = {}, const LoadedScene* room = nullptr,
+                       const std::atomic<bool>* stop = nullptr);
 
 // Every corner of each reference polygon lies within a photo of width x height pixels (InputError
 // naming references[i].polygon_px[j]); load_scene checks it, and the studio before it saves one.
@@ -71,7 +74,8 @@ struct RenderResult {
 // How a render may be stopped and resumed (issue 15): `stop` ends it after the pass under way;
 // `state` starts it from a checkpoint (render/checkpoint.h) and receives where it ended. A part of
 // a split render (issue 17) takes only the samples [sample_begin, sample_end) of render.spp (end
-// −1: spp). `stop_at_once`: RenderSettings::stop_at_once.
+// −1: spp). `stop_at_once`: RenderSettings::stop_at_once, and the stop is looked at during the
+// integrator's preparation too (RenderInputs::stop), which then throws Stopped (core/stop.h).
 struct RenderControl {
   const std::atomic<bool>* stop = nullptr;
   RenderState* state = nullptr;

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "core/stop.h"
 #include "light/irradiance.h"
 #include "light/preview.h"
 #include "output/composite.h"
@@ -57,7 +58,7 @@ void RenderJob::run(const std::string& integrator, int spp) {
     SceneSpec spec = parse_scene_file(scene_path_);
     if (!integrator.empty()) spec.render.integrator = integrator;
     if (spp > 0) spec.render.spp = spp;
-    const auto loaded = std::make_shared<const LoadedScene>(load_scene(spec));
+    const auto loaded = std::make_shared<const LoadedScene>(load_scene(spec, {}, nullptr, &stop_));
     const LoadedScene& scene = *loaded;
     const std::string name = scene.integrator.entry->name;
     auto cube = std::make_shared<const CubeMap>(scene.environment);
@@ -88,6 +89,9 @@ void RenderJob::run(const std::string& integrator, int spp) {
     const std::lock_guard<std::mutex> lock(mutex_);
     state_ = last.layers.interrupted ? "stopped" : "done";
     if (finished) finished_ = std::move(finished);
+  } catch (const Stopped&) {  // during loading or the integrator's preparation: no image
+    const std::lock_guard<std::mutex> lock(mutex_);
+    state_ = "stopped";
   } catch (const InputError& e) {
     const std::lock_guard<std::mutex> lock(mutex_);
     state_ = "error", error_ = error_json(e.where(), e.message());
