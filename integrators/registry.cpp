@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <fmt/format.h>
 #include <map>
+#include <stdexcept>
 
 namespace insitu {
 
@@ -17,14 +18,33 @@ std::unique_ptr<Integrator> make_path_integrator(const RenderInputs& inputs, con
 const std::vector<IntegratorEntry>& integrator_registry() {
   static const std::vector<IntegratorEntry> table = {
       {"realtime", "legacy real-time path: base colour x face-blurred cube at the normal, no shadows",
-       {/*local_scene*/ false, /*room_box*/ false, /*monte_carlo*/ false}, read_realtime_params, make_realtime_integrator},
+       {/*local_scene*/ false, /*room_box*/ false, /*monte_carlo*/ false, /*reference*/ false, /*legacy*/ true},
+       read_realtime_params, make_realtime_integrator},
       {"irradiance", "Lambertian objects lit by an irradiance mode (render.irradiance), no visibility",
-       {/*local_scene*/ false, /*room_box*/ false, /*monte_carlo*/ false}, read_irradiance_params, make_irradiance_integrator},
+       {/*local_scene*/ false, /*room_box*/ false, /*monte_carlo*/ false, /*reference*/ false, /*legacy*/ false},
+       read_irradiance_params, make_irradiance_integrator},
       {"path", "path tracing of the objects with environment importance sampling and MIS (shadows between objects)",
-       {/*local_scene*/ true, /*room_box*/ true, /*monte_carlo*/ true}, read_path_params, make_path_integrator},
+       {/*local_scene*/ true, /*room_box*/ true, /*monte_carlo*/ true, /*reference*/ true, /*legacy*/ false},
+       read_path_params, make_path_integrator},
   };
   return table;
 }
+
+namespace {
+const IntegratorEntry& the_one(bool IntegratorCapabilities::*role, const char* what) {
+  const IntegratorEntry* found = nullptr;
+  for (const auto& e : integrator_registry())
+    if (e.uses.*role) {
+      if (found) throw std::logic_error(std::string("two integrators are the ") + what);
+      found = &e;
+    }
+  if (!found) throw std::logic_error(std::string("no integrator is the ") + what);
+  return *found;
+}
+}  // namespace
+
+const IntegratorEntry& reference_integrator() { return the_one(&IntegratorCapabilities::reference, "reference"); }
+const IntegratorEntry& legacy_integrator() { return the_one(&IntegratorCapabilities::legacy, "legacy"); }
 
 const IntegratorEntry* find_integrator(const std::string& name) {
   for (const auto& e : integrator_registry())

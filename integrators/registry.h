@@ -50,6 +50,11 @@ struct IntegratorCapabilities {
   bool room_box = false;     // uses environment.room_box
   bool monte_carlo = false;  // its noise falls as 1/√spp (insitu tradeoff renders it over a ladder);
                              // otherwise spp only anti-aliases
+  // The roles `insitu tradeoff` gives (one integrator each): `reference` renders every light path
+  // the others leave out, and makes the converged image the others are measured against and the
+  // A/B's accurate side; `legacy` is the legacy real-time renderer kept exactly, the A/B's other.
+  bool reference = false;
+  bool legacy = false;
 };
 
 struct IntegratorEntry {
@@ -63,6 +68,9 @@ struct IntegratorEntry {
 };
 
 const std::vector<IntegratorEntry>& integrator_registry();
+// The one entry whose capabilities have `reference` (`legacy`) set.
+const IntegratorEntry& reference_integrator();
+const IntegratorEntry& legacy_integrator();
 // The entry named `name`, or nullptr.
 const IntegratorEntry* find_integrator(const std::string& name);
 // "unknown integrator 'x' (known: realtime, irradiance, path)".

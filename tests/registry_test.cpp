@@ -115,6 +115,30 @@ TEST(Registry, CliPageListsEveryIntegrator) {
   EXPECT_EQ(documented, registered);
 }
 
+// `insitu tradeoff` asks the registry for its roles, not for names: one reference, the only
+// integrator that is Monte Carlo and catches shadows in a room box, and one legacy integrator.
+TEST(Registry, TheTradeoffsRolesAreCapabilitiesHeldOnceEach) {
+  int references = 0, legacies = 0;
+  for (const auto& e : integrator_registry()) references += e.uses.reference, legacies += e.uses.legacy;
+  EXPECT_EQ(references, 1);
+  EXPECT_EQ(legacies, 1);
+  const IntegratorCapabilities& r = reference_integrator().uses;
+  EXPECT_TRUE(r.monte_carlo && r.local_scene && r.room_box);
+  EXPECT_FALSE(legacy_integrator().uses.monte_carlo);
+  EXPECT_STREQ(reference_integrator().name, "path");
+  EXPECT_STREQ(legacy_integrator().name, "realtime");
+}
+
+// The directional irradiance modes are every mode of the table but the one that needs a room box.
+TEST(Registry, DirectionalIrradianceModesAreTheTablesButVolume) {
+  std::vector<std::string> expected;
+  for (const auto& row : kIrradianceModes)
+    if (row.value != IrradianceMode::kVolume) expected.push_back(row.name);
+  std::vector<std::string> listed;
+  for (IrradianceMode m : directional_irradiance_modes()) listed.push_back(irradiance_mode_name(m));
+  EXPECT_EQ(listed, expected);
+}
+
 // scripts/bit-identity.sh renders every integrator, irradiance mode and tone map.
 TEST(Registry, BitIdentityScriptCoversEveryTable) {
   const std::string script = read_source("scripts/bit-identity.sh");

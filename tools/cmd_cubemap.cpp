@@ -61,10 +61,11 @@ int run_cubemap(const CubemapArgs& a) {
     std::vector<NamedPath> outputs;
     for (const char* name : {"cube.exr", "cube.png", "equirect.exr"})
       outputs.push_back({(std::filesystem::path(a.out) / name).string(), "an output"});
-    for (const auto& [mode_id, mode] : kIrradianceModes)
+    // The directional modes only: the volume needs a room box, which this verb does not take.
+    for (IrradianceMode mode : directional_irradiance_modes())
       for (const char* ext : {".exr", ".png"})
-        if (is_directional(mode_id))  // the volume needs a room box, which this verb does not take
-          outputs.push_back({(std::filesystem::path(a.out) / (std::string("irradiance_") + mode + ext)).string(), "an output"});
+        outputs.push_back({(std::filesystem::path(a.out) / (std::string("irradiance_") + irradiance_mode_name(mode) + ext)).string(),
+                           "an output"});
     check_outputs(inputs, outputs);
   }
   std::optional<ImageFile> photo;
@@ -80,7 +81,9 @@ int run_cubemap(const CubemapArgs& a) {
   write_image(out("cube.exr"), cube_to_strip(cube));
   write_image(out("cube.png"), cube_cross_preview(cube, exposure));
   write_image(out("equirect.exr"), cube_to_equirect(cube));
-  for (IrradianceMode mode : {IrradianceMode::kGaussian, IrradianceMode::kSh9, IrradianceMode::kExact}) {
+  std::string written;  // "gaussian,sh9,exact"
+  for (IrradianceMode mode : directional_irradiance_modes()) {
+    written += (written.empty() ? "" : ",") + std::string(irradiance_mode_name(mode));
     const auto field = make_irradiance(mode, cube, a.irradiance_size);
     const CubeMap e = irradiance_cube(*field, a.irradiance_size), e_over_pi = irradiance_cube(*field, a.irradiance_size, 1 / kPiF);
     const std::string name = std::string("irradiance_") + irradiance_mode_name(mode);
@@ -95,7 +98,7 @@ int run_cubemap(const CubemapArgs& a) {
       std::printf("  %-3s %-40s coverage %5.1f%%, clipped %5.2f%%\n", face_name(f), spec.shots[std::size_t(f)].files.front().c_str(),
                   100 * info.coverage[std::size_t(f)], 100 * info.clipped[std::size_t(f)]);
   std::printf("%s", light_line.c_str());
-  std::printf("wrote cube.exr, cube.png, equirect.exr and irradiance_{gaussian,sh9,exact}.{exr,png} to %s\n", a.out.c_str());
+  std::printf("wrote cube.exr, cube.png, equirect.exr and irradiance_{%s}.{exr,png} to %s\n", written.c_str(), a.out.c_str());
   return 0;
 }
 

@@ -1,16 +1,18 @@
 // insitu tradeoff SCENE -o DIR [--ladder 1,4,16,64] [--reference-spp 1024] [--seed N]
 //                 [--noise-targets 0.04,0.02,0.01]
 //
-// The speed/accuracy trade of a scene: renders it with `realtime`, with `irradiance` in each mode
-// (1 spp, a legacy frame, and 16 spp, anti-aliased), and with `path` over a ladder of sample
-// counts, and measures each composite against a `path` reference of many samples (a different seed), over the pixels the
-// reference changed visibly (changed_mask: the objects, and 3 % or more of the photo's luminance)
-// — the objects and their shadows. Writes DIR/tradeoff.csv (mode, spp, seconds,
-// relative RMSE), DIR/tradeoff.png (error against time, log–log), and DIR/ab.png (the `realtime`
-// and `path` composites side by side with their difference). Times are precomputation plus
-// rendering, on this machine's cores. --noise-targets adds `path` with adaptive sampling
-// (render/adaptive.h) to each target, capped at the ladder's largest spp; its rows give the mean
-// spp the pixels took.
+// The speed/accuracy trade of a scene: renders it with every integrator of the registry — one
+// that is not Monte Carlo at 1 spp (a legacy frame) and 16 (anti-aliased), in each irradiance mode
+// when it reads one; a Monte Carlo one over a ladder of sample counts — and measures each
+// composite against the reference integrator's render of many samples (a different seed), over
+// the pixels the reference changed visibly (changed_mask: the objects, and 3 % or more of the
+// photo's luminance) — the objects and their shadows. The roles are the registry's capabilities
+// (`reference`: path; `legacy`: realtime). Writes DIR/tradeoff.csv (mode, spp, seconds, relative
+// RMSE), DIR/tradeoff.png (error against time, log–log), and DIR/ab.png (the legacy integrator's
+// and the reference integrator's composites side by side with their difference). Times are
+// precomputation plus rendering, on this machine's cores. --noise-targets adds the reference
+// integrator with adaptive sampling (render/adaptive.h) to each target, capped at the ladder's
+// largest spp; its rows give the mean spp the pixels took.
 #include <opencv2/imgproc.hpp>
 
 #include <chrono>
@@ -41,6 +43,7 @@ struct Row {
   int spp;  // adaptive: the mean the pixels took
   double seconds, rel_rmse;
   double noise_target = 0;
+  bool monte_carlo = false;  // its points are labelled with their spp
   std::string label() const { return noise_target > 0 ? fmt::format("{} {:g}", mode, noise_target) : mode; }
 };
 
@@ -81,7 +84,7 @@ Image plot(const std::vector<Row>& rows) {
       const cv::Point p(px(r.seconds), py(r.rel_rmse));
       cv::circle(m, p, 5, c, cv::FILLED);
       if (prev.x >= 0) cv::line(m, prev, p, c, 2);
-      if (r.mode.rfind("path", 0) == 0) cv::putText(m, fmt::format("{}", r.spp), {p.x + 6, p.y - 6}, cv::FONT_HERSHEY_SIMPLEX, 0.35, c);
+      if (r.monte_carlo) cv::putText(m, fmt::format("{}", r.spp), {p.x + 6, p.y - 6}, cv::FONT_HERSHEY_SIMPLEX, 0.35, c);
       prev = p;
     }
     cv::circle(m, {W - right + 20, top + 20 + 20 * int(k)}, 5, c, cv::FILLED);
@@ -95,16 +98,16 @@ Image plot(const std::vector<Row>& rows) {
 }
 
 // DIR/tradeoff.csv, DIR/tradeoff.png, DIR/ab.png, and the table on stdout.
-void write_outputs(const TradeoffArgs& a, const std::vector<Row>& rows, const RenderResult& realtime_result,
-                   const RenderResult& best_path) {
+void write_outputs(const TradeoffArgs& a, const std::vector<Row>& rows, const RenderResult& legacy_result,
+                   const RenderResult& best_reference) {
   const std::filesystem::path dir(a.out);
   std::string csv = "mode,spp,seconds,relative_rmse\n";
   for (const Row& r : rows) csv += fmt::format("{},{},{:.4f},{:.6f}\n", r.label(), r.spp, r.seconds, r.rel_rmse);
   write_text_file((dir / "tradeoff.csv").string(), csv);
   write_image((dir / "tradeoff.png").string(), plot(rows));
-  const CompareResult ab = compare_images(realtime_result.composite_linear, best_path.composite_linear);
-  write_image((dir / "ab.png").string(), comparison_picture(realtime_result.composite_linear, best_path.composite_linear, ab,
-                                                            &realtime_result.composite_encoded, &best_path.composite_encoded));
+  const CompareResult ab = compare_images(legacy_result.composite_linear, best_reference.composite_linear);
+  write_image((dir / "ab.png").string(), comparison_picture(legacy_result.composite_linear, best_reference.composite_linear, ab,
+                                                            &legacy_result.composite_encoded, &best_reference.composite_encoded));
   std::printf("| mode | spp | seconds | relative RMSE |\n|---|---|---|---|\n");
   for (const Row& r : rows) std::printf("| %s | %d | %.3f | %.4f |\n", r.label().c_str(), r.spp, r.seconds, r.rel_rmse);
 }
@@ -132,19 +135,20 @@ int run_tradeoff(const TradeoffArgs& a) {
     *result = render_scene(scene);
     return result->prepare_seconds + result->layers.seconds;
   };
-  std::fprintf(stderr, "tradeoff: reference, path at %d spp...\n", a.reference_spp);
+  const std::string reference_name = reference_integrator().name, legacy_name = legacy_integrator().name;
+  std::fprintf(stderr, "tradeoff: reference, %s at %d spp...\n", reference_name.c_str(), a.reference_spp);
   RenderResult reference;
-  run("path", IrradianceMode::kExact, a.reference_spp, std::uint64_t(a.seed) + 1000, &reference);
+  run(reference_name, IrradianceMode::kExact, a.reference_spp, std::uint64_t(a.seed) + 1000, &reference);
   const Image mask = changed_mask(scene.photo_linear, reference.composite_linear, reference.layers);
   std::vector<Row> rows;
-  RenderResult realtime_result, best_path;
+  RenderResult legacy_result, best_reference;
   auto measure = [&](const std::string& name, const std::string& integrator, IrradianceMode mode, int spp, RenderResult* keep,
                      double noise_target = 0) {
     RenderResult r;
     const double seconds = run(integrator, mode, spp, std::uint64_t(a.seed), &r, noise_target);
     const CompareResult c = compare_images(r.composite_linear, reference.composite_linear, &mask);
     if (noise_target > 0) spp = int(std::lround(mean_spp(r.layers)));
-    rows.push_back({name, spp, seconds, c.masked->relative_rmse, noise_target});
+    rows.push_back({name, spp, seconds, c.masked->relative_rmse, noise_target, find_integrator(integrator)->uses.monte_carlo});
     std::fprintf(stderr, "tradeoff: %-20s %5d spp %8.3f s  rel. RMSE %.4f\n", rows.back().label().c_str(), spp, seconds,
                  c.masked->relative_rmse);
     if (keep) *keep = std::move(r);
@@ -161,17 +165,18 @@ int run_tradeoff(const TradeoffArgs& a) {
       if (mode == IrradianceMode::kVolume && !scene.spec.environment.room_box) continue;  // it needs one
       const std::string label = reads_mode ? name + "/" + mode_name : name;
       if (!e.uses.monte_carlo) {
-        for (int spp : {1, 16}) measure(label, name, mode, spp, name == "realtime" && spp == 16 ? &realtime_result : nullptr);
+        for (int spp : {1, 16}) measure(label, name, mode, spp, name == legacy_name && spp == 16 ? &legacy_result : nullptr);
         continue;
       }
-      for (int spp : a.ladder) measure(label, name, mode, spp, name == "path" ? &best_path : nullptr);
+      for (int spp : a.ladder) measure(label, name, mode, spp, name == reference_name ? &best_reference : nullptr);
     }
   }
   const int cap = *std::max_element(a.ladder.begin(), a.ladder.end());
-  for (double target : a.noise_targets) measure("path adaptive", "path", IrradianceMode::kExact, cap, nullptr, target);
-  write_outputs(a, rows, realtime_result, best_path);
-  std::printf("wrote tradeoff.csv, tradeoff.png and ab.png to %s (reference: path, %d spp, %ld pixels changed)\n",
-              a.out.c_str(), a.reference_spp, long(std::count(mask.data.begin(), mask.data.end(), 1.0f)));
+  for (double target : a.noise_targets)
+    measure(reference_name + " adaptive", reference_name, IrradianceMode::kExact, cap, nullptr, target);
+  write_outputs(a, rows, legacy_result, best_reference);
+  std::printf("wrote tradeoff.csv, tradeoff.png and ab.png to %s (reference: %s, %d spp, %ld pixels changed)\n",
+              a.out.c_str(), reference_name.c_str(), a.reference_spp, long(std::count(mask.data.begin(), mask.data.end(), 1.0f)));
   return 0;
 }
 

@@ -14,11 +14,12 @@
 // irradiance_reference() is the brute-force integral at an arbitrary normal, every texel clipped
 // to the hemisphere and integrated by Lambert's formula; the others are measured against it.
 #pragma once
-#include <atomic>
 #include <array>
+#include <atomic>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/name_table.h"
 #include "light/cubemap.h"
@@ -34,6 +35,14 @@ inline constexpr Named<IrradianceMode> kIrradianceModes[] = {{IrradianceMode::kG
                                                             {IrradianceMode::kExact, "exact"},
                                                             {IrradianceMode::kVolume, "volume"}};
 inline bool is_directional(IrradianceMode mode) { return mode != IrradianceMode::kVolume; }
+// The modes that depend on the normal alone, in the table's order: what make_irradiance, the
+// irradiance report and `insitu cubemap` take.
+inline std::vector<IrradianceMode> directional_irradiance_modes() {
+  std::vector<IrradianceMode> modes;
+  for (const auto& row : kIrradianceModes)
+    if (is_directional(row.value)) modes.push_back(row.value);
+  return modes;
+}
 inline const char* irradiance_mode_name(IrradianceMode mode) { return name_of(kIrradianceModes, mode); }
 inline std::optional<IrradianceMode> parse_irradiance_mode(const std::string& name) {
   return parse_name(kIrradianceModes, name);

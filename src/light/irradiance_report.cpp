@@ -49,7 +49,7 @@ IrradianceReport irradiance_report(const CubeMap& radiance, int count, int exact
     const float z = 1 - 2 * s.next(), phi = 2 * kPiF * s.next(), r = std::sqrt(std::max(0.0f, 1 - z * z));
     random_dirs[k] = Vec3f(r * std::cos(phi), r * std::sin(phi), z);
   }
-  for (IrradianceMode mode : {IrradianceMode::kGaussian, IrradianceMode::kSh9, IrradianceMode::kExact}) {
+  for (IrradianceMode mode : directional_irradiance_modes()) {
     ModeReport m;
     m.mode = mode;
     const auto p0 = clock::now();
