@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Lists the longest functions of src/, integrators/ and tools/ (issue 11: none longer than ~80
+"""Lists the longest functions of src/ and tools/ (issue 11: none longer than ~80
 lines). A function is a definition that opens at column 0 and closes with a '}' at column 0, the
 house's clang-format layout; lambdas count toward the function that holds them.
     python3 scripts/function-lengths.py [N]     # the N longest (default 10)
@@ -7,7 +7,7 @@ house's clang-format layout; lambdas count toward the function that holds them.
 import glob, os, re, sys
 
 root = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..')
-files = [f for d in ('src/**/*.cpp', 'src/**/*.h', 'integrators/*.cpp', 'integrators/*.h', 'tools/*.cpp')
+files = [f for d in ('src/**/*.cpp', 'src/**/*.h', 'tools/*.cpp')
          for f in glob.glob(os.path.join(root, d), recursive=True)]
 found = []
 for path in files:

@@ -1,4 +1,4 @@
-// The house's layers (docs/architecture.md): every #include of src/ and integrators/ points down
+// The house's layers (docs/architecture.md): every #include of src/ points down
 // the stage order, and the scene file's spec types reach nothing of the render side, even
 // transitively. The link targets enforce the same for symbols (CMakeLists.txt); this test catches
 // a header-only dependency, which linking cannot see.
@@ -44,14 +44,12 @@ std::vector<std::string> includes_of(const fs::path& file) {
 
 std::string stage_of_include(const std::string& include) { return include.substr(0, include.find('/')); }
 
-fs::path header_path(const std::string& include) {
-  return stage_of_include(include) == "integrators" ? kRoot / include : kRoot / "src" / include;
-}
+fs::path header_path(const std::string& include) { return kRoot / "src" / include; }
 
 std::vector<std::pair<std::string, fs::path>> stage_files() {
   std::vector<std::pair<std::string, fs::path>> files;
   for (const auto& [stage, allowed] : kAllowed) {
-    const fs::path dir = stage == "integrators" ? kRoot / "integrators" : kRoot / "src" / stage;
+    const fs::path dir = kRoot / "src" / stage;
     for (const auto& e : fs::directory_iterator(dir))
       if (e.path().extension() == ".h" || e.path().extension() == ".cpp") files.emplace_back(stage, e.path());
   }
@@ -60,7 +58,7 @@ std::vector<std::pair<std::string, fs::path>> stage_files() {
 
 TEST(Architecture, EveryStageDirectoryExists) {
   for (const auto& [stage, allowed] : kAllowed)
-    EXPECT_TRUE(fs::is_directory(stage == "integrators" ? kRoot / "integrators" : kRoot / "src" / stage)) << stage;
+    EXPECT_TRUE(fs::is_directory(kRoot / "src" / stage)) << stage;
 }
 
 TEST(Architecture, IncludesPointDownTheStages) {
@@ -94,16 +92,16 @@ TEST(Architecture, SpecTypesIncludeNothingOfTheRenderSide) {
 }
 
 // Every quoted include anywhere (the tests, the fuzz targets, the benchmarks, the CLI) names a
-// file that exists beside it, under src/ or tools/, or from the repository root: a header moved to its stage
+// file that exists beside it, or under src/ or tools/: a header moved to its stage
 // is followed everywhere, including the targets that only the sanitizer leg builds.
 TEST(Architecture, EveryQuotedIncludeExists) {
   int checked = 0;
-  for (const char* dir : {"tests", "tests/fuzz", "bench", "tools", "integrators"})
+  for (const char* dir : {"tests", "tests/fuzz", "bench", "tools"})
     for (const auto& e : fs::directory_iterator(kRoot / dir)) {
       if (e.path().extension() != ".h" && e.path().extension() != ".cpp") continue;
       for (const std::string& inc : includes_of(e.path())) {
         const bool found = fs::is_regular_file(e.path().parent_path() / inc) || fs::is_regular_file(kRoot / "src" / inc) ||
-                           fs::is_regular_file(kRoot / inc) || fs::is_regular_file(kRoot / "tools" / inc);
+                           fs::is_regular_file(kRoot / "tools" / inc);
         EXPECT_TRUE(found) << e.path() << ": #include \"" << inc << "\" is nowhere";
         ++checked;
       }

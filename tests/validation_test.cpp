@@ -1,8 +1,8 @@
 // insitu against an independent renderer (issue 12; docs/validation.md). tools/validate/ built
 // the open-ground and the closed-room scenes in Blender and rendered them with Cycles 3.4: the
 // empty photo, the photo with the objects (the truth, twice, with two seeds), the objects' coverage
-// and six HDR shots from the insertion point. Their small outputs are committed in
-// tools/validate/<scene>/out; here insitu renders them with the true camera and is measured over
+// and six HDR shots from the insertion point. Their small outputs are test data, committed in
+// tests/data/validation/<scene>; here insitu renders them with the true camera and is measured over
 // the objects and the pixels they change, with the regions of tools/validate/metrics.py.
 #include <gtest/gtest.h>
 
@@ -111,7 +111,7 @@ double objects_brightness(const Image& a, const Image& truth, const Image& cover
 // Returns the error (−1 when skipped); `edit` changes the scene first.
 double check_against_cycles(const std::string& name, double goal, bool jpeg = false,
                             const std::function<void(SceneSpec&)>& edit = {}) {
-  const std::string out = test::source_dir() + "/tools/validate/" + name + "/out";
+  const std::string out = test::test_data("validation/" + name);
   if (!std::ifstream(out + "/scene.json")) {
     [&] { GTEST_SKIP() << out << " is absent"; }();
     return -1;
@@ -167,7 +167,7 @@ std::function<void(SceneSpec&)> grey_ball_on_a_plate(const std::string& name, co
     ReferenceSpec ball;
     ball.ball = BallSpec{center, 0.15};
     ball.albedo = 0.18;
-    ball.photo = test::source_dir() + "/tools/validate/" + name + "/out/photo.exr";
+    ball.photo = test::test_data("validation/" + name + "/photo.exr");
     spec.references.push_back(ball);
   };
 }

@@ -9,8 +9,10 @@
 #   bash bench/cycles/run.sh tools/validate/open_ground OUT_DIR
 #   LADDER=16,64,256,1024 REFERENCE=4096 bash bench/cycles/run.sh ...   (the defaults)
 #
-# It needs the scene's validation output (tools/validate/run.sh SCENE SCENE/out: insitu's inputs
-# and the masks) and makes it first where it is absent. Skips with a message without blender.
+# It needs the scene's validation output (insitu's inputs and the masks) in OUT_DIR/validation
+# (or VALIDATION_OUT): a copy of the committed truths of tests/data/validation/<scene> completed
+# by tools/validate/run.sh --reuse, or the whole of run.sh where none is committed. Skips with a
+# message without blender.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
@@ -21,7 +23,11 @@ ladder=${LADDER:-16,64,256,1024}
 reference=${REFERENCE:-4096}
 command -v blender >/dev/null || { echo "bench/cycles: blender is not installed (apt-get install blender): skipped"; exit 0; }
 [ -x "$insitu" ] || { echo "bench/cycles: $insitu is not built" >&2; exit 2; }
-val=${VALIDATION_OUT:-$scene_dir/out}
+val=${VALIDATION_OUT:-$out/validation}
+committed="$root/tests/data/validation/$(basename "$scene_dir")"
+if [ ! -f "$val/scene.json" ] && [ -f "$committed/scene.json" ]; then
+  mkdir -p "$val" && cp -r "$committed"/. "$val"/
+fi
 if [ ! -f "$val/scene.json" ] || [ ! -f "$val/mask_all.png" ]; then
   reuse=""
   [ -f "$val/scene.json" ] && reuse=--reuse  # the truth is there: only the masks are missing

@@ -69,7 +69,7 @@ constexpr double kRotationTolerance = 1e-3;
 Mat3d checked_rotation(const Mat3d& R, const JsonValue& where, Warnings* warnings);
 
 // A JSON value kept with its file and path, read later by the code that owns its keys (an
-// integrator's parameters: integrators/registry.h).
+// integrator's parameters: src/integrators/registry.h).
 struct JsonBlock {
   json value;
   std::string file, path;

@@ -1,6 +1,6 @@
 // The integrator interface: what an integrator is given (RenderInputs) and what it returns for one
-// camera ray (CameraSample). The integrators themselves live in integrators/, one per file, and
-// integrators/registry.h maps their names to factories, parameters and capabilities.
+// camera ray (CameraSample). The integrators themselves live in src/integrators/, one per file, and
+// src/integrators/registry.h maps their names to factories, parameters and capabilities.
 #pragma once
 #include <memory>
 #include <optional>

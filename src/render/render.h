@@ -22,7 +22,7 @@ namespace insitu {
 constexpr float kNoHitDepth = 1e10f;
 
 // What the render loop itself reads: samples per pixel and the seed of the counter-based random
-// numbers (the integrator reads its own parameters: integrators/registry.h).
+// numbers (the integrator reads its own parameters: src/integrators/registry.h).
 // `stop`, when set (a signal handler, a host's cancel), ends the render after the pass under way:
 // the layers are then the means over the samples taken (RenderLayers::spp_done).
 // `stop_at_once`: the stop is also looked at before each sample, so that it takes effect within a

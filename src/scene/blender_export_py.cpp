@@ -173,7 +173,7 @@ def quads_object(scene, name, quads, mat):
 
 def room_box(scene, quads, world_path, capture):
     """The walls emit, and the openings are holes through which the world's distant light comes.
-    The walls are shadow catchers too, as in insitu (integrators/path.cpp): they catch the objects'
+    The walls are shadow catchers too, as in insitu (src/integrators/path.cpp): they catch the objects'
     shadows, and Cycles counts their light as the room's, not as an occluder of the world (an
     ordinary object there would darken the whole floor)."""
     return catcher(quads_object(scene, "insitu room box", quads, box_emission_material(world_path, capture)))

@@ -442,7 +442,7 @@ ReferenceSpec parse_reference(JsonObject item, const fs::path& dir) {
   return ref;
 }
 
-// The render loop's keys; the rest are the integrators', read by them (integrators/registry.h).
+// The render loop's keys; the rest are the integrators', read by them (src/integrators/registry.h).
 void parse_render(const JsonValue& r, RenderSpec& render) {
   JsonObject ro(r);
   if (auto in = ro.find("integrator")) render.integrator = in->string();

@@ -85,7 +85,7 @@ struct OutputSpec {
 // The render stage: the render loop's samples per pixel, seed and noise target (adaptive sampling,
 // render/adaptive.h; 0: off, spp then a fixed count rather than a cap), the integrator's name, and the
 // render object itself, whose other keys are the integrators' parameters (render.max_depth, or
-// render.path.max_depth): each integrator reads its own (integrators/registry.h).
+// render.path.max_depth): each integrator reads its own (src/integrators/registry.h).
 struct RenderSpec {
   std::string integrator = "realtime";
   int spp = 16;
