@@ -1,4 +1,4 @@
-// The integrators' registry (integrators/registry.h): parameters read by each integrator itself,
+// The integrators' registry (src/integrators/registry.h): parameters read by each integrator itself,
 // and the invariants every registered integrator must keep, run over the whole table so that a
 // new integrator is tested without new test code.
 #include <gtest/gtest.h>
@@ -95,24 +95,6 @@ std::string read_source(const std::string& rel) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
-}
-
-// docs/cli.md's integrator table (the rows after "| name | what it does |") names exactly the registry.
-TEST(Registry, CliPageListsEveryIntegrator) {
-  const std::string readme = read_source("docs/cli.md");
-  const auto start = readme.find("| name | what it does |");
-  ASSERT_NE(start, std::string::npos) << "docs/cli.md has no integrator table";
-  std::set<std::string> documented;
-  std::istringstream rows(readme.substr(start));
-  std::string row;
-  std::getline(rows, row);  // header
-  std::getline(rows, row);  // |---|---|
-  const std::regex name_re(R"(^\| `([a-z_0-9]+)` \|)");
-  std::smatch m;
-  while (std::getline(rows, row) && std::regex_search(row, m, name_re)) documented.insert(m[1]);
-  std::set<std::string> registered;
-  for (const auto& e : integrator_registry()) registered.insert(e.name);
-  EXPECT_EQ(documented, registered);
 }
 
 // `insitu tradeoff` asks the registry for its roles, not for names: one reference, the only

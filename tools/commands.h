@@ -22,6 +22,7 @@ Command add_export_blender_command(CLI::App& app);
 Command add_merge_command(CLI::App& app);
 Command add_batch_command(CLI::App& app);
 Command add_studio_command(CLI::App& app);
+Command add_modes_command(CLI::App& app);
 
 void print_warnings(const Warnings& warnings);
 

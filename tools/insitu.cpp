@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
   const std::vector<Command> commands = {add_render_command(app), add_calibrate_command(app), add_cubemap_command(app),
                                          add_irradiance_report_command(app), add_compare_command(app),
                                          add_tradeoff_command(app), add_export_blender_command(app), add_merge_command(app),
-                                         add_batch_command(app), add_studio_command(app)};
+                                         add_batch_command(app), add_studio_command(app), add_modes_command(app)};
   // An unknown verb is named (CLI11 would say only that a subcommand is required).
   if (argc > 1 && argv[1][0] != '-') {
     std::string verbs;

@@ -35,6 +35,23 @@ inline constexpr Named<IrradianceMode> kIrradianceModes[] = {{IrradianceMode::kG
                                                             {IrradianceMode::kExact, "exact"},
                                                             {IrradianceMode::kVolume, "volume"}};
 inline bool is_directional(IrradianceMode mode) { return mode != IrradianceMode::kVolume; }
+// One line on what the mode computes, for `insitu modes` and docs/cli.md (a mode without one is a
+// -Wswitch warning).
+inline const char* irradiance_mode_summary(IrradianceMode mode) {
+  switch (mode) {
+    case IrradianceMode::kGaussian:
+      return "the legacy method: the cube blurred face by face with a "
+             "Gaussian as wide as the face, looked up along the normal";
+    case IrradianceMode::kSh9: return "the cube projected on nine spherical harmonics (Ramamoorthi & Hanrahan 2001)";
+    case IrradianceMode::kExact:
+      return "the integral over every texel of the cube, "
+             "tabulated on a 32² cube and looked up bilinearly";
+    case IrradianceMode::kVolume:
+      return "by position too: SH9 probes of the room box and its "
+             "openings, blended trilinearly; needs environment.room_box";
+  }
+  return "";
+}
 // The modes that depend on the normal alone, in the table's order: what make_irradiance, the
 // irradiance report and `insitu cubemap` take.
 inline std::vector<IrradianceMode> directional_irradiance_modes() {

@@ -30,7 +30,7 @@ Image tonemap(const Image& img, const ToneMapSettings& s, const Image* clipped_p
   Image out(img.width, img.height, 3);
   const double lavg = log_average_luminance(img);
   // Scaled luminance of every pixel, and its maximum.
-  double key = s.key.value_or(s.op == ToneMap::kReinhard ? 0.18 : 1.0);
+  double key = s.key.value_or(default_key(s.op));
   double lmax = 0;
   if (s.op == ToneMap::kAdaptiveLog || s.op == ToneMap::kReinhard)
     for (int y = 0; y < img.height; ++y)

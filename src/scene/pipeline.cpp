@@ -42,9 +42,9 @@ void warn_ineffective_settings(const SceneSpec& spec, const ResolvedIntegrator& 
         w.add(key, "has no effect: " + spec.output.image + " is a linear, scene-referred image; tone mapping applies to PNG and JPEG");
     return;
   }
-  if (given("output.tonemap.key") && op == ToneMap::kPhoto)
+  if (given("output.tonemap.key") && !reads_key(op))
     w.add("output.tonemap.key", "has no effect with the photo tone map (it re-encodes through the photo's own curve)");
-  if (given("output.tonemap.bias") && op != ToneMap::kAdaptiveLog)
+  if (given("output.tonemap.bias") && !reads_bias(op))
     w.add("output.tonemap.bias", std::string("has no effect with the ") + tonemap_name(op) + " tone map (only adaptive_log has a bias)");
 }
 
