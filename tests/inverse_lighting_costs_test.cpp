@@ -1,4 +1,4 @@
-// Inverse lighting's cost functions (render/inverse_lighting_costs.h): each with its derivatives
+// Inverse lighting's cost functions (relight/inverse_lighting_costs.h): each with its derivatives
 // written out equals the automatic derivative of the same formula, residual and Jacobian, at
 // points spread over the range the fit visits (a from 0 to 10⁴, coefficients over six decades).
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "render/inverse_lighting_costs.h"
+#include "relight/inverse_lighting_costs.h"
 
 namespace insitu {
 namespace {

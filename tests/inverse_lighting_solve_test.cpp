@@ -1,5 +1,5 @@
 // The smoothing within a source of inverse lighting's fit with a reference
-// (render/inverse_lighting_solve.h, kReferenceSmoothing), on synthetic pixels whose irradiance is
+// (relight/inverse_lighting_solve.h, kReferenceSmoothing), on synthetic pixels whose irradiance is
 // given: a grey reference of albedo 0.18 lit by E0 and two parts of one source, P = ρ/π (E0 +
 // a_1 E_1 + a_2 E_2) with ±2 % noise in log P.
 #include <gtest/gtest.h>
@@ -12,7 +12,7 @@
 
 #include "core/colour.h"
 #include "core/stop.h"
-#include "render/inverse_lighting_solve.h"
+#include "relight/inverse_lighting_solve.h"
 
 namespace insitu {
 namespace {

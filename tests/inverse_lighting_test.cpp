@@ -1,5 +1,5 @@
-// Inverse lighting (render/inverse_lighting.h) and the clipped sources it fits
-// (light/clipped_sources.h). Each scene is synthetic with a known true source: its photo is made
+// Inverse lighting (relight/inverse_lighting.h) and the clipped sources it fits
+// (relight/clipped_sources.h). Each scene is synthetic with a known true source: its photo is made
 // from the true cube by the slower, independent route (many samples of the room light per pixel),
 // the shots' cube is the true one clipped at a level, and the fit must find the true scale.
 #include <gtest/gtest.h>
@@ -15,11 +15,11 @@
 
 #include "core/stop.h"
 #include "cube_fixture.h"
-#include "light/clipped_sources.h"
+#include "relight/clipped_sources.h"
 #include "light/irradiance.h"
 #include "light/texel_geometry.h"
-#include "render/inverse_lighting.h"
-#include "render/inverse_lighting_pixels.h"
+#include "relight/inverse_lighting.h"
+#include "relight/inverse_lighting_pixels.h"
 #include "render/plane_irradiance.h"
 #include "test_util.h"
 

@@ -1,4 +1,4 @@
-// variance_along (render/linear_variance.h) against the textbook formula σ² gᵀ (JᵀJ)⁻¹ g, its
+// variance_along (relight/linear_variance.h) against the textbook formula σ² gᵀ (JᵀJ)⁻¹ g, its
 // independence from the parameters' units, and its null directions.
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "render/linear_variance.h"
+#include "relight/linear_variance.h"
 
 namespace insitu {
 namespace {

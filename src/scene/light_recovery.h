@@ -1,5 +1,5 @@
 // The light that clipped in the shots, recovered for a loaded scene (issue 13): inverse lighting
-// (render/inverse_lighting.h) against the photo, on the local scene's planes and the room box,
+// (relight/inverse_lighting.h) against the photo, on the local scene's planes and the room box,
 // by default whenever a shot clipped; and what determined the light, for the report.
 #pragma once
 #include <atomic>

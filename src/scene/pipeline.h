@@ -14,7 +14,7 @@
 #include "core/error.h"
 #include "core/image.h"
 #include "core/output_paths.h"
-#include "render/inverse_lighting.h"
+#include "relight/inverse_lighting.h"
 #include "render/render.h"
 #include "integrators/registry.h"
 #include "scene/scene_file.h"

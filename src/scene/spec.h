@@ -63,7 +63,7 @@ struct BallSpec {
   double radius_m = 0;
 };
 
-// Something of known albedo in the photo, inverse lighting's reference (render/inverse_lighting.h):
+// Something of known albedo in the photo, inverse lighting's reference (relight/inverse_lighting.h):
 // a white sheet (≈ 0.8) or a grey card (0.18) lying on a real surface, drawn as a polygon in photo
 // pixels (top-left origin); or a grey ball, which sees the light from many directions.
 struct ReferenceSpec {

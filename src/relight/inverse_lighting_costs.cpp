@@ -1,4 +1,4 @@
-#include "render/inverse_lighting_costs.h"
+#include "relight/inverse_lighting_costs.h"
 
 #include <ceres/ceres.h>
 

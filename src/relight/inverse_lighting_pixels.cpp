@@ -1,4 +1,4 @@
-#include "render/inverse_lighting_pixels.h"
+#include "relight/inverse_lighting_pixels.h"
 
 #include <tbb/parallel_for.h>
 

@@ -87,7 +87,7 @@
 #include <vector>
 
 #include "core/camera.h"
-#include "light/clipped_sources.h"
+#include "relight/clipped_sources.h"
 #include "render/room_light.h"
 
 namespace insitu {

@@ -1,4 +1,4 @@
-#include "render/linear_variance.h"
+#include "relight/linear_variance.h"
 
 #include <Eigen/Eigenvalues>
 

@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "render/inverse_lighting_pixels.h"
+#include "relight/inverse_lighting_pixels.h"
 
 namespace insitu {
 namespace inverse_lighting_detail {

@@ -1,4 +1,4 @@
-#include "light/clipped_sources.h"
+#include "relight/clipped_sources.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "render/inverse_lighting.h"
+#include "relight/inverse_lighting.h"
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
@@ -11,9 +11,9 @@
 
 #include "core/colour.h"
 #include "core/stop.h"
-#include "render/inverse_lighting_pixels.h"
-#include "render/inverse_lighting_solve.h"
-#include "render/linear_variance.h"
+#include "relight/inverse_lighting_pixels.h"
+#include "relight/inverse_lighting_solve.h"
+#include "relight/linear_variance.h"
 
 namespace insitu {
 

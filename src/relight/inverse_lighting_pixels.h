@@ -6,7 +6,7 @@
 #include <memory>
 #include <vector>
 
-#include "render/inverse_lighting.h"
+#include "relight/inverse_lighting.h"
 
 namespace insitu {
 namespace inverse_lighting_detail {

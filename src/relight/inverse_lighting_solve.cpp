@@ -1,4 +1,4 @@
-#include "render/inverse_lighting_solve.h"
+#include "relight/inverse_lighting_solve.h"
 
 #include <ceres/ceres.h>
 
@@ -8,7 +8,7 @@
 
 #include "core/colour.h"
 #include "core/stop.h"
-#include "render/inverse_lighting_costs.h"
+#include "relight/inverse_lighting_costs.h"
 
 namespace insitu {
 namespace inverse_lighting_detail {
