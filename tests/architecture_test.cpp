@@ -28,8 +28,9 @@ const std::map<std::string, std::set<std::string>> kAllowed = {
     {"relight", {"core", "light", "render", "relight"}},
     {"output", {"core", "light", "render", "output"}},
     {"scene", {"core", "calib", "light", "render", "integrators", "relight", "output", "scene"}},
-    {"api", {"core", "calib", "light", "render", "integrators", "relight", "output", "scene", "api"}},
-    {"studio", {"core", "calib", "light", "render", "integrators", "relight", "output", "scene", "studio"}},
+    {"interop", {"core", "calib", "light", "render", "integrators", "relight", "output", "scene", "interop"}},
+    {"api", {"core", "calib", "light", "render", "integrators", "relight", "output", "scene", "interop", "api"}},
+    {"studio", {"core", "calib", "light", "render", "integrators", "relight", "output", "scene", "interop", "studio"}},
 };
 
 // The quoted includes of a file, as written ("core/math.h").

@@ -3,7 +3,7 @@
 #include <cstdlib>
 #include <fmt/format.h>
 
-#include "calib/blender_camera.h"
+#include "interop/blender_camera.h"
 #include "core/image.h"
 #include "cli_util.h"
 #include "test_util.h"

@@ -1,4 +1,4 @@
-// insitu export-blender (scene/blender_export.h): the room box's walls, the catchers' albedo, the
+// insitu export-blender (interop/blender_export.h): the room box's walls, the catchers' albedo, the
 // files and their safety, and — where Blender is installed — Cycles rendering the exported scene
 // as insitu renders it.
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include "cli_util.h"
 #include "core/image.h"
 #include "light/preview.h"
-#include "scene/blender_export.h"
+#include "interop/blender_export.h"
 #include "scene/catcher_albedo.h"
 #include "scene/pipeline.h"
 #include "scene/scene_file.h"

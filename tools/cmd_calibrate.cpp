@@ -5,7 +5,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "calib/blender_camera.h"
+#include "interop/blender_camera.h"
 #include "calib/calibration.h"
 #include "calib/calibration_summary.h"
 #include "commands.h"

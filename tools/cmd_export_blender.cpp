@@ -1,6 +1,6 @@
 // insitu export-blender SCENE -o scene.py [--spp N]
 //
-// The whole scene for Blender/Cycles (scene/blender_export.h): scene.py, scene.meshes.bin and
+// The whole scene for Blender/Cycles (interop/blender_export.h): scene.py, scene.meshes.bin and
 // scene.world.exr. `blender --python scene.py` builds it; `blender -b --python scene.py -- --render
 // out.png` renders the composite over the photo.
 #include <cstdio>
@@ -8,7 +8,7 @@
 
 #include "commands.h"
 #include "core/output_paths.h"
-#include "scene/blender_export.h"
+#include "interop/blender_export.h"
 #include "scene/pipeline.h"
 #include "scene/scene_file.h"
 

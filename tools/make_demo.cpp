@@ -19,7 +19,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "calib/blender_camera.h"
+#include "interop/blender_camera.h"
 #include "core/camera.h"
 #include "core/colour.h"
 #include "core/image.h"

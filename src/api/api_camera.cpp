@@ -2,7 +2,7 @@
 #include <fmt/format.h>
 
 #include "api/api_internal.h"
-#include "calib/blender_camera.h"
+#include "interop/blender_camera.h"
 #include "calib/calibration_summary.h"
 #include "calib/view_correlation.h"
 #include "core/json_reader.h"

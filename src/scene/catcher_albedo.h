@@ -1,5 +1,5 @@
 // One albedo per local-scene surface, as the photo shows it on average: for exporters that take a
-// single colour per surface (scene/blender_export.h). insitu's own render reads the photo at every
+// single colour per surface (interop/blender_export.h). insitu's own render reads the photo at every
 // pixel instead (render/catcher.h); this is the mean of that same ratio.
 //
 // At each photo pixel whose camera ray first meets surface k (the photo is of the empty room, so

@@ -34,6 +34,11 @@ import sys
 import bpy
 from mathutils import Matrix, Vector
 
+# The Cycles settings shared with insitu's Blender export (src/interop/blender_prelude.py).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
+                                "src", "interop"))
+from blender_prelude import cycles_common  # noqa: E402
+
 argv = sys.argv[sys.argv.index("--") + 1:]
 desc_path, out_dir = os.path.abspath(argv[0]), os.path.abspath(argv[1])
 desc = json.load(open(desc_path))
@@ -51,22 +56,12 @@ def to_blender(v):
 
 
 def setup_render(scene, samples, width, height, seed):
-    scene.render.engine = "CYCLES"
-    scene.cycles.device = "CPU"
-    scene.cycles.samples = samples
-    scene.cycles.use_adaptive_sampling = False
-    scene.cycles.use_denoising = False
-    scene.cycles.pixel_filter_type = "BOX"
-    scene.cycles.filter_width = 1.0
-    scene.cycles.seed = seed
-    scene.cycles.sample_clamp_direct = 0
-    scene.cycles.sample_clamp_indirect = 0
+    cycles_common(scene, samples, seed)  # the settings insitu's Blender export uses too
     scene.render.resolution_x, scene.render.resolution_y = width, height
     scene.render.resolution_percentage = 100
     scene.render.image_settings.file_format = "OPEN_EXR"
     scene.render.image_settings.color_depth = "16"  # half floats: small files, 3 significant digits
     scene.render.image_settings.exr_codec = "ZIP"
-    scene.view_settings.view_transform = "Standard"
     scene.render.threads_mode = "AUTO"
 
 

@@ -1,4 +1,4 @@
-// `insitu export-blender SCENE -o scene.py` (issue 14): the whole insitu scene for Blender/Cycles,
+// `insitu export-blender SCENE -o scene.py`: the whole insitu scene for Blender/Cycles,
 // to compare with or to finish in Blender. Three files:
 //   scene.py           the script: `blender --python scene.py` builds it in a new scene "insitu";
 //                      `blender -b --python scene.py -- --render out.png [--samples N]` renders
@@ -9,7 +9,7 @@
 //                      recovered), equirectangular in Blender's layout (light/equirect.h)
 //
 // What the script makes, each as insitu models it:
-//   - the camera (calib/blender_camera.h), the photo as its background and, in the compositor,
+//   - the camera (interop/blender_camera.h), the photo as its background and, in the compositor,
 //     under the render (Alpha Over);
 //   - the environment as the world; with a room box, the box's walls emitting the environment
 //     seen from the capture point (render/room_light.h) and catching shadows, with the openings
@@ -52,6 +52,6 @@ void write_blender_export(const BlenderExport& e, const BlenderExportPaths& path
 using Quad = std::array<Vec3d, 4>;
 std::vector<Quad> room_wall_quads(const EnvironmentSpec::RoomBox& box, const std::vector<PlaneSpec>& local_scene);
 
-extern const char* const kBlenderExportPrelude;  // the script's Python helpers
+extern const char* const kBlenderExportPrelude;  // the script's Python helpers: blender_prelude.py
 
 }  // namespace insitu

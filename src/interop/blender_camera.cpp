@@ -1,4 +1,4 @@
-#include "calib/blender_camera.h"
+#include "interop/blender_camera.h"
 
 #include <filesystem>
 #include <fmt/format.h>
@@ -55,7 +55,7 @@ std::string blender_camera_lines(const Camera& c, const std::string& photo_path)
 }
 
 std::string blender_camera_script(const Camera& c, const std::string& photo_path) {
-  std::string s = "# Written by insitu (src/calib/blender_camera.h): the calibrated camera in Blender.\n";
+  std::string s = "# Written by insitu (src/interop/blender_camera.h): the calibrated camera in Blender.\n";
   s += "import bpy\nfrom mathutils import Matrix\n\nscene = bpy.context.scene\n";
   return s + blender_camera_lines(c, photo_path);
 }

@@ -1,10 +1,8 @@
-// The Python half of `insitu export-blender` (scene/blender_export.h): the helper functions every
-// exported script starts with. Blender 3.4's API (Debian 12); the script's own lines call them.
-#include "scene/blender_export.h"
-
-namespace insitu {
-
-const char* const kBlenderExportPrelude = R"PY(import array
+# The Python half of `insitu export-blender` (src/interop/blender_export.h): the helper functions
+# every exported script starts with, embedded in insitu at build time (cmake/embed_text.cmake).
+# tools/validate/cycles_render.py imports it too, for the Cycles settings both renders share
+# (cycles_common). Blender 3.4's API (Debian 12).
+import array
 import os
 import sys
 
@@ -27,9 +25,10 @@ def new_scene(name):
     return scene
 
 
-def render_settings(scene, samples, max_bounces, seed):
-    """Cycles as insitu renders: a 1-pixel box filter, no denoising, no clamping, linear output
-    shown through the plain sRGB curve, a transparent film for the shadow catchers."""
+def cycles_common(scene, samples, seed):
+    """Cycles as insitu renders, in every render made to compare with insitu (the export's and the
+    validation's): the CPU, a fixed number of samples, a 1-pixel box filter, no adaptive sampling,
+    no denoising, no clamping, and the plain sRGB view."""
     scene.render.engine = "CYCLES"
     scene.cycles.device = "CPU"
     scene.cycles.samples = samples
@@ -40,13 +39,19 @@ def render_settings(scene, samples, max_bounces, seed):
     scene.cycles.seed = seed
     scene.cycles.sample_clamp_direct = 0.0
     scene.cycles.sample_clamp_indirect = 0.0
+    scene.view_settings.view_transform = "Standard"
+
+
+def render_settings(scene, samples, max_bounces, seed):
+    """The export's render: cycles_common, the scene's bounces, caustics, linear output shown through
+    the plain sRGB curve, a transparent film for the shadow catchers."""
+    cycles_common(scene, samples, seed)
     scene.cycles.max_bounces = max_bounces
     for kind in ("diffuse", "glossy", "transmission", "transparent"):
         setattr(scene.cycles, kind + "_bounces", max_bounces)
     scene.cycles.caustics_reflective = True
     scene.cycles.caustics_refractive = True
     scene.render.film_transparent = True
-    scene.view_settings.view_transform = "Standard"
     scene.view_settings.look = "None"
     scene.view_settings.exposure = 0.0
     scene.view_settings.gamma = 1.0
@@ -264,6 +269,3 @@ def run_from_command_line(scene):
     scene.render.filepath = path
     bpy.ops.render.render(write_still=True, scene=scene.name)
     print("insitu scene: wrote", path, flush=True)
-)PY";
-
-}  // namespace insitu

@@ -1,12 +1,12 @@
-#include "scene/blender_export.h"
+#include "interop/blender_export.h"
 
 #include <filesystem>
 #include <fmt/format.h>
 
-#include "calib/blender_camera.h"
+#include "interop/blender_camera.h"
 #include "core/text_file.h"
 #include "light/preview.h"
-#include "scene/blender_meshes.h"
+#include "interop/blender_meshes.h"
 #include "scene/catcher_albedo.h"
 
 namespace insitu {
@@ -86,7 +86,7 @@ std::string objects_lines(const LoadedScene& s, std::string& bytes) {
 
 std::string header(const LoadedScene& s, const BlenderExportPaths& paths) {
   const std::string py = fs::path(paths.script).filename().string();
-  std::string h = fmt::format("# Written by insitu export-blender from {} (src/scene/blender_export.h).\n", s.spec.path);
+  std::string h = fmt::format("# Written by insitu export-blender from {} (src/interop/blender_export.h).\n", s.spec.path);
   h += "#   blender --python " + py + "                         builds the scene in a new scene \"insitu\"\n";
   h += "#   blender -b --python " + py + " -- --render out.png [--samples N]   renders the composite over the photo\n";
   h += "# It reads " + fs::path(paths.meshes).filename().string() + " and " + fs::path(paths.world).filename().string() +

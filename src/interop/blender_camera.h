@@ -1,4 +1,4 @@
-// The camera as a Blender Python script (issue 14): `insitu calibrate ... --blender cam.py`, then
+// The camera as a Blender Python script: `insitu calibrate ... --blender cam.py`, then
 // `blender --python cam.py` (or Text Editor > Run Script) creates it in the open scene.
 //
 // Blender's camera from insitu's pinhole (DESIGN.md: OpenCV axes, Y-up world, pixels):
@@ -24,7 +24,7 @@ inline Vec3d to_blender(const Vec3d& p) { return blender_from_insitu() * p; }
 Mat4d blender_camera_to_world(const Camera& camera);
 
 std::string blender_camera_script(const Camera& camera, const std::string& photo_path = "");
-// The script's body alone, for a larger script (scene/blender_export.h) that has imported bpy and
+// The script's body alone, for a larger script (interop/blender_export.h) that has imported bpy and
 // mathutils.Matrix and bound `scene`: sets the render size and creates the camera as scene.camera.
 std::string blender_camera_lines(const Camera& camera, const std::string& photo_path = "");
 

@@ -1,9 +1,9 @@
-// The room box's walls for the Blender export (scene/blender_export.h): each wall cut into cells
+// The room box's walls for the Blender export (interop/blender_export.h): each wall cut into cells
 // along its openings' edges, the cells inside an opening dropped.
 #include <algorithm>
 #include <cmath>
 
-#include "scene/blender_export.h"
+#include "interop/blender_export.h"
 
 namespace insitu {
 namespace {

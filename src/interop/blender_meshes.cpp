@@ -1,4 +1,4 @@
-#include "scene/blender_meshes.h"
+#include "interop/blender_meshes.h"
 
 #include <cmath>
 #include <cstring>

@@ -1,11 +1,11 @@
-// The meshes of the Blender export (scene/blender_export.h): their triangles appended to the
+// The meshes of the Blender export (interop/blender_export.h): their triangles appended to the
 // binary file in the layout the script's load_mesh reads, and the Python lines that create their
 // materials and objects.
 #pragma once
 #include <optional>
 #include <string>
 
-#include "calib/blender_camera.h"
+#include "interop/blender_camera.h"
 #include "render/mesh.h"
 
 namespace insitu {
