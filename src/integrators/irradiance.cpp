@@ -12,42 +12,29 @@
 // Parameters:
 //   irradiance  the irradiance mode: "gaussian", "sh9", "exact" or "volume" (default "exact"); flat
 //               as render.irradiance (DESIGN.md), or render.irradiance.irradiance in its own object.
-#include <stdexcept>
-
 #include "integrators/registry.h"
 #include "light/irradiance.h"
-#include "render/irradiance_volume.h"
+#include "render/irradiance_at.h"
 
 namespace insitu {
 namespace {
 
 class IrradianceIntegrator final : public Integrator {
  public:
-  IrradianceIntegrator(const RenderInputs& in, IrradianceMode mode) : objects_(in.objects) {
-    if (is_directional(mode)) {
-      field_ = make_irradiance(mode, *in.environment, 32, in.stop);
-      return;
-    }
-    if (!in.room) throw std::invalid_argument("the volume irradiance mode needs environment.room_box");
-    room_ = std::make_unique<RoomLight>(*in.environment, in.room);
-    volume_ = std::make_unique<IrradianceVolume>(*room_, *in.room, 8, 2048, in.stop);
-  }
+  IrradianceIntegrator(const RenderInputs& in, IrradianceMode mode)
+      : objects_(in.objects), field_(make_irradiance_at(mode, *in.environment, in.room, 32, in.stop)) {}
 
   CameraSample sample(const Ray& ray, Sampler&) const override {
     CameraSample out;
     if (const auto sp = first_hit(*objects_, ray, out))
-      out.radiance = out.albedo * (field_ ? field_->irradiance(sp->ns_world) : volume_->irradiance(sp->p_world, sp->ns_world)) / kPiF;
+      out.radiance = out.albedo * field_->irradiance(sp->p_world, sp->ns_world) / kPiF;
     return out;
   }
 
  private:
   const EmbreeScene* objects_;
-  std::unique_ptr<IrradianceField> field_;  // a directional mode
-  std::unique_ptr<RoomLight> room_;         // or the volume, from the room's light
-  std::unique_ptr<IrradianceVolume> volume_;
+  std::unique_ptr<IrradianceAt> field_;
 };
-
-}  // namespace
 
 json read_irradiance_params(IntegratorParams& params) {
   IrradianceMode mode = IrradianceMode::kExact;
@@ -61,6 +48,19 @@ json read_irradiance_params(IntegratorParams& params) {
 
 std::unique_ptr<Integrator> make_irradiance_integrator(const RenderInputs& inputs, const json& params) {
   return std::make_unique<IrradianceIntegrator>(inputs, *parse_irradiance_mode(params.at("irradiance").get<std::string>()));
+}
+
+}  // namespace
+
+// This integrator's row of the registry (registry.cpp lists the rows).
+const IntegratorEntry& irradiance_integrator() {
+  static const IntegratorEntry entry{
+      "irradiance",
+      "Lambertian objects lit by an irradiance mode (render.irradiance), no visibility",
+      {/*local_scene*/ false, /*room_box*/ false, /*monte_carlo*/ false, /*reference*/ false, /*legacy*/ false},
+      read_irradiance_params,
+      make_irradiance_integrator};
+  return entry;
 }
 
 }  // namespace insitu

@@ -8,7 +8,7 @@
 // combined by multiple importance sampling with the power heuristic (Veach 1997, §9.2). Escaping
 // rays take the cube's nearest texel, the same piecewise-constant function the `exact` irradiance
 // integrates. A ray from an object that meets the local scene sees the real surface as it is with
-// the objects present, so that the objects see their own shadows on it (issue 12), not as the
+// the objects present, so that the objects see their own shadows on it, not as the
 // photo alone shows it, which holds no shadow of them: it sees P + (W − N), the photo's radiance P
 // there (or the room's light along the ray where the photo does not show the point) plus the
 // change the objects make, W − N, estimated as for the catcher below (its albedo from the photo, a
@@ -39,7 +39,7 @@
 // radiance projected from the capture point, and next-event estimation samples them as an area
 // light, with the pdf converted to solid angle at the shading point and MIS against the BSDF.
 // Its openings let distant light in (the sun through a window), sampled as portals. Its walls
-// (every face but the openings) are local-scene surfaces too (issue 12, item 3): a camera ray
+// (every face but the openings) are local-scene surfaces too: a camera ray
 // that meets a wall catches the objects' shadows and light there like the floor, with ρ from the
 // photo and the wall's irradiance grid; an object's ray that meets a wall sees the emitter's
 // radiance, weighed by MIS against the room light's samples of it, plus the change W − N the
@@ -342,7 +342,6 @@ class PathIntegrator final : public Integrator {
   std::array<std::shared_ptr<const PlaneIrradiance>, 6> wall_irradiance_;  // by face of the room box
 };
 
-}  // namespace
 
 json read_path_params(IntegratorParams& params) {
   int max_depth = 5;
@@ -352,6 +351,19 @@ json read_path_params(IntegratorParams& params) {
 
 std::unique_ptr<Integrator> make_path_integrator(const RenderInputs& inputs, const json& params) {
   return std::make_unique<PathIntegrator>(inputs, params.at("max_depth").get<int>());
+}
+
+}  // namespace
+
+// This integrator's row of the registry (registry.cpp lists the rows).
+const IntegratorEntry& path_integrator() {
+  static const IntegratorEntry entry{
+      "path",
+      "path tracing of the objects with environment importance sampling and MIS (shadows between objects)",
+      {/*local_scene*/ true, /*room_box*/ true, /*monte_carlo*/ true, /*reference*/ true, /*legacy*/ false},
+      read_path_params,
+      make_path_integrator};
+  return entry;
 }
 
 }  // namespace insitu

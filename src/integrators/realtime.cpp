@@ -31,12 +31,24 @@ class RealtimeIntegrator final : public Integrator {
   CubeMap blurred_;
 };
 
-}  // namespace
 
 json read_realtime_params(IntegratorParams&) { return json::object(); }
 
 std::unique_ptr<Integrator> make_realtime_integrator(const RenderInputs& inputs, const json&) {
   return std::make_unique<RealtimeIntegrator>(inputs);
+}
+
+}  // namespace
+
+// This integrator's row of the registry (registry.cpp lists the rows).
+const IntegratorEntry& realtime_integrator() {
+  static const IntegratorEntry entry{
+      "realtime",
+      "legacy real-time path: base colour x face-blurred cube at the normal, no shadows",
+      {/*local_scene*/ false, /*room_box*/ false, /*monte_carlo*/ false, /*reference*/ false, /*legacy*/ true},
+      read_realtime_params,
+      make_realtime_integrator};
+  return entry;
 }
 
 }  // namespace insitu

@@ -7,26 +7,15 @@
 
 namespace insitu {
 
-// Each integrator's file defines its reader and factory (see the table).
-json read_realtime_params(IntegratorParams& params);
-json read_irradiance_params(IntegratorParams& params);
-json read_path_params(IntegratorParams& params);
-std::unique_ptr<Integrator> make_realtime_integrator(const RenderInputs& inputs, const json& params);
-std::unique_ptr<Integrator> make_irradiance_integrator(const RenderInputs& inputs, const json& params);
-std::unique_ptr<Integrator> make_path_integrator(const RenderInputs& inputs, const json& params);
+// Each integrator's file declares its own row: name, summary, capabilities, reader and factory
+// (Mitsuba's plugin registration, but asked for by name here rather than registered by a static
+// initializer, so no order of initialization matters).
+const IntegratorEntry& realtime_integrator();
+const IntegratorEntry& irradiance_integrator();
+const IntegratorEntry& path_integrator();
 
 const std::vector<IntegratorEntry>& integrator_registry() {
-  static const std::vector<IntegratorEntry> table = {
-      {"realtime", "legacy real-time path: base colour x face-blurred cube at the normal, no shadows",
-       {/*local_scene*/ false, /*room_box*/ false, /*monte_carlo*/ false, /*reference*/ false, /*legacy*/ true},
-       read_realtime_params, make_realtime_integrator},
-      {"irradiance", "Lambertian objects lit by an irradiance mode (render.irradiance), no visibility",
-       {/*local_scene*/ false, /*room_box*/ false, /*monte_carlo*/ false, /*reference*/ false, /*legacy*/ false},
-       read_irradiance_params, make_irradiance_integrator},
-      {"path", "path tracing of the objects with environment importance sampling and MIS (shadows between objects)",
-       {/*local_scene*/ true, /*room_box*/ true, /*monte_carlo*/ true, /*reference*/ true, /*legacy*/ false},
-       read_path_params, make_path_integrator},
-  };
+  static const std::vector<IntegratorEntry> table = {realtime_integrator(), irradiance_integrator(), path_integrator()};
   return table;
 }
 

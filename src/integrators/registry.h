@@ -8,8 +8,9 @@
 // IntegratorParams; resolve_integrator() then refuses a key that no integrator reads, and warns of
 // one that only another integrator reads.
 //
-// Adding an integrator: one file in integrators/ (opening with the block that documents its
-// parameters, then its reader and factory) and one row in registry.cpp's table.
+// Adding an integrator: one file in src/integrators/ (opening with the block that documents its
+// parameters, then its reader and factory, then its row: `const IntegratorEntry& <name>_integrator()`)
+// and its name in registry.cpp's list.
 #pragma once
 #include <memory>
 #include <nlohmann/json.hpp>

@@ -224,7 +224,7 @@ std::unique_ptr<IrradianceField> make_irradiance(IrradianceMode mode, const Cube
     case IrradianceMode::kExact: return std::make_unique<ExactField>(radiance, exact_size, stop);
     case IrradianceMode::kVolume: break;
   }
-  throw std::logic_error("make_irradiance: the volume mode needs a room box (render/irradiance_volume.h)");
+  throw std::logic_error("make_irradiance takes the directional modes; every mode's factory is render/irradiance_at.h");
 }
 
 }  // namespace insitu
