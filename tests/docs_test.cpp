@@ -1,5 +1,5 @@
 // The pages of docs/ and the README against the code: the reference tables are what the code
-// prints, and every file of the source they name exists.
+// prints, every file of the source they name exists, and the architecture map names every file.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -69,6 +69,26 @@ TEST(Docs, EveryPathOfTheSourceTheyNameExists) {
         EXPECT_TRUE(fs::exists(root / c)) << page.filename() << " names " << c << ", which does not exist";
         ++checked;
       }
+    }
+  }
+  EXPECT_GT(checked, 100);
+}
+
+// docs/architecture.md's map names every file of src/ (by its stem): a file added to a stage, or
+// moved to another, is found there.
+TEST(Docs, TheArchitectureMapNamesEverySourceFile) {
+  const fs::path root = test::source_dir();
+  const std::string map = read_page(root / "docs/architecture.md");
+  int checked = 0;
+  for (const auto& stage : fs::directory_iterator(root / "src")) {
+    if (!stage.is_directory()) continue;
+    for (const auto& e : fs::directory_iterator(stage.path())) {
+      const std::string ext = e.path().extension().string();
+      if (ext != ".h" && ext != ".cpp" && ext != ".py") continue;
+      const std::string stem = e.path().stem().string();
+      const std::regex word("(^|[^A-Za-z0-9_])" + stem + "($|[^A-Za-z0-9_])");
+      EXPECT_TRUE(std::regex_search(map, word)) << "docs/architecture.md does not name " << e.path().lexically_relative(root);
+      ++checked;
     }
   }
   EXPECT_GT(checked, 100);
