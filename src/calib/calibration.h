@@ -1,4 +1,4 @@
-// Camera calibration from five or more 2D–3D control points (issue 3; docs/calibration.md).
+// Camera calibration from five or more 2D–3D control points (docs/calibration.md).
 //
 // The descendant of Bogart's View Correlation (Graphics Gems II, 1991), which ran Newton
 // iterations on the reprojection error from a view the user set up by hand. Here:

@@ -1,4 +1,4 @@
-// The calibration's uncertainty where the furniture stands (issue 14; docs/calibration.md).
+// The calibration's uncertainty where the furniture stands (docs/calibration.md).
 //
 // At each corner of an object's bounding box (the lowest four are its feet), in pixels:
 //   - noise: the 95 % radius of the projected covariance of the chosen model,

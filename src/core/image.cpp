@@ -294,7 +294,7 @@ TypeDesc storage_type(const std::string& ext_lower) {
 // decodes whole with the shape written, else why not. For the formats whose library writes the
 // file itself (EXR, TIFF, HDR; PNG and JPEG go through memory, write_through_memory): OpenImageIO's
 // writers do not all report short writes (its PNG writer returned success for a file cut short
-// by a full disk, issue 46), and a file that reads back whole was written whole.
+// by a full disk), and a file that reads back whole was written whole.
 std::string read_back_failure(const std::string& path, const ImageSpec& spec) {
   StderrCapture capture;  // libpng prints its own "libpng error" before OpenImageIO reports it
   auto in = ImageInput::open(path);

@@ -26,7 +26,7 @@ json read_json_file(const std::string& path);
 json parse_json_text(const std::string& text, const std::string& name);
 // JSON text of `j` (indent as json::dump's). Strings that are not UTF-8 (a file name in another
 // encoding: Linux allows any bytes) are written with U+FFFD for their bad bytes; json::dump would
-// throw instead, after the images were written and before the report (issue 46).
+// throw instead, after the images were written and before the report.
 inline std::string json_text(const json& j, int indent = -1) {
   return j.dump(indent, ' ', false, json::error_handler_t::replace);
 }

@@ -89,7 +89,7 @@ inline PairSeeds pair_seeds(std::uint64_t base, std::uint32_t pair) {
 // Every power-of-two prefix of a pixel's samples is then a (0, m, 2)-net in each pair — the camera
 // position, a light sample, a BSDF direction — so the error falls faster than 1/√n where the
 // integrand is smooth, while each number stays uniform on [0, 1) (unbiased) and pairs stay
-// independent of each other. Counter-based as before: a function of (seed, pixel, sample,
+// independent of each other. Counter-based: a function of (seed, pixel, sample,
 // dimension) alone, so an image is bit-identical for any number of threads and any split of its
 // samples. next() computes the formula above in the reversed domain, where sobol_2d(·, 0) is the
 // identity and owen_scramble's reversals cancel: three reversals a pair instead of eight (the

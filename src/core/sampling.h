@@ -1,4 +1,4 @@
-// Sampling helpers every integrator shares (issue 11, item 5): the shading frame, cosine-weighted
+// Sampling helpers every integrator shares: the shading frame, cosine-weighted
 // directions, the power heuristic and the ray offset. One copy of each, tested in
 // tests/sampling_test.cpp.
 #pragma once

@@ -1,4 +1,4 @@
-// Outputs that land together (issue 46: a render's image, layers and report). Each file is
+// Outputs that land together (a render's image, layers and report). Each file is
 // written under its temporary name, flushed and verified as alone (image.h, text_file.h), but not
 // renamed: commit() renames them all, in the order written, once every one has been written.
 // If a write fails, or commit() is never reached, the destructor removes every temporary, so no

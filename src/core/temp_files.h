@@ -12,7 +12,7 @@ namespace insitu {
 // Installs the handlers (once; later calls do nothing). The CLI calls it at start.
 void install_interrupt_cleanup();
 
-// A graceful stop (issue 15): while armed, the first SIGINT or SIGTERM only sets the flag that
+// A graceful stop: while armed, the first SIGINT or SIGTERM only sets the flag that
 // graceful_stop_flag() returns (the render finishes its pass, writes its partial image and a
 // checkpoint, and exits 130); the stop disarms itself, so a second signal ends the process as
 // before. Disarming leaves a flag that was set as it is.

@@ -205,8 +205,8 @@ bool apply_exif_exposure(const EnvironmentSpec& spec, const ImageFile* photo, Li
 }
 
 // The smallest shot sets every face's size (natural_face_size). One far smaller than the others
-// (a thumbnail, a 1×1 image among six photos) shrinks the whole environment without a word
-// (issue 46): said, naming the shot, when it halves (or worse) the faces the others would give.
+// (a thumbnail, a 1×1 image among six photos) would shrink the whole environment without a word:
+// it is said, naming the shot, when it halves (or worse) the faces the others would give.
 void warn_if_one_shot_limits(const EnvironmentSpec& spec, const ShotSet& set, int n, Warnings& warnings) {
   int smallest = 0, others = 1024;
   for (int f = 1; f < 6; ++f)

@@ -1,4 +1,4 @@
-// HDR from exposure brackets, and the camera response that also linearizes the photo (issue 4).
+// HDR from exposure brackets, and the camera response that also linearizes the photo.
 //
 // Debevec & Malik 1997 through OpenCV: CalibrateDebevec recovers the response g (pixel value ->
 // relative exposure) from one set of aligned brackets; MergeDebevec combines a set into relative

@@ -1,4 +1,4 @@
-// Diffuse irradiance from a radiance cube, three ways (issue 4; docs/irradiance.md). All give
+// Diffuse irradiance from a radiance cube, three ways (docs/irradiance.md). All give
 //   E(n) = ∫ L(ω) max(0, n·ω) dω
 // in the same units: a white Lambertian surface with normal n has exitant radiance E(n)/π.
 //

@@ -1,4 +1,4 @@
-// Tone mapping of the linear composite for display (issue 6; docs/tonemap.md).
+// Tone mapping of the linear composite for display (docs/tonemap.md).
 //
 //   photo         (default) re-encode with the photo's own curve (its recovered response, else
 //                 sRGB): untouched pixels stay identical to the input photo (composite.h).

@@ -1,4 +1,4 @@
-// The light sources that clipped in the shots (issue 13): the texels of the cube whose clipped
+// The light sources that clipped in the shots: the texels of the cube whose clipped
 // fraction (EnvironmentInfo::clipped_cube) is at least ½, grouped into regions connected across
 // face edges (4-neighbourhood, or within a reach: find_clipped_sources). Each region is one source
 // whose radiance is known only from below: the clipped value L0 is a lower bound, and the true

@@ -1,4 +1,4 @@
-// Inverse lighting against the photo (issue 13; Marschner & Greenberg 1997, Karsch et al. 2011):
+// Inverse lighting against the photo (Marschner & Greenberg 1997, Karsch et al. 2011):
 // the strength of the sources that clipped in the shots (clipped_sources.h), from what the photo
 // shows they do to the room's real surfaces.
 //

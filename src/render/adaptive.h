@@ -1,4 +1,4 @@
-// Adaptive sampling (issue 16): with render.noise_target τ the passes go on until every pixel the
+// Adaptive sampling: with render.noise_target τ the passes go on until every pixel the
 // objects change has a relative standard error of at most τ. Each pixel stops on its own, and spp
 // is the most any pixel takes. Stopping is judged between passes from the pixels' sums, so the
 // image still depends on nothing but (seed, pixel, sample): not on threads or interruptions.

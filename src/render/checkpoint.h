@@ -1,4 +1,4 @@
-// Checkpoints of an interrupted render (issue 15) and the parts of a split one (issue 17): the
+// Checkpoints of an interrupted render and the parts of a split one: the
 // render state (render_state.h) in a binary file, written atomically (temporary name, then
 // rename), so that a kill at any moment leaves either the previous file or the new one, never half
 // of one. A checkpoint lies beside the output, OUT.checkpoint; a part is the state of a finished

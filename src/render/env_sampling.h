@@ -1,4 +1,4 @@
-// Importance sampling of the environment cube (issue 5): directions drawn with probability
+// Importance sampling of the environment cube: directions drawn with probability
 // proportional to luminance × solid angle of the cube's texels.
 //
 // The cube is taken as constant per texel (the same piecewise-constant function the `exact`

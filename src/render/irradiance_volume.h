@@ -1,4 +1,4 @@
-// The irradiance volume (Greger et al. 1998, "The Irradiance Volume"; issue 12, item 5): the fast
+// The irradiance volume (Greger et al. 1998, "The Irradiance Volume"): the fast
 // path's answer to parallax, which the 2011 thesis named its main open problem (look the light up
 // by the vertex's world position, not only its normal). The room's light (room_light.h: the
 // emitting box and its openings) is projected on the 9 spherical harmonics at probes on a regular

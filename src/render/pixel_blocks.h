@@ -1,4 +1,4 @@
-// A pixel's samples summed pairwise over aligned dyadic blocks of sample indices (issue 17), so
+// A pixel's samples summed pairwise over aligned dyadic blocks of sample indices, so
 // that a render split into sample ranges and merged is bit-identical to one render of the whole
 // range, wherever it was split.
 //

@@ -1,5 +1,5 @@
 // A pixel's variance, from its sums (render_state.h): what the variance layer, the noise figure
-// and adaptive sampling's stopping rule read (issue 16).
+// and adaptive sampling's stopping rule read.
 //
 // The per-sample estimate, s² = (Σy² − (Σy)²/n) / (n − 1) and Var(mean) = s²/n, is that of
 // independent samples. A pixel's samples are scrambled Sobol points (core/sampler.h), whose mean

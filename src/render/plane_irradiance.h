@@ -1,4 +1,4 @@
-// The room's irradiance over a plane of the local scene (issue 12): the E in the photo-derived
+// The room's irradiance over a plane of the local scene: the E in the photo-derived
 // albedo ρ = π P / E of a real surface (path.cpp) must be what the room model delivers at that
 // point. Outdoors (distant light) E depends only on the normal; in a room box with a sunlit window
 // it changes across the floor — the capture point may see the sun that most of the floor does not,

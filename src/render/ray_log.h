@@ -1,5 +1,5 @@
 // A record of the rays an EmbreeScene traces, for measuring the kernel against a bare Embree loop
-// over the very same rays (bench/kernel_bench.cpp, issue 16). Off unless a log is attached
+// over the very same rays (bench/kernel_bench.cpp). Off unless a log is attached
 // (EmbreeScene::set_ray_log); attached, every intersect() and occluded() appends its ray to the
 // calling thread's list, in the order that thread traced them (so a replay keeps their coherence).
 #pragma once

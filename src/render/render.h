@@ -31,7 +31,7 @@ constexpr float kNoHitDepth = 1e10f;
 // none, and the state is no longer resumable (RenderState::resumable). The studio's stop, which
 // keeps no checkpoint.
 // `sample_begin`, `sample_end`: render only the samples [begin, end) of the spp (a part of a split
-// render, issue 17; end −1: spp).
+// render; end −1: spp).
 // `noise_target` > 0: adaptive sampling (render/adaptive.h), each pixel stopping at that relative
 // standard error, spp the most it takes; a whole render only (not a part of a split one).
 struct RenderSettings {

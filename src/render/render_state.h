@@ -35,7 +35,7 @@ struct PixelSums {
 using PixelBlocks = std::vector<PixelSums>;
 
 // The render of the samples [sample_begin, sample_end) of a plan of spp per pixel (all of them
-// unless the render is a part of a split one, issue 17).
+// unless the render is a part of a split one).
 struct RenderState {
   int width = 0, height = 0, spp = 0;  // the plan (a part of a split render checks it is the same)
   int sample_begin = 0, sample_end = 0;

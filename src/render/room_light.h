@@ -1,4 +1,4 @@
-// The room as an emitter (issue 12): with a room box, the box's faces carry the six shots'
+// The room as an emitter: with a room box, the box's faces carry the six shots'
 // radiance, projected from the capture point c, and are sampled as an area light; its openings
 // (windows, open doors) let in distant light, sampled as portals.
 //

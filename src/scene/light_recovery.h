@@ -1,4 +1,4 @@
-// The light that clipped in the shots, recovered for a loaded scene (issue 13): inverse lighting
+// The light that clipped in the shots, recovered for a loaded scene: inverse lighting
 // (relight/inverse_lighting.h) against the photo, on the local scene's planes and the room box,
 // by default whenever a shot clipped; and what determined the light, for the report.
 #pragma once

@@ -71,9 +71,9 @@ struct RenderResult {
   Image composite_encoded;  // what goes into a PNG/JPEG
 };
 
-// How a render may be stopped and resumed (issue 15): `stop` ends it after the pass under way;
+// How a render may be stopped and resumed: `stop` ends it after the pass under way;
 // `state` starts it from a checkpoint (render/checkpoint.h) and receives where it ended. A part of
-// a split render (issue 17) takes only the samples [sample_begin, sample_end) of render.spp (end
+// a split render takes only the samples [sample_begin, sample_end) of render.spp (end
 // −1: spp). `stop_at_once`: RenderSettings::stop_at_once, and the stop is looked at during the
 // integrator's preparation too (RenderInputs::stop), which then throws Stopped (core/stop.h).
 struct RenderControl {

@@ -374,7 +374,7 @@ PlaneSpec parse_local_scene_item(JsonObject item, const fs::path& dir) {
       plane.albedo = rgb.cast<float>().array();
     }
   }
-  // A reference for inverse lighting (issue 13): the surface's mean albedo, its texture kept.
+  // A reference for inverse lighting: the surface's mean albedo, its texture kept.
   if (auto m = item.find("mean_albedo")) {
     if (!plane.albedo_from_photo) m->fail("give 'albedo' (uniform, rendered) or 'mean_albedo' (a reference), not both");
     plane.mean_albedo = m->number(0.001, 1.0);

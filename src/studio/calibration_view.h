@@ -1,4 +1,4 @@
-// The points panel's calibration (issue 18): the library's calibration of the current points,
+// The points panel's calibration: the library's calibration of the current points,
 // as JSON for the page: the chosen model and its σ, each point's residual vector, the report the
 // CLI prints, the uncertainty at each object with where to click next, and the local scene's
 // grid and room box drawn through the camera.

@@ -1,4 +1,4 @@
-// Snapping a click to the nearest image corner (issue 18, "Points"): OpenCV's cornerSubPix, the
+// Snapping a click to the nearest image corner: OpenCV's cornerSubPix, the
 // iteration that moves a point to where every image gradient in a window is orthogonal to the
 // vector from the point (Förstner & Gülch 1987). It converges on a corner or a saddle (a
 // checkerboard's cross), and drifts along an edge or in flat regions, so a snap is kept only

@@ -1,6 +1,6 @@
-// Which file a request may read: only a regular file inside the scene's folder (issue 18,
-// "Safety"). A relative path with a ".." component, an absolute path, a backslash or a NUL is
-// refused before the file system is asked; what remains is resolved with every symlink followed
+// Which file a request may read: only a regular file inside the scene's folder. A relative path
+// with a ".." component, an absolute path, a backslash or a NUL is refused before the file system
+// is asked; what remains is resolved with every symlink followed
 // (std::filesystem::canonical), and refused unless it still lies under the folder. So "../x",
 // "a/../../x", "%2e%2e/x" (decoded by the server first) and a symlink pointing out all fail alike.
 #pragma once

@@ -1,4 +1,4 @@
-// What the points panel draws over the photo through the current camera (issue 18): the local
+// What the points panel draws over the photo through the current camera: the local
 // scene's planes as a grid and the room box's twelve edges, so that a wrong point shows at once
 // as a grid that does not lie on the floor.
 #pragma once

@@ -1,4 +1,4 @@
-// The scene's points.json as the studio reads and saves it (issue 18, "Points" and "Safety"): a
+// The scene's points.json as the studio reads and saves it: a
 // VersionedFile (conflicts refused, writes atomic and serialized) whose saves are checked exactly
 // as the CLI reads points (control_points_from_json: a bad point is refused with its JSON path)
 // before anything is written.

@@ -1,4 +1,4 @@
-// The light and render panel's work (issue 18, "Light and render"): one render at a time, on its
+// The light and render panel's work: one render at a time, on its
 // own thread, of the scene file as it is when the render starts.
 //
 // A render loads the scene with the library (load_scene: the light recovered as the CLI recovers

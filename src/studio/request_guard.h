@@ -1,4 +1,4 @@
-// Who may use the studio (issue 46). It listens on 127.0.0.1, and every web page the user opens
+// Who may use the studio. It listens on 127.0.0.1, and every web page the user opens
 // can send requests there too; it reads the customer's photo and writes files. So, as Jupyter does:
 //  1. Host must be 127.0.0.1:PORT or localhost:PORT. A page on another site whose name resolves to
 //     127.0.0.1 (DNS rebinding) sends its own name as Host, and is refused.

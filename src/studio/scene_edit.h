@@ -1,4 +1,4 @@
-// The shots panel's edits of the scene file (issue 18, "Shots"), made on its text so that the
+// The shots panel's edits of the scene file, made on its text so that the
 // file keeps its keys in their order and everything else as it was (re-indented by two).
 //
 //   swap:  the values of two keys of environment.shots trade places (each file keeps its turn
@@ -6,7 +6,7 @@
 //   turn:  a shot's rotate_deg grows by a quarter turn (clockwise); a shot given as a file name or
 //          a list of brackets becomes an object to hold it ({"file" | "files", "rotate_deg"});
 //   faced: the wall faced when shooting ceiling and floor;
-// and the points panel's references of known albedo (issue 13: a white sheet, a grey card):
+// and the points panel's references of known albedo (a white sheet, a grey card):
 //   add_reference:    appends {"polygon_px", "albedo"} to the scene's "references";
 //   remove_reference: removes references[index] (and "references" when it is left empty).
 // Each throws InputError naming `file` and the JSON path when the scene has no such shot.

@@ -1,4 +1,4 @@
-// The shots panel's data (issue 18, "Shots"): the scene's six shots as insitu uses them, read
+// The shots panel's data: the scene's six shots as insitu uses them, read
 // afresh from the scene file on every call (the panel edits it).
 //
 // shots_view gives, per face: its key in the scene file, its files, its turn and its field of

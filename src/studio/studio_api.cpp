@@ -225,7 +225,7 @@ int reported_spp(const std::string& path) {
 // {} | {"overwrite": true}: the last finished render written to the scene's outputs. Outputs that
 // exist already (a final render, say) are replaced only when asked: else 409 with
 // {"error", "existing": [paths], "spp": this render's, "existing_spp": theirs or -1}, and the page
-// asks the user (issue 46: a 16-spp preview replaced a final render without a word).
+// asks the user, so that a preview never replaces a final render without a word.
 void post_save(StudioServer::Impl& s, const httplib::Request& req, httplib::Response& res) {
   const json body = req.body.empty() ? json::object() : body_json(req);
   if (!body.is_object() || (body.contains("overwrite") && !body["overwrite"].is_boolean()))

@@ -1,4 +1,4 @@
-// insitu studio (issue 18): a local web page over one scene, served on 127.0.0.1 only, with three
+// insitu studio: a local web page over one scene, served on 127.0.0.1 only, with three
 // panels: the control points (calibrated after every change, saved to points.json), the six shots
 // (turned, swapped, the faced wall set in the scene file), and the light and render.
 //

@@ -1,5 +1,5 @@
 // A file the studio edits on the page's behalf (points.json, the scene file), safe against two
-// tabs or another program (issue 18, "Safety").
+// tabs or another program.
 //
 // Every read returns the file's text with a version: the FNV-1a hash of its bytes. An update
 // names the version it was edited from. If the file has changed since, the update is refused as a

@@ -1,4 +1,4 @@
-// insitu studio's points panel (issue 18, "Points"): the photo with zoom and pan, a click snapped
+// insitu studio's points panel: the photo with zoom and pan, a click snapped
 // to the corner, the table of 2D–3D points saved to points.json, and the calibration drawn over
 // the photo after every change.
 "use strict";

@@ -1,4 +1,4 @@
-// insitu studio's references of known albedo (issue 13), in the points panel: a white sheet or a
+// insitu studio's references of known albedo, in the points panel: a white sheet or a
 // grey card in the photo, its corners clicked (snapped like points), saved to the scene file's
 // "references" where inverse lighting reads them to fix the clipped light's scale.
 "use strict";

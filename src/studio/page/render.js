@@ -1,4 +1,4 @@
-// insitu studio's light and render panel (issue 18, "Light and render"): a render of the scene
+// insitu studio's light and render panel: a render of the scene
 // streamed pass by pass with its noise figure, the tone map's key and bias re-mapping the current
 // image without rendering again (the legacy brightness slider), an A/B flip between the scene's
 // integrator and `realtime` (the legacy real-time path), and the light the render uses: the

@@ -1,4 +1,4 @@
-// insitu studio's shots panel (issue 18, "Shots"): the six shots as insitu uses them, unfolded as
+// insitu studio's shots panel: the six shots as insitu uses them, unfolded as
 // seen from inside the room, with the faced wall marked, clipped pixels red (the server paints
 // them) and each shot's coverage of its face. A click turns a shot or swaps two; the server edits
 // the scene file (scene_edit.h) only if it has not changed since this page read it.

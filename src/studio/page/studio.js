@@ -1,4 +1,4 @@
-// insitu studio (issue 18): what its three panels share (the API call, the status line, the
+// insitu studio: what its three panels share (the API call, the status line, the
 // tabs). Plain JavaScript, no build step, nothing fetched but the studio's own routes
 // (src/studio/studio_server.h lists them). points.js, shots.js: one panel each.
 "use strict";
