@@ -91,9 +91,9 @@ void BM_DemoRealtime(benchmark::State& state) {
   spec.render.spp = int(state.range(1));
   const LoadedScene scene = load_scene(spec);
   for (auto _ : state) benchmark::DoNotOptimize(render_scene(scene));
-  state.counters["camera_samples/s"] =
-      benchmark::Counter(double(scene.camera.width) * scene.camera.height * spec.render.spp * double(state.iterations()),
-                         benchmark::Counter::kIsRate);
+  state.counters["camera_samples/s"] = benchmark::Counter(
+      double(scene.camera.width) * scene.camera.height * spec.render.spp * double(state.iterations()),
+      benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_DemoRealtime)->Args({1, 16})->Args({2, 16})->Args({2, 1})->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -117,9 +117,9 @@ void BM_DemoPath(benchmark::State& state) {
   spec.render.spp = 16;
   const LoadedScene scene = load_scene(spec);
   for (auto _ : state) benchmark::DoNotOptimize(render_scene(scene));
-  state.counters["camera_samples/s"] =
-      benchmark::Counter(double(scene.camera.width) * scene.camera.height * spec.render.spp * double(state.iterations()),
-                         benchmark::Counter::kIsRate);
+  state.counters["camera_samples/s"] = benchmark::Counter(
+      double(scene.camera.width) * scene.camera.height * spec.render.spp * double(state.iterations()),
+      benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_DemoPath)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -133,7 +133,8 @@ void BM_DemoPrimaryIntersect(benchmark::State& state) {
     for (int x = 0; x < scene.camera.width; ++x) rays.push_back(scene.camera.ray({x + 0.5, y + 0.5}));
   for (auto _ : state)
     for (const Ray& r : rays) benchmark::DoNotOptimize(scene.objects->intersect(r));
-  state.counters["rays/s"] = benchmark::Counter(double(rays.size()) * double(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["rays/s"] =
+      benchmark::Counter(double(rays.size()) * double(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_DemoPrimaryIntersect)->Unit(benchmark::kMillisecond)->UseRealTime();
 

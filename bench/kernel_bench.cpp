@@ -83,7 +83,8 @@ void set_counters(benchmark::State& state, const DemoRays& d) {
 // Σ|a − b| / Σ|b| over every pixel and channel: the subdivided demo renders the demo's image.
 double relative_difference(const Image& a, const Image& b) {
   double diff = 0, sum = 0;
-  for (std::size_t i = 0; i < a.data.size(); ++i) diff += std::abs(double(a.data[i]) - double(b.data[i])), sum += std::abs(double(b.data[i]));
+  for (std::size_t i = 0; i < a.data.size(); ++i)
+    diff += std::abs(double(a.data[i]) - double(b.data[i])), sum += std::abs(double(b.data[i]));
   return diff / sum;
 }
 
@@ -152,7 +153,8 @@ void BM_KernelTrace(benchmark::State& state) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(state.range(0)));
   const DemoRays& d = demo_rays(int(state.range(1)));
   for (auto _ : state)
-    tbb::parallel_for(std::size_t(0), d.pieces.size(), [&](std::size_t i) { trace_insitu(*d.scene.objects, d.pieces[i]); });
+    tbb::parallel_for(std::size_t(0), d.pieces.size(),
+                      [&](std::size_t i) { trace_insitu(*d.scene.objects, d.pieces[i]); });
   set_counters(state, d);
 }
 BENCHMARK(BM_KernelTrace)->ArgsProduct({{1, 2}, {0, kHeavy}})->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -188,7 +190,8 @@ void BM_BarePrimary1(benchmark::State& state) {
       rtcIntersect1(scene, &context, &rh);
       benchmark::DoNotOptimize(rh.hit.geomID);
     }
-  state.counters["rays/s"] = benchmark::Counter(double(rays.size()) * double(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["rays/s"] =
+      benchmark::Counter(double(rays.size()) * double(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_BarePrimary1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -214,7 +217,8 @@ void BM_BarePrimary8(benchmark::State& state) {
       rtcIntersect8(valid, scene, &context, &rh);
       benchmark::DoNotOptimize(rh.hit.geomID[0]);
     }
-  state.counters["rays/s"] = benchmark::Counter(double(rays.size()) * double(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["rays/s"] =
+      benchmark::Counter(double(rays.size()) * double(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_BarePrimary8)->Unit(benchmark::kMillisecond)->UseRealTime();
 

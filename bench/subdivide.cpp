@@ -26,7 +26,12 @@ Mesh subdivide_once(const Mesh& mesh) {
       mn[e] = midpoint(out.normals, tri.n[a], tri.n[b]);
       mt[e] = midpoint(out.uvs, tri.t[a], tri.t[b]);
     }
-    const auto corner = [&](int k) { return Triangle{{tri.v[k], mv[k], mv[(k + 2) % 3]}, {tri.n[k], mn[k], mn[(k + 2) % 3]}, {tri.t[k], mt[k], mt[(k + 2) % 3]}, tri.material}; };
+    const auto corner = [&](int k) {
+      return Triangle{{tri.v[k], mv[k], mv[(k + 2) % 3]},
+                      {tri.n[k], mn[k], mn[(k + 2) % 3]},
+                      {tri.t[k], mt[k], mt[(k + 2) % 3]},
+                      tri.material};
+    };
     for (int k = 0; k < 3; ++k) out.triangles.push_back(corner(k));
     out.triangles.push_back({{mv[0], mv[1], mv[2]}, {mn[0], mn[1], mn[2]}, {mt[0], mt[1], mt[2]}, tri.material});
   }

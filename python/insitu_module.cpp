@@ -36,9 +36,7 @@ void check(insitu_status status) {
   if (status != INSITU_OK && status != INSITU_CANCELLED) throw Error(status, insitu_last_error());
 }
 
-std::string json_text(const py::object& value) {
-  return py::str(py::module_::import("json").attr("dumps")(value));
-}
+std::string json_text(const py::object& value) { return py::str(py::module_::import("json").attr("dumps")(value)); }
 
 // A 4x4 row-major matrix from anything numpy reads as one (None: identity).
 std::optional<std::array<double, 16>> matrix(const py::object& m) {
@@ -71,7 +69,8 @@ py::dict camera_dict(const insitu_camera& c) {
 
 std::vector<insitu_control_point> control_points(const py::object& points) {
   auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(points);
-  if (!a || a.ndim() != 2 || a.shape(1) != 5) throw py::value_error("points: expected an array of shape (n, 5): u_px, v_px, x, y, z");
+  if (!a || a.ndim() != 2 || a.shape(1) != 5)
+    throw py::value_error("points: expected an array of shape (n, 5): u_px, v_px, x, y, z");
   std::vector<insitu_control_point> out(std::size_t(a.shape(0)));
   for (std::size_t i = 0; i < out.size(); ++i) {
     const double* p = a.data() + 5 * i;
@@ -151,7 +150,8 @@ class Scene {
                          const std::optional<std::string>& name) {
     const std::string text = py::isinstance<py::str>(scene) ? scene.cast<std::string>() : json_text(scene);
     insitu_scene* s = nullptr;
-    check(insitu_scene_from_json(text.c_str(), base_dir ? base_dir->c_str() : nullptr, name ? name->c_str() : nullptr, &s));
+    check(insitu_scene_from_json(text.c_str(), base_dir ? base_dir->c_str() : nullptr, name ? name->c_str() : nullptr,
+                                 &s));
     return Scene(s);
   }
   void set(const std::string& key, const py::object& value) {
@@ -163,9 +163,9 @@ class Scene {
     const auto M = matrix(m);
     check(insitu_scene_add_obj(s_.get(), path.c_str(), M ? M->data() : nullptr));
   }
-  void add_mesh(const py::object& positions, const py::object& indices, const py::object& normals, const py::object& uvs,
-                std::array<float, 3> kd, std::array<float, 3> ks, float ns, const py::object& map_kd, const py::object& m,
-                const std::optional<std::string>& name) {
+  void add_mesh(const py::object& positions, const py::object& indices, const py::object& normals,
+                const py::object& uvs, std::array<float, 3> kd, std::array<float, 3> ks, float ns,
+                const py::object& map_kd, const py::object& m, const std::optional<std::string>& name) {
     require_idle();
     const FloatArray p = floats(positions, 3, "positions");
     const auto idx = py::array_t<std::uint32_t, py::array::c_style | py::array::forcecast>::ensure(indices);
@@ -182,7 +182,8 @@ class Scene {
     std::copy(kd.begin(), kd.end(), mesh.kd), std::copy(ks.begin(), ks.end(), mesh.ks), mesh.ns = ns;
     if (!map_kd.is_none()) {
       tex = FloatArray::ensure(map_kd);
-      if (!tex || tex->ndim() != 3 || tex->shape(2) != 3) throw py::value_error("map_kd: expected an array of shape (h, w, 3)");
+      if (!tex || tex->ndim() != 3 || tex->shape(2) != 3)
+        throw py::value_error("map_kd: expected an array of shape (h, w, 3)");
       mesh.map_kd = tex->data(), mesh.map_kd_height = int(tex->shape(0)), mesh.map_kd_width = int(tex->shape(1));
     }
     const auto M = matrix(m);
@@ -192,10 +193,12 @@ class Scene {
     require_idle();
     insitu_camera cam{};
     cam.width = c["width"].cast<int>(), cam.height = c["height"].cast<int>();
-    cam.fx = c["fx"].cast<double>(), cam.fy = c["fy"].cast<double>(), cam.cx = c["cx"].cast<double>(), cam.cy = c["cy"].cast<double>();
+    cam.fx = c["fx"].cast<double>(), cam.fy = c["fy"].cast<double>(), cam.cx = c["cx"].cast<double>(),
+    cam.cy = c["cy"].cast<double>();
     auto R = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(c["R_cam_from_world"]);
     auto t = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(c["t_cam_from_world"]);
-    if (!R || R.size() != 9 || !t || t.size() != 3) throw py::value_error("camera: R_cam_from_world 3x3 and t_cam_from_world 3");
+    if (!R || R.size() != 9 || !t || t.size() != 3)
+      throw py::value_error("camera: R_cam_from_world 3x3 and t_cam_from_world 3");
     std::copy(R.data(), R.data() + 9, cam.R_cam_from_world), std::copy(t.data(), t.data() + 3, cam.t_cam_from_world);
     check(insitu_scene_set_camera(s_.get(), &cam));
   }
@@ -224,7 +227,8 @@ class Scene {
     insitu_status status;
     {
       py::gil_scoped_release release;
-      status = checkpoint ? insitu_render_resumable(s_.get(), checkpoint->c_str(), progress ? call_progress : nullptr, &prog, &r)
+      status = checkpoint ? insitu_render_resumable(s_.get(), checkpoint->c_str(), progress ? call_progress : nullptr,
+                                                    &prog, &r)
                           : insitu_render(s_.get(), progress ? call_progress : nullptr, &prog, &r);
     }
     Result result(r);
@@ -241,8 +245,10 @@ class Scene {
     bool& b_;
   };
   void require_idle() const {
-    if (busy_) throw Error(INSITU_ERROR_ARGUMENT, "insitu.Scene: a render of this scene is under way in another thread; "
-                                                  "wait for it, or cancel() it first");
+    if (busy_)
+      throw Error(INSITU_ERROR_ARGUMENT,
+                  "insitu.Scene: a render of this scene is under way in another thread; "
+                  "wait for it, or cancel() it first");
   }
   bool busy_ = false;
   explicit Scene(insitu_scene* s) : s_(s, insitu_scene_free) {}
@@ -251,7 +257,8 @@ class Scene {
 
 class Calibration {
  public:
-  Calibration(const py::object& points, int width, int height, const std::optional<std::string>& model, const py::object& at) {
+  Calibration(const py::object& points, int width, int height, const std::optional<std::string>& model,
+              const py::object& at) {
     const auto pts = control_points(points);
     std::optional<std::array<double, 3>> at_world;
     if (!at.is_none()) at_world = at.cast<std::array<double, 3>>();
@@ -315,7 +322,8 @@ PYBIND11_MODULE(insitu, m) {
       .def(py::init<const std::string&>(), py::arg("path"))
       .def_static("from_json", &Scene::from_json, py::arg("scene"), py::arg("base_dir") = py::none(),
                   py::arg("name") = py::none(), "a scene from JSON text or a dict")
-      .def("set", &Scene::set, py::arg("key"), py::arg("value"), "set a scene-file value by dotted key: set('render.spp', 64)")
+      .def("set", &Scene::set, py::arg("key"), py::arg("value"),
+           "set a scene-file value by dotted key: set('render.spp', 64)")
       .def("add_obj", &Scene::add_obj, py::arg("path"), py::arg("matrix") = py::none())
       .def("add_mesh", &Scene::add_mesh, py::arg("positions"), py::arg("indices"), py::arg("normals") = py::none(),
            py::arg("uvs") = py::none(), py::arg("kd") = std::array<float, 3>{0.8f, 0.8f, 0.8f},
@@ -333,8 +341,9 @@ PYBIND11_MODULE(insitu, m) {
       .def("cancel", &Scene::cancel, "cancel the render under way (from another thread)");
 
   py::class_<Calibration>(m, "Calibration", "a camera calibrated from 2D-3D control points")
-      .def(py::init<const py::object&, int, int, const std::optional<std::string>&, const py::object&>(), py::arg("points"),
-           py::arg("width"), py::arg("height"), py::arg("model") = py::none(), py::arg("at") = py::none())
+      .def(py::init<const py::object&, int, int, const std::optional<std::string>&, const py::object&>(),
+           py::arg("points"), py::arg("width"), py::arg("height"), py::arg("model") = py::none(),
+           py::arg("at") = py::none())
       .def_property_readonly("camera", &Calibration::camera)
       .def_property_readonly("rms_px", &Calibration::rms_px)
       .def_property_readonly("report", &Calibration::report)

@@ -245,9 +245,11 @@ TEST(AdaptiveRender, ResumesBitForBit) {
   for (int stop_after : {64, 160}) {
     std::atomic<bool> stop{false};
     RenderState state;
-    render_scene(s, [&](const RenderProgress& p) {
-      if (p.noise >= 0 && p.spp_done >= stop_after) stop = true;
-    }, {&stop, &state});
+    render_scene(s,
+                 [&](const RenderProgress& p) {
+                   if (p.noise >= 0 && p.spp_done >= stop_after) stop = true;
+                 },
+                 {&stop, &state});
     const std::string path = fx.dir.file("adaptive.checkpoint");
     write_checkpoint(path, state, 7);
     RenderState back = read_checkpoint(path, 7);

@@ -59,8 +59,7 @@ std::vector<std::pair<std::string, fs::path>> stage_files() {
 }
 
 TEST(Architecture, EveryStageDirectoryExists) {
-  for (const auto& [stage, allowed] : kAllowed)
-    EXPECT_TRUE(fs::is_directory(kRoot / "src" / stage)) << stage;
+  for (const auto& [stage, allowed] : kAllowed) EXPECT_TRUE(fs::is_directory(kRoot / "src" / stage)) << stage;
 }
 
 TEST(Architecture, IncludesPointDownTheStages) {
@@ -103,8 +102,8 @@ TEST(Architecture, EveryQuotedIncludeExists) {
     for (const auto& e : fs::directory_iterator(kRoot / dir)) {
       if (e.path().extension() != ".h" && e.path().extension() != ".cpp") continue;
       for (const std::string& inc : includes_of(e.path())) {
-        const bool found = fs::is_regular_file(e.path().parent_path() / inc) || fs::is_regular_file(kRoot / "src" / inc) ||
-                           fs::is_regular_file(kRoot / "tools" / inc);
+        const bool found = fs::is_regular_file(e.path().parent_path() / inc) ||
+                           fs::is_regular_file(kRoot / "src" / inc) || fs::is_regular_file(kRoot / "tools" / inc);
         EXPECT_TRUE(found) << e.path() << ": #include \"" << inc << "\" is nowhere";
         ++checked;
       }

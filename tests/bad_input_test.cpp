@@ -61,7 +61,8 @@ TEST_P(BadInput, OneLineExitCodeAndNothingTouched) {
   test::TempDir tmp;
   const fs::path work = tmp.path() / "case";
   fs::create_directories(work);
-  const auto options = fs::copy_options::recursive | fs::copy_options::copy_symlinks | fs::copy_options::overwrite_existing;
+  const auto options =
+      fs::copy_options::recursive | fs::copy_options::copy_symlinks | fs::copy_options::overwrite_existing;
   fs::copy(kMatrix / "_base", work, options);
   fs::copy(source, work, options);
   fs::remove(work / "case.json");

@@ -86,8 +86,9 @@ TEST(Batch, AnEditedMtlFileIsRenderedAgain) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto report = nlohmann::json::parse(test::slurp(b.out(0) + ".report.json"));
   const auto files = report.at("batch").at("mesh_files").get<std::vector<std::string>>();
-  EXPECT_TRUE(std::any_of(files.begin(), files.end(), [](const std::string& f) { return f.find("good_quad.mtl") != std::string::npos; }))
-      << report["batch"].dump();
+  EXPECT_TRUE(std::any_of(files.begin(), files.end(), [](const std::string& f) {
+    return f.find("good_quad.mtl") != std::string::npos;
+  })) << report["batch"].dump();
   r = run_insitu(b.fx.dir, "batch " + batch);
   EXPECT_NE(r.err.find("0 rendered, 3 done already"), std::string::npos) << r.err;
   // A different diffuse colour, same length of file or not: the bytes differ.
@@ -155,7 +156,8 @@ TEST(Batch, PerTaskGroupsEntries) {
   r = run_insitu(b.fx.dir, "batch " + batch + " --index 1 --per-task 2");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out, b.out(2) + "\n");
-  test::expect_one_line_error(run_insitu(b.fx.dir, "batch " + batch + " --index 2 --per-task 2"), "tasks 0 to 1 of 2 entries");
+  test::expect_one_line_error(run_insitu(b.fx.dir, "batch " + batch + " --index 2 --per-task 2"),
+                              "tasks 0 to 1 of 2 entries");
 }
 
 // SIGKILL in the middle of an entry's render (once its progress shows it under way): none of its
@@ -217,7 +219,8 @@ TEST(Batch, NoEntryWritesOverAnInputOrAnotherEntrysOutput) {
   fs::create_symlink(dir / "out/e0.exr", dir / "out/link.exr");
   // A textured mesh: its MTL and texture are known only by reading the OBJ (issue 46: an entry's
   // output over another entry's texture was caught only when that entry loaded).
-  b.fx.dir.write("tex.obj", "mtllib tex.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl t\nf 1/1 2/2 3/3\n");
+  b.fx.dir.write("tex.obj",
+                 "mtllib tex.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl t\nf 1/1 2/2 3/3\n");
   b.fx.dir.write("tex.mtl", "newmtl t\nKd 1 1 1\nmap_Kd tex.png\n");
   fs::copy_file(dir / "photo.png", dir / "tex.png");
   struct Case {
@@ -226,14 +229,19 @@ TEST(Batch, NoEntryWritesOverAnInputOrAnotherEntrysOutput) {
   };
   const std::vector<Case> cases = {
       {"e.png.report.json", "scene.json", "the batch file", [](auto& e) { e[0]["output"]["image"] = "e.png"; }},
-      {"batch.json", "room.png.report.json", "the room's scene file", [](auto& e) { e[1]["output"]["image"] = "room.png"; }},
-      {"batch.json", "scene.json", "the photo of entry 1", [](auto& e) {
+      {"batch.json", "room.png.report.json", "the room's scene file",
+       [](auto& e) { e[1]["output"]["image"] = "room.png"; }},
+      {"batch.json", "scene.json", "the photo of entry 1",
+       [](auto& e) {
          e[1]["photo"] = "photo1.png";
          e[0]["output"]["image"] = "photo1.png";
        }},
-      {"batch.json", "scene.json", "the output image of entry 1", [](auto& e) { e[0]["output"]["layers"] = "out/e1.exr"; }},
-      {"batch.json", "scene.json", "the output image of entry 0", [](auto& e) { e[2]["output"]["image"] = "out/link.exr"; }},
-      {"batch.json", "scene.json", "tex.obj of entry 2", [](auto& e) {
+      {"batch.json", "scene.json", "the output image of entry 1",
+       [](auto& e) { e[0]["output"]["layers"] = "out/e1.exr"; }},
+      {"batch.json", "scene.json", "the output image of entry 0",
+       [](auto& e) { e[2]["output"]["image"] = "out/link.exr"; }},
+      {"batch.json", "scene.json", "tex.obj of entry 2",
+       [](auto& e) {
          e[2]["objects"][0]["mesh"] = "tex.obj";
          e[0]["output"]["image"] = "tex.png";
        }},
@@ -241,7 +249,8 @@ TEST(Batch, NoEntryWritesOverAnInputOrAnotherEntrysOutput) {
   for (const Case& c : cases) {
     nlohmann::json entries = b.entries;
     c.edit(entries);
-    const std::string batch = b.fx.dir.write(c.batch_name, nlohmann::json{{"scene", c.room}, {"entries", entries}}.dump(2));
+    const std::string batch =
+        b.fx.dir.write(c.batch_name, nlohmann::json{{"scene", c.room}, {"entries", entries}}.dump(2));
     std::map<std::string, std::string> before;
     for (const auto& e : fs::directory_iterator(dir))
       if (e.is_regular_file() && e.path().extension() != ".txt")  // not run_insitu's stdout.txt, stderr.txt
@@ -259,12 +268,14 @@ TEST(Batch, NoEntryWritesOverAnInputOrAnotherEntrysOutput) {
 TEST(Batch, TheFarmPagesExampleIsABatchInsituReads) {
   BatchFixture b;
   const std::string doc = test::slurp(test::source_dir() + "/docs/farm.md");
-  const std::size_t section = doc.find("## Batches"), begin = doc.find("```json\n", section), end = doc.find("```\n", begin + 8);
+  const std::size_t section = doc.find("## Batches"), begin = doc.find("```json\n", section),
+                    end = doc.find("```\n", begin + 8);
   ASSERT_NE(section, std::string::npos);
   ASSERT_NE(end, std::string::npos);
   auto batch = nlohmann::json::parse(doc.substr(begin + 8, end - begin - 8));
   batch["scene"] = "scene.json";
-  for (const char* mesh : {"sofa.obj", "table.obj"}) fs::copy_file(b.fx.dir.path() / "good_quad.obj", b.fx.dir.path() / mesh);
+  for (const char* mesh : {"sofa.obj", "table.obj"})
+    fs::copy_file(b.fx.dir.path() / "good_quad.obj", b.fx.dir.path() / mesh);
   const test::CliRun r = run_insitu(b.fx.dir, "batch " + b.fx.dir.write("farm.json", batch.dump()) + " --count");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out, fmt::format("{}\n", batch["entries"].size()));

@@ -27,7 +27,7 @@ TEST(BlenderExport, RoomWallsLeaveTheOpeningsOpenAndFaceInward) {
   EnvironmentSpec::RoomBox box;
   box.min = Vec3d(-2, 0, -3), box.max = Vec3d(3, 2.5, 1), box.capture = Vec3d(0, 1.2, 0);
   box.openings.push_back({Vec3d(-2, 0.8, -1), Vec3d(-2, 2.0, 0.5), 0});  // a window in the −x wall
-  box.openings.push_back({Vec3d(0.5, 0.0, 1), Vec3d(1.4, 2.1, 1), 2});    // a door in the +z wall
+  box.openings.push_back({Vec3d(0.5, 0.0, 1), Vec3d(1.4, 2.1, 1), 2});   // a door in the +z wall
   PlaneSpec floor;
   floor.point = Vec3d(5, 0, 7), floor.normal = Vec3d(0, -2, 0);
   const std::vector<Quad> quads = room_wall_quads(box, {floor});
@@ -102,7 +102,8 @@ TEST(BlenderExport, CatcherAlbedoIsThePhotosOverTheIrradiance) {
   for (int k = 0; k < 2; ++k) {
     EXPECT_TRUE(a[std::size_t(k)].from_photo);
     EXPECT_GT(a[std::size_t(k)].pixels, 500u) << k;
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(a[std::size_t(k)].albedo[c], fx.photo_value[c] / L, 2e-3) << k << " channel " << c;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(a[std::size_t(k)].albedo[c], fx.photo_value[c] / L, 2e-3) << k << " channel " << c;
   }
   EXPECT_FALSE(a[2].from_photo);
   EXPECT_TRUE((a[2].albedo == Rgb(0.1f, 0.2f, 0.3f)).all());
@@ -122,12 +123,14 @@ TEST(BlenderExport, WritesTheThreeFiles) {
   const std::string script = test::slurp(fx.dir.file("out/ball.py"));
   EXPECT_NE(script.find("catcher(quads_object("), std::string::npos);
   EXPECT_EQ(script.find("room_box(scene, ["), std::string::npos);
-  EXPECT_NE(script.find("render_settings(scene, 64, 5, 1)"), std::string::npos) << "the scene's spp and the path default depth";
+  EXPECT_NE(script.find("render_settings(scene, 64, 5, 1)"), std::string::npos)
+      << "the scene's spp and the path default depth";
   const LoadedScene s = load_scene(parse_scene_file(scene));
   const Mesh& ball = s.objects->meshes().at(0);
   const std::size_t nv = ball.positions.size(), nt = ball.triangles.size();
   // positions, triangles, material indices, corner normals and UVs: 4 bytes each.
-  EXPECT_EQ(std::filesystem::file_size(fx.dir.file("out/ball.meshes.bin")), 4 * (3 * nv + 3 * nt + nt + 9 * nt + 6 * nt));
+  EXPECT_EQ(std::filesystem::file_size(fx.dir.file("out/ball.meshes.bin")),
+            4 * (3 * nv + 3 * nt + nt + 9 * nt + 6 * nt));
   const Image world = read_image_file(fx.dir.file("out/ball.world.exr")).stored;
   EXPECT_EQ(world.width, 4 * s.environment.size());
   EXPECT_EQ(world.data, cube_to_equirect(s.environment).data);
@@ -139,10 +142,12 @@ TEST(BlenderExport, RefusesToReplaceAnInput) {
   std::filesystem::copy_file(fx.dir.file("env.exr"), fx.dir.file("in.world.exr"));
   fx.scene["environment"] = "in.world.exr";
   const std::string before = test::slurp(fx.dir.file("in.world.exr"));
-  test::expect_one_line_error(test::run_insitu(fx.dir, "export-blender " + fx.write() + " -o " + fx.dir.file("in.py")), "in.world.exr");
+  test::expect_one_line_error(test::run_insitu(fx.dir, "export-blender " + fx.write() + " -o " + fx.dir.file("in.py")),
+                              "in.world.exr");
   EXPECT_EQ(test::slurp(fx.dir.file("in.world.exr")), before);
   EXPECT_FALSE(std::filesystem::exists(fx.dir.file("in.py")));
-  test::expect_one_line_error(test::run_insitu(fx.dir, "export-blender " + fx.write() + " -o " + fx.dir.file("in.txt")), ".py");
+  test::expect_one_line_error(test::run_insitu(fx.dir, "export-blender " + fx.write() + " -o " + fx.dir.file("in.txt")),
+                              ".py");
 }
 
 }  // namespace
@@ -156,8 +161,8 @@ bool have_blender() { return std::system("command -v blender > /dev/null 2>&1") 
 // Renders an exported script with Cycles; returns the composite (linear EXR).
 Image render_with_cycles(const test::TempDir& dir, const std::string& script, int spp) {
   const std::string out = dir.file("cycles.exr"), log = dir.file("blender.log");
-  const std::string cmd = fmt::format("blender -b --factory-startup --python {} -- --render {} --samples {} > {} 2>&1", script,
-                                      out, spp, log);
+  const std::string cmd = fmt::format("blender -b --factory-startup --python {} -- --render {} --samples {} > {} 2>&1",
+                                      script, out, spp, log);
   EXPECT_EQ(std::system(cmd.c_str()), 0) << test::slurp(log);
   return read_image_file(out).stored;
 }
@@ -170,7 +175,8 @@ double object_error(const Image& a, const Image& b, const Image& alpha) {
   double num = 0, den = 0;
   for (int y = 1; y + 1 < alpha.height; ++y)
     for (int x = 1; x + 1 < alpha.width; ++x) {
-      if (*alpha.at(x, y) < 1 || *alpha.at(x - 1, y) < 1 || *alpha.at(x + 1, y) < 1 || *alpha.at(x, y - 1) < 1 || *alpha.at(x, y + 1) < 1)
+      if (*alpha.at(x, y) < 1 || *alpha.at(x - 1, y) < 1 || *alpha.at(x + 1, y) < 1 || *alpha.at(x, y - 1) < 1 ||
+          *alpha.at(x, y + 1) < 1)
         continue;
       num += std::abs(lum(a.at(x, y)) - lum(b.at(x, y))), den += lum(b.at(x, y));
     }
@@ -179,7 +185,8 @@ double object_error(const Image& a, const Image& b, const Image& alpha) {
 
 // The mean of composite / photo over the floor's pixels that the objects darken in insitu's render
 // (the shadow), and the number of them.
-double shadow_ratio(const Image& composite, const Image& insitu_composite, const Image& alpha, const Rgb& photo, int* n) {
+double shadow_ratio(const Image& composite, const Image& insitu_composite, const Image& alpha, const Rgb& photo,
+                    int* n) {
   double sum = 0;
   *n = 0;
   for (int y = 0; y < alpha.height; ++y)
@@ -239,21 +246,28 @@ Comparison compare_with_cycles(ExportFixture& fx, int spp, bool mirror_world = f
 // root is what noise alone gives and 2 its margin; the 2 % is for what the export approximates (the
 // BSDF as Cycles's nodes, the catchers' mean albedo: 1.5 % beyond the noise with the distant world).
 // (The bound was 2 f_i + 1 % while insitu's samples were independent: its noise floor stood in for
-// Cycles's, and its slack hid that the export's own difference is nearer 2 % than 1 %.) The shadow (composite / photo on the floor's darkened pixels, a mean over
-// some 500 pixels) agrees within 0.02. The negative control: the same world mirrored fails both.
+// Cycles's, and its slack hid that the export's own difference is nearer 2 % than 1 %.) The shadow (composite / photo
+// on the floor's darkened pixels, a mean over some 500 pixels) agrees within 0.02. The negative control: the same world
+// mirrored fails both.
 TEST(BlenderExport, CyclesRendersTheExportedSceneAsInsituDoes) {
   if (!have_blender()) GTEST_SKIP() << "blender is not installed (apt-get install blender)";
   for (const std::string variant : {"distant", "room box", "mirrored world"}) {
     ExportFixture fx;
     if (variant == "room box")
       fx.scene["environment"] = {{"image", "env.exr"},
-                                 {"room_box", {{"min", {-2, 0, -2}}, {"max", {2.5, 2.5, 2}}, {"capture", {0.3, 1.0, 0.2}},
-                                                {"openings", {{{"min", {-2, 0.8, -1.0}}, {"max", {-2, 2.2, 1.2}}}}}}}};
+                                 {"room_box",
+                                  {{"min", {-2, 0, -2}},
+                                   {"max", {2.5, 2.5, 2}},
+                                   {"capture", {0.3, 1.0, 0.2}},
+                                   {"openings", {{{"min", {-2, 0.8, -1.0}}, {"max", {-2, 2.2, 1.2}}}}}}}};
     const Comparison c = compare_with_cycles(fx, test::kUnderAsan ? 4 : 256, variant == "mirrored world");
-    std::printf("%s: objects: error %.4f (noise floors: insitu %.4f, Cycles %.4f); shadow: insitu %.4f, Cycles %.4f over %d pixels\n",
-                variant.c_str(), c.objects, c.objects_noise, c.cycles_noise, c.shadow_insitu, c.shadow_cycles, c.shadow_pixels);
+    std::printf(
+        "%s: objects: error %.4f (noise floors: insitu %.4f, Cycles %.4f); shadow: insitu %.4f, Cycles %.4f over %d "
+        "pixels\n",
+        variant.c_str(), c.objects, c.objects_noise, c.cycles_noise, c.shadow_insitu, c.shadow_cycles, c.shadow_pixels);
     if (test::kUnderAsan) GTEST_SKIP() << "the agreement is checked in the release build, not under AddressSanitizer";
-    const double bound = 2 * std::sqrt((c.objects_noise * c.objects_noise + c.cycles_noise * c.cycles_noise) / 2) + 0.02;
+    const double bound =
+        2 * std::sqrt((c.objects_noise * c.objects_noise + c.cycles_noise * c.cycles_noise) / 2) + 0.02;
     EXPECT_GT(c.shadow_pixels, 200) << variant;
     if (variant == "mirrored world") {
       EXPECT_GT(c.objects, bound) << "the comparison cannot tell a mirrored world";

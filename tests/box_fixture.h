@@ -12,7 +12,8 @@
 
 namespace insitu::test {
 
-inline EmbreeScene make_box(const TempDir& dir, const std::string& kd, double scale, const Vec3d& centre = Vec3d::Zero()) {
+inline EmbreeScene make_box(const TempDir& dir, const std::string& kd, double scale,
+                            const Vec3d& centre = Vec3d::Zero()) {
   dir.write("box.mtl", "newmtl m\nKd " + kd + "\n");
   const std::string obj =
       "mtllib box.mtl\nusemtl m\n"

@@ -64,7 +64,8 @@ TEST(BsdfTest, SamplingMatchesEvalAndPdf) {
       const Bsdf b(Rgb::Constant(0.5f), Rgb::Constant(0.3f), alpha);
       const Vec3f wo = direction_at(theta);
       const Mc by_sampling = sampled_albedo(b, wo, 400000, 3);
-      const Mc by_quadrature = hemisphere_integral([&](const Vec3f& wi) { return double(b.eval(wo, wi)[1]) * wi.z(); }, 400000, 4);
+      const Mc by_quadrature =
+          hemisphere_integral([&](const Vec3f& wi) { return double(b.eval(wo, wi)[1]) * wi.z(); }, 400000, 4);
       EXPECT_NEAR(by_sampling.mean, by_quadrature.mean, 4 * std::hypot(by_sampling.se, by_quadrature.se))
           << "alpha " << alpha << " theta " << theta;
       const Mc pdf_integral = hemisphere_integral([&](const Vec3f& wi) { return double(b.pdf(wo, wi)); }, 400000, 5);
@@ -77,7 +78,8 @@ TEST(BsdfTest, SamplingMatchesEvalAndPdf) {
         ok += b.sample(wo, ul, u1, u2, &bs);
       }
       const double p = double(ok) / n, se_p = std::sqrt(p * (1 - p) / n);
-      EXPECT_NEAR(pdf_integral.mean, p, 4 * std::hypot(pdf_integral.se, se_p) + 1e-3) << "alpha " << alpha << " theta " << theta;
+      EXPECT_NEAR(pdf_integral.mean, p, 4 * std::hypot(pdf_integral.se, se_p) + 1e-3)
+          << "alpha " << alpha << " theta " << theta;
     }
 }
 

@@ -19,7 +19,7 @@ struct Truth {
 // random tilt and roll, and n points seen by it: random pixels (5% margin) at random depths, or on
 // a plane through the scene centre when coplanar.
 inline Truth make_truth(std::mt19937& rng, int n, double hfov_deg, bool coplanar, double scale, int width, int height,
-                 CameraModel model) {
+                        CameraModel model) {
   std::uniform_real_distribution<double> u(-1, 1);
   const Vec3d offset = Vec3d(3, 0.5, -2) * scale;
   // Distance so that the scene of size `scale` roughly fills the field of view.

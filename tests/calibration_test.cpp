@@ -43,7 +43,8 @@ TEST(Calibration, NoiseFreeIsExactAcrossTheRange) {
             EXPECT_LT(r.rms_px, 1e-6);
             EXPECT_LT(std::abs(r.camera.fx / t.camera.fx - 1), 1e-6);
             EXPECT_EQ(r.model, CameraModel::kF);
-            EXPECT_LT((r.camera.eye_world() - t.camera.eye_world()).norm(), 1e-5 * scale / std::tan(deg_to_rad(fov) / 2));
+            EXPECT_LT((r.camera.eye_world() - t.camera.eye_world()).norm(),
+                      1e-5 * scale / std::tan(deg_to_rad(fov) / 2));
           }
   EXPECT_GT(cases, 60);
 }
@@ -140,7 +141,8 @@ TEST(Calibration, ReportSaysWhichParametersAreFixedAndWhy) {
   const std::vector<ControlPoint> noisy = with_noise(t.clean, rng, 1.0);
   const std::string chosen = calibration_report(calibrate(noisy, 640, 480));
   EXPECT_NE(chosen.find("cx, cy       320.00 px, 240.00 px (the image centre: fixed, not supported by the points)"),
-            std::string::npos) << chosen;
+            std::string::npos)
+      << chosen;
   EXPECT_NE(chosen.find("fy = fx (square pixels: fixed, not supported by the points)"), std::string::npos) << chosen;
   EXPECT_EQ(chosen.find("± 0.00"), std::string::npos) << chosen;
   CalibrationOptions fc;

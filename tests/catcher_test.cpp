@@ -36,7 +36,8 @@ double cosine_over_square(double half, double h) {
 TEST(Catcher, ShadowRatioOfASquareOccluderIsTheAnalyticFormFactor) {
   test::TempDir dir;
   dir.write("q.mtl", "newmtl black\nKd 0 0 0\n");
-  const std::string obj = "mtllib q.mtl\nusemtl black\nv -0.5 1 -0.5\nv 0.5 1 -0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\nf 1 2 3 4\n";
+  const std::string obj =
+      "mtllib q.mtl\nusemtl black\nv -0.5 1 -0.5\nv 0.5 1 -0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\nf 1 2 3 4\n";
   Warnings w;
   std::vector<Mesh> meshes;
   meshes.push_back(load_obj(dir.write("q.obj", obj), w));
@@ -97,7 +98,8 @@ TEST(Catcher, DifferentialLeavesUntouchedPixelsAndModesAgree) {
     const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
     const RenderResult r = render_scene(s);
     write_outputs(s, r);
-    EXPECT_EQ(read_image_file(fx.dir.file("out/c.png")).stored.data, read_image_file(fx.dir.file("photo.png")).stored.data)
+    EXPECT_EQ(read_image_file(fx.dir.file("out/c.png")).stored.data,
+              read_image_file(fx.dir.file("photo.png")).stored.data)
         << "variant " << variant;
   }
   // A quad floating above the floor in view: the modes agree in expectation; with the albedo
@@ -237,8 +239,12 @@ TEST(Catcher, MeshCatcherGivesTheSameShadowAsAPlane) {
   dir.write("q.mtl", "newmtl black\nKd 0 0 0\n");
   Warnings w;
   std::vector<Mesh> occluder, floor;
-  occluder.push_back(load_obj(dir.write("q.obj", "mtllib q.mtl\nusemtl black\nv -0.5 1 -0.5\nv 0.5 1 -0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\nf 1 2 3 4\n"), w));
-  floor.push_back(load_obj(dir.write("f.obj", "v -100 0 -100\nv 100 0 -100\nv 100 0 100\nv -100 0 100\nf 1 4 3 2\n"), w));
+  occluder.push_back(load_obj(
+      dir.write("q.obj",
+                "mtllib q.mtl\nusemtl black\nv -0.5 1 -0.5\nv 0.5 1 -0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\nf 1 2 3 4\n"),
+      w));
+  floor.push_back(
+      load_obj(dir.write("f.obj", "v -100 0 -100\nv 100 0 -100\nv 100 0 100\nv -100 0 100\nf 1 4 3 2\n"), w));
   const EmbreeScene objects(std::move(occluder)), catchers(std::move(floor));
   const int n = 16;
   CubeMap env(n);
@@ -276,7 +282,8 @@ TEST(Catcher, LocalSceneMeshInTheSceneFile) {
   test::SceneFixture fx;
   auto j = fx.scene;
   j["render"] = {{"integrator", "path"}, {"spp", 4}};
-  j["local_scene"] = {{{"mesh", "good_quad.obj"}, {"scale", 4}, {"translate", {-1, 0, 1}}, {"albedo", {0.4, 0.4, 0.4}}}};
+  j["local_scene"] = {
+      {{"mesh", "good_quad.obj"}, {"scale", 4}, {"translate", {-1, 0, 1}}, {"albedo", {0.4, 0.4, 0.4}}}};
   j["objects"] = {{{"mesh", "good_quad.obj"}, {"translate", {0, 0.3, 0}}}};
   const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
   EXPECT_EQ(s.catcher_meshes->meshes().size(), 1u);

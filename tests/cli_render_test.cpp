@@ -47,10 +47,13 @@ TEST(CliRender, LayersOptionNamesOrDisablesTheLayers) {
   EXPECT_TRUE(fs::exists(fx.dir.file("a.png")));
   EXPECT_FALSE(fs::exists(fx.dir.file("a.layers.exr")));
   EXPECT_FALSE(fs::exists(fx.dir.file("out/layers.exr")));
-  ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("b.png") + " --layers " + fx.dir.file("l.exr")).exit_code, 0);
+  ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("b.png") + " --layers " + fx.dir.file("l.exr"))
+                .exit_code,
+            0);
   EXPECT_TRUE(fs::exists(fx.dir.file("l.exr")));
   EXPECT_FALSE(fs::exists(fx.dir.file("b.layers.exr")));
-  expect_one_line_error(run_insitu(fx.dir, "render " + scene + " --layers " + fx.dir.file("l.png")), "use .exr, or none");
+  expect_one_line_error(run_insitu(fx.dir, "render " + scene + " --layers " + fx.dir.file("l.png")),
+                        "use .exr, or none");
   auto j = fx.scene;
   j["output"] = {{"image", "out/c.png"}, {"layers", "none"}};
   ASSERT_EQ(run_insitu(fx.dir, "render " + fx.write(j)).exit_code, 0);
@@ -71,7 +74,8 @@ TEST(CliRender, OptionsWithoutEffectAreWarnedAndReportedAsDone) {
   const CliRun plain = run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("p.exr"));
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
   EXPECT_EQ(plain.err.find("warning"), std::string::npos) << plain.err;
-  const CliRun r = run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("r.exr") + " --tonemap reinhard --key 0.3");
+  const CliRun r =
+      run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("r.exr") + " --tonemap reinhard --key 0.3");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("insitu: warning: output.tonemap: has no effect"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("insitu: warning: output.tonemap.key: has no effect"), std::string::npos) << r.err;
@@ -80,14 +84,17 @@ TEST(CliRender, OptionsWithoutEffectAreWarnedAndReportedAsDone) {
 
   const CliRun key = run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("k.png") + " --key 2");
   EXPECT_NE(key.err.find("output.tonemap.key: has no effect with the photo tone map"), std::string::npos) << key.err;
-  const CliRun reinhard = run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("k2.png") + " --tonemap reinhard --key 2");
+  const CliRun reinhard =
+      run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("k2.png") + " --tonemap reinhard --key 2");
   EXPECT_EQ(reinhard.err.find("warning"), std::string::npos) << reinhard.err;
   EXPECT_EQ(read_json(fx.dir.file("k2.png.report.json"))["tonemap"], "reinhard");
 
-  const CliRun irr = run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("i.png") + " --integrator path --irradiance sh9");
+  const CliRun irr =
+      run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("i.png") + " --integrator path --irradiance sh9");
   EXPECT_NE(irr.err.find("render.irradiance: has no effect: the path integrator"), std::string::npos) << irr.err;
   EXPECT_TRUE(read_json(fx.dir.file("i.png.report.json"))["render"]["irradiance"].is_null());
-  const CliRun used = run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("j.png") + " --integrator irradiance --irradiance sh9");
+  const CliRun used = run_insitu(
+      fx.dir, "render " + scene + " -o " + fx.dir.file("j.png") + " --integrator irradiance --irradiance sh9");
   EXPECT_EQ(used.err.find("warning"), std::string::npos) << used.err;
   EXPECT_EQ(read_json(fx.dir.file("j.png.report.json"))["render"]["irradiance"], "sh9");
 

@@ -32,10 +32,15 @@ struct SafetyScene : SceneFixture {
   SafetyScene() {
     write_image(dir.file("wood.png"), Image(4, 4, 3, 0.5f));
     dir.write("tex.mtl", "newmtl wood\nKd 1 1 1\nmap_Kd wood.png\n");
-    dir.write("tex.obj", "mtllib tex.mtl\nusemtl wood\nv 0 0 0\nv 1 0 0\nv 1 0 -1\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n");
+    dir.write("tex.obj",
+              "mtllib tex.mtl\nusemtl wood\nv 0 0 0\nv 1 0 0\nv 1 0 -1\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n");
     nlohmann::json shots = {{"faced", "-z"}};
     for (const char* k : {"+x", "-x", "+z", "-z", "up", "down"}) {
-      const std::string name = std::string("shot") + (k[0] == '+' ? "p" : k[0] == '-' ? "n" : "") + (k + (k[0] == '+' || k[0] == '-')) + ".png";
+      const std::string name = std::string("shot") +
+                               (k[0] == '+'   ? "p"
+                                : k[0] == '-' ? "n"
+                                              : "") +
+                               (k + (k[0] == '+' || k[0] == '-')) + ".png";
       write_image(dir.file(name), Image(8, 8, 3, 0.4f));
       shots[k] = name;
     }
@@ -54,12 +59,14 @@ TEST(OutputSafety, RenderNeverReplacesThePhotoAShotOrATexture) {
   expect_refused(fx.dir, "render " + scene + " -o " + fx.dir.file("sub/../photo.png"), photo, "is the photo");
   fs::create_symlink(photo, fx.dir.path() / "link.png");
   expect_refused(fx.dir, "render " + scene + " -o " + fx.dir.file("link.png"), photo, "is the photo");
-  expect_refused(fx.dir, "render " + scene + " -o " + fx.dir.file("shotpx.png"), fx.dir.file("shotpx.png"), "is shot +x");
+  expect_refused(fx.dir, "render " + scene + " -o " + fx.dir.file("shotpx.png"), fx.dir.file("shotpx.png"),
+                 "is shot +x");
   expect_refused(fx.dir, "render " + scene + " -o " + fx.dir.file("wood.png"), fx.dir.file("wood.png"),
                  "read by " + fx.dir.file("tex.obj"));
   auto j = fx.scene;
   j["environment"] = "env.exr";
-  expect_refused(fx.dir, "render " + fx.write(j) + " -o " + fx.dir.file("env.exr"), fx.dir.file("env.exr"), "is the environment");
+  expect_refused(fx.dir, "render " + fx.write(j) + " -o " + fx.dir.file("env.exr"), fx.dir.file("env.exr"),
+                 "is the environment");
   expect_refused(fx.dir, "render " + fx.write(j) + " --layers " + fx.dir.file("env.exr"), fx.dir.file("env.exr"),
                  "is the environment");
   // In the scene file too.
@@ -75,7 +82,8 @@ TEST(OutputSafety, LayersAndImageAreNeverOneFile) {
   const CliRun r = run_insitu(fx.dir, "render " + fx.write(j));
   expect_one_line_error(r, "is also the output image");
   EXPECT_FALSE(fs::exists(fx.dir.file("out/c.exr")));
-  const CliRun cli = run_insitu(fx.dir, "render " + fx.write() + " -o " + fx.dir.file("d.exr") + " --layers " + fx.dir.file("d.exr"));
+  const CliRun cli =
+      run_insitu(fx.dir, "render " + fx.write() + " -o " + fx.dir.file("d.exr") + " --layers " + fx.dir.file("d.exr"));
   expect_one_line_error(cli, "is also the output image");
 }
 
@@ -84,12 +92,13 @@ TEST(OutputSafety, CalibrateAndCompareNeverReplaceTheirInputs) {
   const std::string photo = fx.dir.file("photo.png"), points = fx.dir.file("points.json");
   fx.dir.write("points.json", R"([{"uv": [1, 2], "xyz": [0, 0, 0]}])");
   expect_refused(fx.dir, "calibrate --points " + points + " --image " + photo + " -o " + photo, photo, "is the photo");
-  expect_refused(fx.dir, "calibrate --points " + points + " --size 48 32 --vc " + points, points, "is the control points");
+  expect_refused(fx.dir, "calibrate --points " + points + " --size 48 32 --vc " + points, points,
+                 "is the control points");
   expect_refused(fx.dir, "compare " + photo + " " + fx.dir.file("wood.png") + " -o " + photo, photo, "is image A");
   // cubemap writes DIR/cube.exr: an environment of that name in DIR is refused.
   fs::copy_file(fx.dir.file("env.exr"), fx.dir.file("cube.exr"));
-  expect_refused(fx.dir, "cubemap " + fx.dir.file("cube.exr") + " -o " + fx.dir.path().string(), fx.dir.file("cube.exr"),
-                 "is the environment argument");
+  expect_refused(fx.dir, "cubemap " + fx.dir.file("cube.exr") + " -o " + fx.dir.path().string(),
+                 fx.dir.file("cube.exr"), "is the environment argument");
 }
 
 // An output that names a directory is refused before any work, with the reason (it once said
@@ -97,11 +106,13 @@ TEST(OutputSafety, CalibrateAndCompareNeverReplaceTheirInputs) {
 TEST(OutputSafety, OutputThatIsADirectory) {
   SceneFixture fx;
   fs::create_directories(fx.dir.path() / "d.png");
-  expect_one_line_error(run_insitu(fx.dir, "render " + fx.write() + " -o " + fx.dir.file("d.png")), "d.png: is a directory");
+  expect_one_line_error(run_insitu(fx.dir, "render " + fx.write() + " -o " + fx.dir.file("d.png")),
+                        "d.png: is a directory");
   fs::create_directories(fx.dir.path() / "c.json");
   dir_points(fx);
-  expect_one_line_error(run_insitu(fx.dir, "calibrate --points " + fx.dir.file("p.json") + " --size 48 32 -o " + fx.dir.file("c.json")),
-                        "c.json: is a directory");
+  expect_one_line_error(
+      run_insitu(fx.dir, "calibrate --points " + fx.dir.file("p.json") + " --size 48 32 -o " + fx.dir.file("c.json")),
+      "c.json: is a directory");
 }
 
 TEST(OutputSafety, SameFileByIdentity) {

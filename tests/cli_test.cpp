@@ -54,7 +54,8 @@ TEST(Cli, BadInputsExitTwoAndWriteNothing) {
   j["objects"][0]["mesh"] = "bad.obj";
   j["output"] = {{"image", "out/composite.png"}, {"layers", "out/layers.exr"}};
   const std::string scene = fx.write(j);
-  expect_one_line_error(run_insitu(fx.dir, "render " + scene), "$.objects[0].mesh: " + fx.dir.file("bad.obj") + ":4: face vertex index 7");
+  expect_one_line_error(run_insitu(fx.dir, "render " + scene),
+                        "$.objects[0].mesh: " + fx.dir.file("bad.obj") + ":4: face vertex index 7");
   EXPECT_FALSE(std::filesystem::exists(fx.dir.file("out/composite.png")));
   EXPECT_FALSE(std::filesystem::exists(fx.dir.file("out/layers.exr")));
 
@@ -105,7 +106,8 @@ TEST(Cli, ASceneFileNamedInAnotherEncodingRenders) {
 void write_known_points(const test::SceneFixture& fx, bool bottom_left) {
   const Camera truth = Camera::look_at({0.5, 2.0, 1.5}, {0.5, 0.0, -0.5}, {0, 1, 0}, 60, fx.width, fx.height);
   nlohmann::json pts = nlohmann::json::array();
-  const Vec3d xyz[] = {{0, 0, 0}, {1, 0, 0}, {1, 0, -1}, {0, 0, -1}, {0.5, 0.5, -0.5}, {0.2, 0.8, -0.9}, {0.9, 0.3, -0.2}};
+  const Vec3d xyz[] = {{0, 0, 0},        {1, 0, 0},        {1, 0, -1},      {0, 0, -1},
+                       {0.5, 0.5, -0.5}, {0.2, 0.8, -0.9}, {0.9, 0.3, -0.2}};
   for (const auto& p : xyz) {
     const Vec2d uv = truth.project(p);
     pts.push_back({{"uv", {uv.x(), bottom_left ? fx.height - uv.y() : uv.y()}}, {"xyz", {p.x(), p.y(), p.z()}}});
@@ -116,9 +118,9 @@ void write_known_points(const test::SceneFixture& fx, bool bottom_left) {
 TEST(Cli, CalibrateWritesACameraFileThatScenesRead) {
   test::SceneFixture fx;
   write_known_points(fx, false);
-  const CliRun r = run_insitu(fx.dir, "calibrate --points " + fx.dir.file("points.json") + " --image " +
-                                          fx.dir.file("photo.png") + " -o " + fx.dir.file("camera.json") + " --vc " +
-                                          fx.dir.file("camera.vc"));
+  const CliRun r =
+      run_insitu(fx.dir, "calibrate --points " + fx.dir.file("points.json") + " --image " + fx.dir.file("photo.png") +
+                             " -o " + fx.dir.file("camera.json") + " --vc " + fx.dir.file("camera.vc"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("model        f"), std::string::npos) << r.out;
   auto j = fx.scene;
@@ -155,7 +157,7 @@ TEST(Cli, CalibrateReportsTheUncertaintyAtEachBox) {
   const std::string demo = test::source_dir() + "/scenes/demo/";
   const std::string base = "calibrate --points " + demo + "points.json --image " + demo + "photo.jpg ";
   const CliRun r = run_insitu(dir, base + "--box sofa -0.15 0 -2.93 1.95 0.85 -1.77 -o " + dir.file("camera.json") +
-                                        " --blender " + dir.file("cam.py"));
+                                       " --blender " + dir.file("cam.py"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(test::slurp(dir.file("cam.py")).find("data.lens = "), std::string::npos);  // blender_camera_test renders it
   EXPECT_NE(r.out.find("object       sofa: up to "), std::string::npos) << r.out;
@@ -175,7 +177,8 @@ TEST(Cli, CalibrateBadInputIsOneLine) {
   expect_one_line_error(run_insitu(dir, "calibrate --points " + dir.file("few.json") + " --size 640 480"),
                         "few.json: 1 control point(s): calibration needs at least 5");
   expect_one_line_error(run_insitu(dir, "calibrate --points " + dir.file("few.json")), "--image");
-  expect_one_line_error(run_insitu(dir, "calibrate --points " + dir.file("few.json") + " --size 640 480 --model g"), "model");
+  expect_one_line_error(run_insitu(dir, "calibrate --points " + dir.file("few.json") + " --size 640 480 --model g"),
+                        "model");
   dir.write("nan.csv", "1,2,3,4,5\n1,2,nan,4,5\n");
   expect_one_line_error(run_insitu(dir, "calibrate --points " + dir.file("nan.csv") + " --size 640 480"), "nan.csv:2");
 }
@@ -191,14 +194,17 @@ TEST(Cli, CubemapWritesEveryOutput) {
   // strip 4×24.
   EXPECT_EQ(read_image_size(fx.dir.file("cube/cube.exr")), std::make_pair(4, 24));
   EXPECT_EQ(read_image_size(fx.dir.file("cube/irradiance_sh9.exr")), std::make_pair(4, 24));
-  expect_one_line_error(run_insitu(fx.dir, "cubemap " + fx.dir.file("none.exr") + " -o " + fx.dir.file("x")), "none.exr: file not found");
+  expect_one_line_error(run_insitu(fx.dir, "cubemap " + fx.dir.file("none.exr") + " -o " + fx.dir.file("x")),
+                        "none.exr: file not found");
 }
 
 TEST(Cli, IrradianceReportPrintsEveryMode) {
   test::SceneFixture fx;
-  const CliRun r = run_insitu(fx.dir, "irradiance-report " + fx.dir.file("env.exr") + " --normals 16 --csv " + fx.dir.file("r.csv"));
+  const CliRun r =
+      run_insitu(fx.dir, "irradiance-report " + fx.dir.file("env.exr") + " --normals 16 --csv " + fx.dir.file("r.csv"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* mode : {"| gaussian |", "| sh9 |", "| exact |"}) EXPECT_NE(r.out.find(mode), std::string::npos) << r.out;
+  for (const char* mode : {"| gaussian |", "| sh9 |", "| exact |"})
+    EXPECT_NE(r.out.find(mode), std::string::npos) << r.out;
   EXPECT_TRUE(std::filesystem::exists(fx.dir.file("r.csv")));
 }
 
@@ -206,11 +212,15 @@ TEST(Cli, IrradianceIntegratorWithGaussianEqualsRealtime) {
   test::SceneFixture fx;
   const std::string scene = fx.write();
   ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("a.png")).exit_code, 0);
-  ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " --integrator irradiance --irradiance gaussian -o " + fx.dir.file("b.png")).exit_code, 0);
+  ASSERT_EQ(run_insitu(fx.dir,
+                       "render " + scene + " --integrator irradiance --irradiance gaussian -o " + fx.dir.file("b.png"))
+                .exit_code,
+            0);
   EXPECT_EQ(read_image_file(fx.dir.file("a.png")).stored.data, read_image_file(fx.dir.file("b.png")).stored.data);
   auto j = fx.scene;
   j["render"]["irradiance"] = "sh10";
-  expect_one_line_error(run_insitu(fx.dir, "render " + fx.write(j)), "$.render.irradiance: expected \"gaussian\", \"sh9\", \"exact\" or \"volume\"");
+  expect_one_line_error(run_insitu(fx.dir, "render " + fx.write(j)),
+                        "$.render.irradiance: expected \"gaussian\", \"sh9\", \"exact\" or \"volume\"");
 }
 
 TEST(Cli, CompareWritesThePictureAndRejectsMismatchedImages) {
@@ -218,7 +228,8 @@ TEST(Cli, CompareWritesThePictureAndRejectsMismatchedImages) {
   write_image(dir.file("a.png"), Image(16, 12, 3, 0.5f));
   write_image(dir.file("b.png"), Image(16, 12, 3, 0.25f));
   write_image(dir.file("c.png"), Image(8, 12, 3, 0.25f));
-  const CliRun r = run_insitu(dir, "compare " + dir.file("a.png") + " " + dir.file("b.png") + " -o " + dir.file("d.png"));
+  const CliRun r =
+      run_insitu(dir, "compare " + dir.file("a.png") + " " + dir.file("b.png") + " -o " + dir.file("d.png"));
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("| image | 192 |"), std::string::npos) << r.out;
   EXPECT_TRUE(std::filesystem::exists(dir.file("d.png")));
@@ -228,7 +239,8 @@ TEST(Cli, CompareWritesThePictureAndRejectsMismatchedImages) {
   write_image(dir.file("e.exr"), Image(16, 12, 3, 0.25f));
   const CliRun mixed = run_insitu(dir, "compare " + dir.file("e.exr") + " " + dir.file("b.png"));
   EXPECT_EQ(mixed.exit_code, 0) << mixed.err;
-  EXPECT_NE(mixed.err.find("insitu: warning: " + dir.file("b.png") + " is a display-referred 8-bit image"), std::string::npos)
+  EXPECT_NE(mixed.err.find("insitu: warning: " + dir.file("b.png") + " is a display-referred 8-bit image"),
+            std::string::npos)
       << mixed.err;
 }
 
@@ -240,8 +252,10 @@ TEST(Cli, TradeoffWritesTableCsvPlotAndAb) {
   const CliRun r = run_insitu(fx.dir, "tradeoff " + fx.write(j) + " -o " + fx.dir.file("t") +
                                           " --ladder 1,4,32 --reference-spp 64 --noise-targets 0.5");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* f : {"tradeoff.csv", "tradeoff.png", "ab.png"}) EXPECT_TRUE(std::filesystem::exists(fx.dir.file(std::string("t/") + f))) << f;
-  for (const char* mode : {"| realtime | 1 |", "| realtime | 16 |", "| irradiance/sh9 | 16 |", "| path | 4 |", "| path adaptive 0.5 |"})
+  for (const char* f : {"tradeoff.csv", "tradeoff.png", "ab.png"})
+    EXPECT_TRUE(std::filesystem::exists(fx.dir.file(std::string("t/") + f))) << f;
+  for (const char* mode :
+       {"| realtime | 1 |", "| realtime | 16 |", "| irradiance/sh9 | 16 |", "| path | 4 |", "| path adaptive 0.5 |"})
     EXPECT_NE(r.out.find(mode), std::string::npos) << r.out;
   // More samples, closer to the reference.
   std::ifstream csv(fx.dir.file("t/tradeoff.csv"));

@@ -54,7 +54,8 @@ inline int run_with_leak_check(const std::string& prefix, const std::string& com
 // Runs the insitu binary with `args`, stdin closed, capturing stdout and stderr.
 inline CliRun run_insitu(const TempDir& dir, const std::string& args) {
   const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
-  const int status = run_with_leak_check("", std::string(INSITU_BINARY) + " " + args + " < /dev/null > " + out + " 2> " + err, err);
+  const int status =
+      run_with_leak_check("", std::string(INSITU_BINARY) + " " + args + " < /dev/null > " + out + " 2> " + err, err);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
 }
 
@@ -66,7 +67,6 @@ inline void expect_one_line_error(const CliRun& r, const std::string& contains) 
   EXPECT_EQ(r.err.rfind("insitu: error: ", 0), 0u) << r.err;
   EXPECT_NE(r.err.find(contains), std::string::npos) << r.err;
 }
-
 
 // `insitu ARGS` in the background, its output to files; returns its pid. SIGINT and SIGTERM
 // are set to their defaults in the child, as a terminal's process has them: a test binary started

@@ -61,9 +61,10 @@ TEST(Composite, WellSampledShadowsKeepTheRatioForm) {
 // (the guard picks the estimator with the smaller standard error).
 TEST(Composite, ContactShadowHasNoFireflies) {
   test::SceneFixture fx;
-  fx.dir.write("cube.obj",
-               "v 0 0 -1\nv 0.6 0 -1\nv 0.6 0 -0.4\nv 0 0 -0.4\nv 0 0.6 -1\nv 0.6 0.6 -1\nv 0.6 0.6 -0.4\nv 0 0.6 -0.4\n"
-               "f 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 2 6 7 3\nf 3 7 8 4\nf 4 8 5 1\n");
+  fx.dir.write(
+      "cube.obj",
+      "v 0 0 -1\nv 0.6 0 -1\nv 0.6 0 -0.4\nv 0 0 -0.4\nv 0 0.6 -1\nv 0.6 0.6 -1\nv 0.6 0.6 -0.4\nv 0 0.6 -0.4\n"
+      "f 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 2 6 7 3\nf 3 7 8 4\nf 4 8 5 1\n");
   write_image(fx.dir.file("photo.png"), Image(fx.width, fx.height, 3, 0.5f));  // a plain grey floor
   auto j = fx.scene;
   j["objects"] = {{{"mesh", "cube.obj"}}};
@@ -98,8 +99,9 @@ TEST(Composite, ContactShadowHasNoFireflies) {
     }
   ASSERT_GT(changed, 100);
   ASSERT_GT(contact, 0) << "the view should hold pixels where the ratio is unreliable";
-  std::printf("additive at %d of %d changed pixels; there worst error %.4f (guarded) vs %.4f (ratio), RMS %.4f vs %.4f\n",
-              contact, changed, worst_guarded, worst_ratio, std::sqrt(se_guarded / contact), std::sqrt(se_ratio / contact));
+  std::printf(
+      "additive at %d of %d changed pixels; there worst error %.4f (guarded) vs %.4f (ratio), RMS %.4f vs %.4f\n",
+      contact, changed, worst_guarded, worst_ratio, std::sqrt(se_guarded / contact), std::sqrt(se_ratio / contact));
   EXPECT_LE(se_guarded, se_ratio);
 }
 
@@ -112,7 +114,7 @@ TEST(Composite, ChangedMaskIsWhereTheChangeShows) {
   l.alpha = Image(w, h, 1, 0.0f);
   for (int y = 2; y < 7; ++y)
     for (int x = 2; x < 7; ++x) comp.set_rgb(x, y, Rgb::Constant(0.4f));  // a shadow, −20 %
-  *l.alpha.at(15, 5) = 0.5f;                                               // an object's edge
+  *l.alpha.at(15, 5) = 0.5f;                                              // an object's edge
   const Image m = changed_mask(photo, comp, l);
   EXPECT_EQ(*m.at(4, 4), 1.0f);
   EXPECT_EQ(*m.at(15, 5), 1.0f);

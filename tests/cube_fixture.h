@@ -14,7 +14,9 @@ inline CubeMap random_cube(int n, unsigned seed) {
   for (int f = 0; f < 6; ++f)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
-        c.set_texel(f, i, j, u(rng) < 0.2f ? Rgb(Rgb::Zero()) : Rgb(Rgb(u(rng), u(rng), u(rng)) * (u(rng) < 0.05f ? 50.0f : 1.0f)));
+        c.set_texel(
+            f, i, j,
+            u(rng) < 0.2f ? Rgb(Rgb::Zero()) : Rgb(Rgb(u(rng), u(rng), u(rng)) * (u(rng) < 0.05f ? 50.0f : 1.0f)));
   c.update_borders();
   return c;
 }

@@ -26,12 +26,12 @@ struct Case {
 // Derived by hand from the DESIGN.md table on a 5×5 face: s = (sc/|ma| + 1)/2, so sc = ±0.9
 // lands in texel 4 or 0 and sc = 0 in texel 2. One centre, one edge and one corner per face.
 const Case kCases[] = {
-    {{1, 0, 0}, kPosX, 2, 2},         {{1, 0, 0.9f}, kPosX, 0, 2},      {{1, 0.9f, -0.9f}, kPosX, 4, 0},
-    {{-1, 0, 0}, kNegX, 2, 2},        {{-1, -0.9f, 0}, kNegX, 2, 4},    {{-1, 0.9f, 0.9f}, kNegX, 4, 0},
-    {{0, 1, 0}, kPosY, 2, 2},         {{0, 1, -0.9f}, kPosY, 2, 0},     {{-0.9f, 1, 0.9f}, kPosY, 0, 4},
-    {{0, -1, 0}, kNegY, 2, 2},        {{0.9f, -1, 0}, kNegY, 4, 2},     {{-0.9f, -1, -0.9f}, kNegY, 0, 4},
-    {{0, 0, 1}, kPosZ, 2, 2},         {{0, 0.9f, 1}, kPosZ, 2, 0},      {{0.9f, -0.9f, 1}, kPosZ, 4, 4},
-    {{0, 0, -1}, kNegZ, 2, 2},        {{0.9f, 0, -1}, kNegZ, 0, 2},     {{-0.9f, 0.9f, -1}, kNegZ, 4, 0},
+    {{1, 0, 0}, kPosX, 2, 2},  {{1, 0, 0.9f}, kPosX, 0, 2},   {{1, 0.9f, -0.9f}, kPosX, 4, 0},
+    {{-1, 0, 0}, kNegX, 2, 2}, {{-1, -0.9f, 0}, kNegX, 2, 4}, {{-1, 0.9f, 0.9f}, kNegX, 4, 0},
+    {{0, 1, 0}, kPosY, 2, 2},  {{0, 1, -0.9f}, kPosY, 2, 0},  {{-0.9f, 1, 0.9f}, kPosY, 0, 4},
+    {{0, -1, 0}, kNegY, 2, 2}, {{0.9f, -1, 0}, kNegY, 4, 2},  {{-0.9f, -1, -0.9f}, kNegY, 0, 4},
+    {{0, 0, 1}, kPosZ, 2, 2},  {{0, 0.9f, 1}, kPosZ, 2, 0},   {{0.9f, -0.9f, 1}, kPosZ, 4, 4},
+    {{0, 0, -1}, kNegZ, 2, 2}, {{0.9f, 0, -1}, kNegZ, 0, 2},  {{-0.9f, 0.9f, -1}, kNegZ, 4, 0},
 };
 
 TEST(CubeMap, CentreEdgeAndCornerDirectionsLandOnTheirTexel) {

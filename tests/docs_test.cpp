@@ -55,15 +55,16 @@ TEST(Docs, EveryPathOfTheSourceTheyNameExists) {
     for (std::sregex_iterator it(text.begin(), text.end(), path_re), none; it != none; ++it) {
       std::string p = (*it)[1];
       while (!p.empty() && std::string(".,;:").find(p.back()) != std::string::npos) p.pop_back();
-      if (p.find_first_of("*<>") != std::string::npos || p.rfind("src/pbrt/", 0) == 0 || p.rfind("src/gui/", 0) == 0 || p.find("/out/") != std::string::npos ||
-          std::regex_search(p, placeholder_re))
+      if (p.find_first_of("*<>") != std::string::npos || p.rfind("src/pbrt/", 0) == 0 || p.rfind("src/gui/", 0) == 0 ||
+          p.find("/out/") != std::string::npos || std::regex_search(p, placeholder_re))
         continue;
       std::vector<std::string> candidates = {p};
       std::smatch m;
       if (std::regex_match(p, m, braces_re)) {
         candidates.clear();
         std::stringstream alternatives(m[2].str());
-        for (std::string alt; std::getline(alternatives, alt, ',');) candidates.push_back(m[1].str() + alt + m[3].str());
+        for (std::string alt; std::getline(alternatives, alt, ',');)
+          candidates.push_back(m[1].str() + alt + m[3].str());
       }
       for (const std::string& c : candidates) {
         EXPECT_TRUE(fs::exists(root / c)) << page.filename() << " names " << c << ", which does not exist";
@@ -87,7 +88,8 @@ TEST(Docs, TheArchitectureMapNamesEverySourceFile) {
       if (ext != ".h" && ext != ".cpp" && ext != ".py") continue;
       const std::string stem = e.path().stem().string();
       const std::regex word("(^|[^A-Za-z0-9_])" + stem + "($|[^A-Za-z0-9_])");
-      EXPECT_TRUE(std::regex_search(map, word)) << "docs/architecture.md does not name " << e.path().lexically_relative(root);
+      EXPECT_TRUE(std::regex_search(map, word))
+          << "docs/architecture.md does not name " << e.path().lexically_relative(root);
       ++checked;
     }
   }

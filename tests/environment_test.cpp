@@ -33,7 +33,9 @@ struct ShotScene {
              {"camera", {{"eye", {0, 1, 0}}, {"look", {0, 1, -1}}, {"hfov_deg", 60}}},
              {"environment", {{"shots", shots}}}};
   }
-  LoadedScene load(const nlohmann::json& j) const { return load_scene(parse_scene_file(dir.write("scene.json", j.dump()))); }
+  LoadedScene load(const nlohmann::json& j) const {
+    return load_scene(parse_scene_file(dir.write("scene.json", j.dump())));
+  }
 };
 
 // Shots at 1/30 s, photo at 1/120 s: the same pixel value means 4× the radiance in the shots'
@@ -63,7 +65,7 @@ TEST(Exposure, FactorEstimateAndRequiredExif) {
     s.load(j);
     FAIL();
   } catch (const InputError& err) {
-    EXPECT_NE(err.what() + std::string(), std::string()) ;
+    EXPECT_NE(err.what() + std::string(), std::string());
     EXPECT_NE(std::string(err.what()).find("no exposure time in its EXIF"), std::string::npos) << err.what();
   }
 }

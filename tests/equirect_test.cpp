@@ -51,15 +51,23 @@ TEST(Equirect, RealHdriBrightestDirectionSurvivesConversion) {
   float best = -1;
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x)
-      if (luminance(img.rgb(x, y)) > best) { best = luminance(img.rgb(x, y)); bx = x; by = y; }
-  const Vec3f d_sun = equirect_to_direction((float(bx) + 0.5f) / float(img.width), (float(by) + 0.5f) / float(img.height));
+      if (luminance(img.rgb(x, y)) > best) {
+        best = luminance(img.rgb(x, y));
+        bx = x;
+        by = y;
+      }
+  const Vec3f d_sun =
+      equirect_to_direction((float(bx) + 0.5f) / float(img.width), (float(by) + 0.5f) / float(img.height));
   const CubeMap cube = cube_from_equirect(img, 64);
   Vec3f d_best = Vec3f::Zero();
   best = -1;
   for (int f = 0; f < 6; ++f)
     for (int j = 0; j < 64; ++j)
       for (int i = 0; i < 64; ++i)
-        if (luminance(cube.texel(f, i, j)) > best) { best = luminance(cube.texel(f, i, j)); d_best = texel_direction(f, i, j, 64); }
+        if (luminance(cube.texel(f, i, j)) > best) {
+          best = luminance(cube.texel(f, i, j));
+          d_best = texel_direction(f, i, j, 64);
+        }
   // A texel of a 64² face spans at most ~1.8°; the equirect pixel 0.7°.
   EXPECT_GT(d_sun.dot(d_best), std::cos(4.0f * kPiF / 180.0f));
 }

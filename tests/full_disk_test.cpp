@@ -27,8 +27,9 @@ constexpr int kLimitBlocks = 16;
 
 test::CliRun run_on_a_small_disk(const test::TempDir& dir, const std::string& args) {
   const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
-  const int status = test::run_with_leak_check(fmt::format("ulimit -f {}; ", kLimitBlocks),
-                                               std::string(INSITU_BINARY) + " " + args + " < /dev/null > " + out + " 2> " + err, err);
+  const int status =
+      test::run_with_leak_check(fmt::format("ulimit -f {}; ", kLimitBlocks),
+                                std::string(INSITU_BINARY) + " " + args + " < /dev/null > " + out + " 2> " + err, err);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, test::slurp(out), test::slurp(err)};
 }
 
@@ -52,10 +53,11 @@ TEST(FullDisk, NoImageFormatGetsItsNameWhenTheDiskIsFull) {
   SceneFixture fx = noisy_scene();
   // The arguments, and the output written first (the layers come before the image).
   const std::string out = fx.dir.file("out");
-  const std::vector<std::pair<std::string, std::string>> cases = {{"-o " + out + "/c.png --layers none", "c.png"},
-                                                                   {"-o " + out + "/c.jpg --layers none", "c.jpg"},
-                                                                   {"-o " + out + "/c.exr --layers none", "c.exr"},
-                                                                   {"-o " + out + "/c.png --layers " + out + "/l.exr", "l.exr"}};
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"-o " + out + "/c.png --layers none", "c.png"},
+      {"-o " + out + "/c.jpg --layers none", "c.jpg"},
+      {"-o " + out + "/c.exr --layers none", "c.exr"},
+      {"-o " + out + "/c.png --layers " + out + "/l.exr", "l.exr"}};
   for (const auto& [args, first] : cases) {
     fs::remove_all(out);
     const test::CliRun r = run_on_a_small_disk(fx.dir, "render " + fx.dir.file("scene.json") + " " + args);

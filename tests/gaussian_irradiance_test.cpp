@@ -38,7 +38,6 @@ Image reference_blur(const Image& face, int k) {
   return out;
 }
 
-
 TEST(LegacyGaussian, KernelAsWideAsTheFace) {
   EXPECT_EQ(legacy_kernel_size(1), 1);
   EXPECT_EQ(legacy_kernel_size(8), 7);
@@ -59,7 +58,8 @@ TEST(LegacyGaussian, MatchesTheDirectSumOnEveryFace) {
     for (int f = 0; f < 6; ++f) {
       const Image ref = reference_blur(cube.face_image(f), legacy_kernel_size(n));
       const Image got = blurred.face_image(f);
-      for (std::size_t i = 0; i < ref.data.size(); ++i) ASSERT_NEAR(got.data[i], ref.data[i], 1e-4f) << "n " << n << " face " << f;
+      for (std::size_t i = 0; i < ref.data.size(); ++i)
+        ASSERT_NEAR(got.data[i], ref.data[i], 1e-4f) << "n " << n << " face " << f;
     }
   }
 }

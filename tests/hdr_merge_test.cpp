@@ -30,7 +30,6 @@ ImageFile expose(const Image& radiance, double k, const std::string& name) {
   return f;
 }
 
-
 // Brackets synthesized from a real HDR through the known response recover it, up to one global
 // scale (the response's). 8-bit rounding moves a bracket's X by up to 2.2·0.5/Z (1.7% at Z = 64);
 // Debevec's weighted log-average of the brackets and the fitted response add to that. Merging with

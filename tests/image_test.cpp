@@ -112,14 +112,22 @@ TEST(Image, GreyIsRepeatedIntoRgb) {
 // tag's definition (TIFF 6.0, tag 274: which visual side the 0th row and the 0th column are).
 std::pair<int, int> shown_at(int o, int x, int y, int w, int h) {
   switch (o) {
-    case 2: return {w - 1 - x, y};          // row 0 top, column 0 right: mirrored
-    case 3: return {w - 1 - x, h - 1 - y};  // row 0 bottom, column 0 right: turned 180°
-    case 4: return {x, h - 1 - y};          // row 0 bottom, column 0 left: flipped
-    case 5: return {y, x};                  // row 0 left, column 0 top: transposed
-    case 6: return {h - 1 - y, x};          // row 0 right, column 0 top: turned 90° clockwise
-    case 7: return {h - 1 - y, w - 1 - x};  // row 0 right, column 0 bottom: transverse
-    case 8: return {y, w - 1 - x};          // row 0 left, column 0 bottom: turned 90° anticlockwise
-    default: return {x, y};
+    case 2:
+      return {w - 1 - x, y};  // row 0 top, column 0 right: mirrored
+    case 3:
+      return {w - 1 - x, h - 1 - y};  // row 0 bottom, column 0 right: turned 180°
+    case 4:
+      return {x, h - 1 - y};  // row 0 bottom, column 0 left: flipped
+    case 5:
+      return {y, x};  // row 0 left, column 0 top: transposed
+    case 6:
+      return {h - 1 - y, x};  // row 0 right, column 0 top: turned 90° clockwise
+    case 7:
+      return {h - 1 - y, w - 1 - x};  // row 0 right, column 0 bottom: transverse
+    case 8:
+      return {y, w - 1 - x};  // row 0 left, column 0 bottom: turned 90° anticlockwise
+    default:
+      return {x, y};
   }
 }
 
@@ -151,7 +159,8 @@ TEST(Image, ExifOrientationIsApplied) {
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
         const auto [xs, ys] = shown_at(o, x, y, w, h);
-        ASSERT_TRUE((tagged.stored.rgb(xs, ys) == plain.stored.rgb(x, y)).all()) << "orientation " << o << " at " << x << "," << y;
+        ASSERT_TRUE((tagged.stored.rgb(xs, ys) == plain.stored.rgb(x, y)).all())
+            << "orientation " << o << " at " << x << "," << y;
       }
   }
 }
@@ -171,9 +180,7 @@ bool reset_peak_rss() { return bool(std::ofstream("/proc/self/clear_refs") << "5
 // implies (what the fuzzer found). The peak resident size is measured from a reset before it.
 TEST(Image, TruncatedHugePngFailsWithoutAllocatingItsHeaderSize) {
   test::TempDir dir;
-  const auto be32 = [](std::uint32_t v) {
-    return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
-  };
+  const auto be32 = [](std::uint32_t v) { return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)}; };
   const auto chunk = [&](const std::string& type, const std::string& data) {
     const std::string body = type + data;
     return be32(std::uint32_t(data.size())) + body +
@@ -185,7 +192,8 @@ TEST(Image, TruncatedHugePngFailsWithoutAllocatingItsHeaderSize) {
   std::string deflated(compressBound(uLong(rows.size())), '\0');
   uLongf deflated_size = uLongf(deflated.size());
   ASSERT_EQ(compress(reinterpret_cast<Bytef*>(deflated.data()), &deflated_size,
-                     reinterpret_cast<const Bytef*>(rows.data()), uLong(rows.size())), Z_OK);
+                     reinterpret_cast<const Bytef*>(rows.data()), uLong(rows.size())),
+            Z_OK);
   deflated.resize(deflated_size);
   const std::string png = std::string("\x89PNG\r\n\x1a\n", 8) +
                           chunk("IHDR", be32(side) + be32(side) + std::string("\x08\x06\x00\x00\x00", 5)) +
@@ -217,7 +225,8 @@ std::string with_data_window(const std::string& path, std::int32_t width, std::i
 // pixels (64 megapixels of R, G, B float: 768 MB) in a few hundred bytes. Refused from its header,
 // naming the file, the size and the reason, before anything is decoded.
 std::string write_bomb(const test::TempDir& dir) {
-  write_with_oiio(dir.file("b.exr"), OIIO::ImageSpec(16, 8, 3, OIIO::TypeDesc::FLOAT), std::vector<float>(16 * 8 * 3, 0.8f));
+  write_with_oiio(dir.file("b.exr"), OIIO::ImageSpec(16, 8, 3, OIIO::TypeDesc::FLOAT),
+                  std::vector<float>(16 * 8 * 3, 0.8f));
   return with_data_window(dir.file("b.exr"), 7995408, 8);
 }
 
@@ -225,8 +234,8 @@ TEST(Image, DecompressionBombIsRefusedFromItsHeader) {
   test::TempDir dir;
   const std::string path = write_bomb(dir);
   ASSERT_FALSE(path.empty());
-  const std::string expected = fmt::format("7995408x8 pixels of 12 bytes (768 MB) in a file of {} bytes",
-                                           std::filesystem::file_size(path));
+  const std::string expected =
+      fmt::format("7995408x8 pixels of 12 bytes (768 MB) in a file of {} bytes", std::filesystem::file_size(path));
   try {
     read_image_file(path);
     FAIL() << "the bomb was read";
@@ -297,7 +306,8 @@ TEST(Image, ExrHeaderCoreCannotParseIsRefused) {
 // passed to OpenEXR, which reserved its line buffers: the image fuzzer's timeout on 2026-11-23).
 TEST(Image, ManyChannelBombIsRefusedInBytes) {
   test::TempDir dir;
-  write_with_oiio(dir.file("c.exr"), OIIO::ImageSpec(16, 8, 64, OIIO::TypeDesc::FLOAT), std::vector<float>(16 * 8 * 64, 0.5f));
+  write_with_oiio(dir.file("c.exr"), OIIO::ImageSpec(16, 8, 64, OIIO::TypeDesc::FLOAT),
+                  std::vector<float>(16 * 8 * 64, 0.5f));
   const std::string path = with_data_window(dir.file("c.exr"), 4096, 4096);
   ASSERT_FALSE(path.empty());
   try {

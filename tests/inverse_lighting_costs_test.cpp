@@ -20,7 +20,8 @@ using inverse_lighting_detail::relative_irradiance_cost;
 using inverse_lighting_detail::smoothing_cost;
 
 // Residual and Jacobians of both at `params`, equal to 1e-12 relative.
-void expect_same(ceres::CostFunction* fast_raw, ceres::CostFunction* slow_raw, const std::vector<std::vector<double>>& params) {
+void expect_same(ceres::CostFunction* fast_raw, ceres::CostFunction* slow_raw,
+                 const std::vector<std::vector<double>>& params) {
   const std::unique_ptr<ceres::CostFunction> fast(fast_raw), slow(slow_raw);
   ASSERT_EQ(fast->parameter_block_sizes(), slow->parameter_block_sizes());
   std::vector<const double*> p;

@@ -76,7 +76,8 @@ TEST(InverseLightingSolve, AStopEndsTheFit) {
   const std::vector<FitPixel> px = parts_a_degree_apart();
   const std::vector<int> source{0, 0};
   const std::atomic<bool> stop{true};
-  EXPECT_THROW(inverse_lighting_detail::solve(px, Columns{{0}, {1}}, reference_albedos(), &stop, nullptr, &source), Stopped);
+  EXPECT_THROW(inverse_lighting_detail::solve(px, Columns{{0}, {1}}, reference_albedos(), &stop, nullptr, &source),
+               Stopped);
   EXPECT_THROW(inverse_lighting_detail::solve(px, Columns{{0}, {1}}, reference_albedos(), &stop), Stopped);
 }
 

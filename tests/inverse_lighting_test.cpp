@@ -63,7 +63,8 @@ std::vector<Texel> texels_of(const CubeMap& cube) {
   for (int f = 0; f < 6; ++f)
     for (int j = 0; j < cube.size(); ++j)
       for (int i = 0; i < cube.size(); ++i)
-        out.push_back({texel_direction(f, i, j, cube.size()), float(texel_solid_angle(i, j, cube.size())), cube.texel(f, i, j)});
+        out.push_back(
+            {texel_direction(f, i, j, cube.size()), float(texel_solid_angle(i, j, cube.size())), cube.texel(f, i, j)});
   return out;
 }
 
@@ -110,7 +111,8 @@ struct BallsFloor {
     const long j = std::lround((y.z() - ball.center.z()) / cell) + kCells / 2;
     if (i < 0 || j < 0 || i >= kCells || j >= kCells) return rho(y) / kPiF * e_floor;
     std::optional<Rgb>& s = shadow[std::size_t(j * kCells + i)];
-    const Vec3f centre(ball.center.x() + float(i - kCells / 2) * cell, 0, ball.center.z() + float(j - kCells / 2) * cell);
+    const Vec3f centre(ball.center.x() + float(i - kCells / 2) * cell, 0,
+                       ball.center.z() + float(j - kCells / 2) * cell);
     if (!s) s = ball_shadow(in, truth, centre);
     return rho(y) / kPiF * (e_floor - *s).cwiseMax(0.0f);
   }
@@ -352,7 +354,9 @@ std::array<int, 3> sun_in_a_window(Fixture& fx) {
         const Vec3f d = texel_direction(f, i, j, kFace);
         if (d.x() >= 0) continue;
         const Vec3f hit = capture + (window.min.x() - capture.x()) / d.x() * d;
-        if (hit.y() < window.min.y() || hit.y() > window.max.y() || hit.z() < window.min.z() || hit.z() > window.max.z()) continue;
+        if (hit.y() < window.min.y() || hit.y() > window.max.y() || hit.z() < window.min.z() ||
+            hit.z() > window.max.z())
+          continue;
         fx.truth.set_texel(f, i, j, Rgb::Constant(1.0f));
         if (d.dot(sun_dir) > best) best = d.dot(sun_dir), sun = {f, i, j};
       }
@@ -456,7 +460,8 @@ TEST(InverseLighting, ASheetsAlbedoSetsTheScaleAsPhysicsSays) {
   open_plane_with_sheet(fx, 0.4f);
   const auto sources = find_clipped_sources(fx.mask, fx.clipped);
   ASSERT_EQ(sources.size(), 1u);
-  const double e_rest = luminance(irradiance_reference(with_scaled_sources(fx.clipped, sources, {0.0}), Vec3d(0, 1, 0)));
+  const double e_rest =
+      luminance(irradiance_reference(with_scaled_sources(fx.clipped, sources, {0.0}), Vec3d(0, 1, 0)));
   const double e_lamp = luminance(irradiance_reference(source_only(fx.clipped, sources[0]), Vec3d(0, 1, 0)));
   const double expected = 100 + e_rest / e_lamp;
   const InverseLightingResult r = recover_clipped_sources(fx.in);
@@ -509,7 +514,8 @@ TEST(InverseLighting, ASheetInARoomLeavesTheSunsPartToThePhoto) {
   ASSERT_GT(part->texels.texels.size(), 1u) << "the sun's part is the sun alone: nothing to smooth";
   double true_added = 0;
   for (const auto& [f, i, j] : part->texels.texels)
-    true_added += (luminance(fx.truth.texel(f, i, j)) - luminance(fx.clipped.texel(f, i, j))) * texel_solid_angle(i, j, kFace);
+    true_added +=
+        (luminance(fx.truth.texel(f, i, j)) - luminance(fx.clipped.texel(f, i, j))) * texel_solid_angle(i, j, kFace);
   const double added = (part->scale - 1) * part->texels.power;
   const double window_true = cube_power(fx.truth) - cube_power(fx.clipped);
   std::printf("sun's part (%zu texels): added %.4g of a true %.4g; window added %.4g of a true %.4g\n",
@@ -617,7 +623,8 @@ TEST(InverseLighting, AGreyBallOnAPlateOfItsOwn) {
   const InverseLightingResult wrong = recover_clipped_sources(t.fx.in);
   const auto [up, side] = TwoLamps::lamps(wrong);
   ASSERT_TRUE(up && side);
-  const bool right = up->determined && side->determined && std::abs(up->scale - 50) < 5 && std::abs(side->scale - 20) < 2;
+  const bool right =
+      up->determined && side->determined && std::abs(up->scale - 50) < 5 && std::abs(side->scale - 20) < 2;
   EXPECT_FALSE(right) << up->scale << " " << side->scale;
 }
 
@@ -653,7 +660,8 @@ TEST(InverseLighting, ABallsShadowIsWhatItsRaysMeet) {
   ASSERT_EQ(pixels.size(), 1u);
   EXPECT_NEAR(pixels[0].e0, luminance(expected_e0), 1e-4 * luminance(expected_e0));
   EXPECT_LT(pixels[0].ek[std::size_t(side)], 1e-6 * luminance(unshaded[std::size_t(side)])) << "the side lamp, hidden";
-  EXPECT_NEAR(pixels[0].ek[std::size_t(1 - side)], luminance(unshaded[std::size_t(1 - side)]), 1e-6) << "the lamp overhead";
+  EXPECT_NEAR(pixels[0].ek[std::size_t(1 - side)], luminance(unshaded[std::size_t(1 - side)]), 1e-6)
+      << "the lamp overhead";
   EXPECT_GT(luminance(unshaded[std::size_t(side)]), 0.01 * px.e0) << "a side lamp that lights the point unshaded";
 }
 
@@ -661,7 +669,8 @@ TEST(InverseLighting, ABallsShadowIsWhatItsRaysMeet) {
 // the ball's foot, × `dark` and × `light` (by default 0.06 and 0.54: 9× apart).
 FloorAlbedo checks(float offset_m, float size_m = 1, float dark = 0.2f, float light = 1.8f) {
   return [=](const Vec3f& p) {
-    const long i = std::lround(std::floor((p.x() + offset_m) / size_m)), j = std::lround(std::floor((p.z() + offset_m) / size_m));
+    const long i = std::lround(std::floor((p.x() + offset_m) / size_m)),
+               j = std::lround(std::floor((p.z() + offset_m) / size_m));
     return 0.3f * ((i + j) % 2 != 0 ? dark : light);
   };
 }

@@ -21,12 +21,14 @@ TEST(IrradianceAt, EveryModeFromOneFactory) {
   for (IrradianceMode mode : directional_irradiance_modes()) {
     const auto at = make_irradiance_at(mode, cube, std::nullopt, 8);
     const auto field = make_irradiance(mode, cube, 8);
-    for (const Vec3f& x : points) EXPECT_TRUE((at->irradiance(x, n) == field->irradiance(n)).all()) << irradiance_mode_name(mode);
+    for (const Vec3f& x : points)
+      EXPECT_TRUE((at->irradiance(x, n) == field->irradiance(n)).all()) << irradiance_mode_name(mode);
   }
   const auto volume = make_irradiance_at(IrradianceMode::kVolume, cube, kRoom, 8);
   const RoomLight room(cube, kRoom);
   const IrradianceVolume probes(room, kRoom);
-  for (const Vec3f& x : points) EXPECT_TRUE((volume->irradiance(x, n) == probes.irradiance(x, n)).all()) << x.transpose();
+  for (const Vec3f& x : points)
+    EXPECT_TRUE((volume->irradiance(x, n) == probes.irradiance(x, n)).all()) << x.transpose();
   EXPECT_FALSE((volume->irradiance(points[0], n) == volume->irradiance(points[1], n)).all()) << "the volume ignores x";
   EXPECT_THROW(make_irradiance_at(IrradianceMode::kVolume, cube, std::nullopt), std::invalid_argument);
 }

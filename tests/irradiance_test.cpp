@@ -46,7 +46,8 @@ TEST(Irradiance, ConstantEnvironmentGivesPiL) {
       const auto field = make_irradiance(mode, cube, 8);
       for (const Vec3d& nn : random_normals(50, 1)) {
         const Rgb E = field->irradiance(nn.cast<float>());
-        for (int c = 0; c < 3; ++c) EXPECT_NEAR(E[c], kPiF * L[c], 1e-5f * kPiF * L[c]) << irradiance_mode_name(mode) << " n " << n;
+        for (int c = 0; c < 3; ++c)
+          EXPECT_NEAR(E[c], kPiF * L[c], 1e-5f * kPiF * L[c]) << irradiance_mode_name(mode) << " n " << n;
       }
     }
     for (const Vec3d& nn : random_normals(5, 2)) EXPECT_NEAR(irradiance_reference(cube, nn)[2], kPiF * 7.0f, 1e-4f);
@@ -77,7 +78,8 @@ TEST(Irradiance, OneLitFaceAgainstAnalyticForm) {
   EXPECT_NEAR(irradiance_reference(cube, {0, 1, 0})[0], howell, 1e-6 * howell);
   const CubeMap exact = exact_irradiance_cube(cube, 9);  // odd: +Y is a texel centre
   EXPECT_NEAR(exact.texel(kPosY, 4, 4)[0], howell, 1e-6 * howell);
-  for (const Vec3d& nn : {Vec3d(1, 1, 0).normalized(), Vec3d(0.3, 0.2, -0.9).normalized(), Vec3d(1, 0.05, 0).normalized()}) {
+  for (const Vec3d& nn :
+       {Vec3d(1, 1, 0).normalized(), Vec3d(0.3, 0.2, -0.9).normalized(), Vec3d(1, 0.05, 0).normalized()}) {
     double E = 0;
     const int q = 2000;
     for (int b = 0; b < q; ++b)
@@ -108,7 +110,8 @@ TEST(Irradiance, OneLitTexelWithHorizonClipping) {
     const int q = 1500;
     for (int b = 0; b < q; ++b)
       for (int c = 0; c < q; ++c) {
-        const Vec3d p = corners[0] + (corners[1] - corners[0]) * ((c + 0.5) / q) + (corners[3] - corners[0]) * ((b + 0.5) / q);
+        const Vec3d p =
+            corners[0] + (corners[1] - corners[0]) * ((c + 0.5) / q) + (corners[3] - corners[0]) * ((b + 0.5) / q);
         const double r2 = p.squaredNorm(), r = std::sqrt(r2);
         const double dA = (corners[1] - corners[0]).norm() * (corners[3] - corners[0]).norm() / (double(q) * q);
         E += std::max(0.0, nn.dot(p) / r) * dA * (std::abs(p.z()) / r) / r2;
@@ -126,7 +129,8 @@ TEST(Irradiance, AcceleratedExactMatchesBruteForce) {
     CubeMap cube(N);
     for (int f = 0; f < 6; ++f)
       for (int j = 0; j < N; ++j)
-        for (int i = 0; i < N; ++i) cube.set_texel(f, i, j, Rgb(u(rng), u(rng), u(rng)) * (u(rng) < 0.02f ? 1e5f : 1e-6f + u(rng)));
+        for (int i = 0; i < N; ++i)
+          cube.set_texel(f, i, j, Rgb(u(rng), u(rng), u(rng)) * (u(rng) < 0.02f ? 1e5f : 1e-6f + u(rng)));
     cube.update_borders();
     const int size = 7;
     const CubeMap exact = exact_irradiance_cube(cube, size);
@@ -181,7 +185,8 @@ TEST(Irradiance, Sh9WithinItsBoundOnRealHdris) {
     const float mean_E = 0.25f * luminance(sh.coeff[0]) / 0.282095f;
     double worst = 0;
     for (const Vec3d& nn : random_normals(60, 5)) {
-      const float err = std::abs(luminance(sh9_irradiance(sh, nn.cast<float>())) - luminance(irradiance_reference(cube, nn)));
+      const float err =
+          std::abs(luminance(sh9_irradiance(sh, nn.cast<float>())) - luminance(irradiance_reference(cube, nn)));
       worst = std::max(worst, double(err / mean_E));
     }
     EXPECT_LE(worst, 3.0 / 8.0) << name;

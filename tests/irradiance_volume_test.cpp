@@ -12,7 +12,9 @@
 namespace insitu {
 namespace {
 
-const RoomBox kBox{Vec3f(-2.5f, 0, -3), Vec3f(2.5f, 2.6f, 3), Vec3f(-0.2f, 0.9f, -1.2f),
+const RoomBox kBox{Vec3f(-2.5f, 0, -3),
+                   Vec3f(2.5f, 2.6f, 3),
+                   Vec3f(-0.2f, 0.9f, -1.2f),
                    {{0, Vec3f(-2.5f, 0.9f, -2.2f), Vec3f(-2.5f, 2.3f, -0.2f)}}};
 
 // A room of constant radiance L, window or not: E = π L at every point and normal, up to the noise
@@ -67,7 +69,8 @@ TEST(IrradianceVolume, ProjectionAgreesWithBruteForce) {
   }
   for (std::size_t m = 0; m < 9; ++m) {
     const double mean = sum[m] / count, se = std::sqrt((sum2[m] / count - mean * mean) / count);
-    const double e_mean = e_sum[m] / runs, e_se = std::sqrt(std::max(0.0, e_sum2[m] / runs - e_mean * e_mean) / (runs - 1));
+    const double e_mean = e_sum[m] / runs,
+                 e_se = std::sqrt(std::max(0.0, e_sum2[m] / runs - e_mean * e_mean) / (runs - 1));
     EXPECT_NEAR(e_mean, mean, 4 * std::hypot(se, e_se) + 1e-6) << "coefficient " << m;
   }
 }

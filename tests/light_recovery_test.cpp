@@ -106,12 +106,14 @@ TEST(LightRecovery, AReferenceOutsideThePhotoIsRefusedAndOneNotNeededIsWarnedOf)
   const CliRun bad = run_insitu(fx.dir, "render " + fx.write(j) + " -o " + fx.dir.file("out.exr") + " --layers none");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("$.references[0].polygon_px[1]: (48.5, 20) lies outside the photo (48 x 32 pixels)"),
-            std::string::npos) << bad.err;
+            std::string::npos)
+      << bad.err;
   auto hdr = fx.scene;
   hdr["references"] = {{{"polygon_px", {{10, 20}, {30, 20}, {30, 31}}}, {"albedo", 0.18}}};
   const CliRun ok = run_insitu(fx.dir, "render " + fx.write(hdr) + " -o " + fx.dir.file("out.exr") + " --layers none");
   ASSERT_EQ(ok.exit_code, 0) << ok.err;
-  EXPECT_NE(ok.err.find("$.references: nothing clipped in the environment: the references are not needed"), std::string::npos)
+  EXPECT_NE(ok.err.find("$.references: nothing clipped in the environment: the references are not needed"),
+            std::string::npos)
       << ok.err;
 }
 
@@ -121,7 +123,8 @@ TEST(LightRecovery, AReferencePlateIsReadAndOneOfAnotherSizeIsRefused) {
   SceneFixture fx;
   auto j = clipped_shots_scene(fx);
   fs::copy_file(fx.dir.file("photo.png"), fx.dir.file("plate.png"));
-  j["references"] = {{{"sphere", {{"center", {0.5, 0.2, -0.5}}, {"radius", 0.2}}}, {"albedo", 0.18}, {"photo", "plate.png"}}};
+  j["references"] = {
+      {{"sphere", {{"center", {0.5, 0.2, -0.5}}, {"radius", 0.2}}}, {"albedo", 0.18}, {"photo", "plate.png"}}};
   const CliRun ok = run_insitu(fx.dir, "render " + fx.write(j) + " -o " + fx.dir.file("out.exr") + " --layers none");
   ASSERT_EQ(ok.exit_code, 0) << ok.err;
   const auto light = light_of(fx, "out.exr.report.json");
@@ -133,7 +136,8 @@ TEST(LightRecovery, AReferencePlateIsReadAndOneOfAnotherSizeIsRefused) {
   const CliRun bad = run_insitu(fx.dir, "render " + fx.write(j) + " -o " + fx.dir.file("bad.exr") + " --layers none");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("$.references[0].photo: "), std::string::npos) << bad.err;
-  EXPECT_NE(bad.err.find("24 x 16 pixels, the photo 48 x 32: a plate is the photo's view"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("24 x 16 pixels, the photo 48 x 32: a plate is the photo's view"), std::string::npos)
+      << bad.err;
   EXPECT_FALSE(fs::exists(fx.dir.file("bad.exr")));
 }
 

@@ -16,7 +16,7 @@ TEST(Mesh, GoodQuadWithMaterial) {
   Warnings w;
   const Mesh m = load_obj(test_data("good_quad.obj"), w);
   EXPECT_TRUE(w.items.empty()) << w.items.front();
-  ASSERT_EQ(m.triangles.size(), 2u);  // the quad is fanned
+  ASSERT_EQ(m.triangles.size(), 2u);                    // the quad is fanned
   EXPECT_EQ(m.triangles[0].v[0], m.triangles[1].v[0]);  // a fan about the first corner: (1 2 3), (1 3 4)
   EXPECT_EQ(m.triangles[0].v[2], m.triangles[1].v[1]);
   // The files it was read from: the OBJ and the MTL it names (inputs no output may replace).
@@ -67,11 +67,11 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCase{"bad_normal_index.obj", ":5", "face normal index 2 out of range"},
                       // Found by the OBJ fuzzer: "v\r0 …" is a vertex to the scan, not to tinyobjloader.
                       BadCase{"bad_cr_after_keyword.obj", ":4", "face index out of range"},
-                      BadCase{"no_faces.obj", "", "no triangles"},
-                      BadCase{"no_such_file.obj", "", "not found"}),
+                      BadCase{"no_faces.obj", "", "no triangles"}, BadCase{"no_such_file.obj", "", "not found"}),
     [](const auto& p) {
       std::string n = p.param.file;
-      for (auto& ch : n) if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      for (auto& ch : n)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
       return n;
     });
 
@@ -100,14 +100,15 @@ TEST(Mesh, DegenerateTrianglesAreDroppedAndCounted) {
 TEST(Mesh, CopiesOfATriangleAreDroppedAndCounted) {
   test::TempDir dir;
   std::string obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1 0 0\nf 1 2 3\nf 1 3 4\n";  // lines 6, 7
-  const char* copies[] = {"f 1 2 3\n", "f 3 2 1\n", "f 2 3 1\n", "f 1 5 3\n"};  // v 5 is v 2's position
+  const char* copies[] = {"f 1 2 3\n", "f 3 2 1\n", "f 2 3 1\n", "f 1 5 3\n"};          // v 5 is v 2's position
   for (int i = 0; i < 100000; ++i) obj += copies[i % 4];
   Warnings w;
   const Mesh m = load_obj(dir.write("copies.obj", obj), w);
   EXPECT_EQ(m.triangles.size(), 2u);
   ASSERT_EQ(w.items.size(), 1u);
   EXPECT_NE(w.items[0].find("100000 triangle(s) dropped that repeat another's three corners exactly (first at line 8)"),
-            std::string::npos) << w.items[0];
+            std::string::npos)
+      << w.items[0];
 }
 
 TEST(Mesh, RelativeIndices) {

@@ -86,8 +86,9 @@ TEST(ObjectUncertainty, NinetyFivePercentRadiusCoversTheTrueErrorAtTheFurniture)
   const Coverage c = simulate(trials, 1401);
   ASSERT_GT(c.corners, 8 * trials * 9 / 10);
   const double with_model = double(c.within_radius) / c.corners, noise_only = double(c.within_noise_radius) / c.corners;
-  std::printf("corners %d: covered by r95 %.1f %%, by the noise-only r95 %.1f %%; sofa outside the clicks' span in %d trials\n",
-              c.corners, 100 * with_model, 100 * noise_only, c.objects_outside);
+  std::printf(
+      "corners %d: covered by r95 %.1f %%, by the noise-only r95 %.1f %%; sofa outside the clicks' span in %d trials\n",
+      c.corners, 100 * with_model, 100 * noise_only, c.objects_outside);
   EXPECT_GE(with_model, 0.90);
   EXPECT_LT(noise_only, 0.90);
   EXPECT_GT(c.objects_outside, trials * 9 / 10);  // the sofa is nearer than every click
@@ -114,7 +115,8 @@ TEST(ObjectUncertainty, TheInsertionPointGetsTheObjectsFigure) {
     within_noise += error_px <= r.insertion_noise_radius95_px;
   }
   ASSERT_GT(trials, 100);
-  std::printf("insertion point: covered by r95 in %d of %d rooms, by the noise alone in %d\n", within, trials, within_noise);
+  std::printf("insertion point: covered by r95 in %d of %d rooms, by the noise alone in %d\n", within, trials,
+              within_noise);
   EXPECT_GE(within, trials * 9 / 10);
   EXPECT_LT(within_noise, trials * 9 / 10);
 }

@@ -42,8 +42,11 @@ TEST(Path, WhiteFurnaceAtEveryScale) {
     // and a door: the same (the room's mixture of wall and portal samples is unbiased).
     RenderInputs in_room = in;
     const float m = float(scale);
-    in_room.room = RoomBox{Vec3f(-6, -6, -6) * m, Vec3f(6, 6, 7) * m, Vec3f(1.5f, 0.5f, -2) * m,
-                           {{0, Vec3f(-6, -1, -3) * m, Vec3f(-6, 3, 2) * m}, {2, Vec3f(1, -6, 7) * m, Vec3f(3, 0, 7) * m}}};
+    in_room.room =
+        RoomBox{Vec3f(-6, -6, -6) * m,
+                Vec3f(6, 6, 7) * m,
+                Vec3f(1.5f, 0.5f, -2) * m,
+                {{0, Vec3f(-6, -1, -3) * m, Vec3f(-6, 3, 2) * m}, {2, Vec3f(1, -6, 7) * m, Vec3f(3, 0, 7) * m}}};
     const auto path_room = make_integrator("path", in_room);
     const auto irr = make_integrator("irradiance", in);
     const std::vector<Ray> rays = {{Vec3f(0.3f, 0.2f, 5) * float(scale), Vec3f(-0.05f, 0.02f, -1).normalized()},
@@ -70,7 +73,10 @@ TEST(Path, ConvexObjectEqualsExactIrradiance) {
   in.objects = &box;
   in.environment = &env;
   const auto path = make_integrator("path", in);
-  const struct { Ray ray; Vec3d normal; } cases[] = {
+  const struct {
+    Ray ray;
+    Vec3d normal;
+  } cases[] = {
       {{Vec3f(0.2f, 0.1f, 5), Vec3f(0, 0, -1)}, {0, 0, 1}},
       {{Vec3f(0.1f, 5, -0.3f), Vec3f(0, -1, 0)}, {0, 1, 0}},
       {{Vec3f(-5, 0.2f, 0.4f), Vec3f(1, 0, 0)}, {-1, 0, 0}},
@@ -79,7 +85,8 @@ TEST(Path, ConvexObjectEqualsExactIrradiance) {
   for (std::size_t c = 0; c < 4; ++c) {
     const Estimate e = estimate(*path, cases[c].ray, 20000, c);
     const Rgb expected = Rgb(0.5f, 0.4f, 0.3f) * irradiance_reference(env, cases[c].normal) / kPiF;
-    for (int k = 0; k < 3; ++k) EXPECT_NEAR(e.mean[k], expected[k], 4 * e.se[k] + 1e-5f * expected[k]) << "case " << c << " channel " << k;
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(e.mean[k], expected[k], 4 * e.se[k] + 1e-5f * expected[k]) << "case " << c << " channel " << k;
   }
 }
 

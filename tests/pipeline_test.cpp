@@ -59,7 +59,8 @@ TEST(Demo, CalibratedCameraAgreesWithTheGeneratorsCamera) {
   const Vec3d eye_true(1.7, 1.45, 2.5);
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(s.camera.eye_world()[k], eye_true[k], 4 * c.sigma.eye_world[k]) << k;
   const Vec3d fwd_true = (Vec3d(-0.2, 0.45, -1.2) - eye_true).normalized();
-  EXPECT_LT(rad_to_deg(std::acos(std::min(1.0, fwd_true.dot(s.camera.forward_world())))), 4 * c.sigma.view_direction_deg);
+  EXPECT_LT(rad_to_deg(std::acos(std::min(1.0, fwd_true.dot(s.camera.forward_world())))),
+            4 * c.sigma.view_direction_deg);
   EXPECT_LT(c.rms_px, 1.5);
 }
 

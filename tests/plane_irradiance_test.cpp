@@ -9,7 +9,9 @@
 namespace insitu {
 namespace {
 
-const RoomBox kBox{Vec3f(-2.5f, 0, -3), Vec3f(2.5f, 2.6f, 3), Vec3f(-0.2f, 0.9f, -1.2f),
+const RoomBox kBox{Vec3f(-2.5f, 0, -3),
+                   Vec3f(2.5f, 2.6f, 3),
+                   Vec3f(-0.2f, 0.9f, -1.2f),
                    {{0, Vec3f(-2.5f, 0.9f, -2.2f), Vec3f(-2.5f, 2.1f, -0.6f)}}};
 
 // A closed room of constant radiance L, window or not, gives E = π L everywhere on the floor.

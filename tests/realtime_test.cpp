@@ -27,7 +27,8 @@ TEST(Realtime, ConstantEnvironmentGivesBaseColourTimesRadiance) {
   for (int j = 0; j < nv; ++j)
     for (int i = 0; i < nu; ++i) {
       const int a = j * (nu + 1) + i + 1, b = a + nu + 1;
-      obj += "f " + std::to_string(a) + " " + std::to_string(a + 1) + " " + std::to_string(b + 1) + " " + std::to_string(b) + "\n";
+      obj += "f " + std::to_string(a) + " " + std::to_string(a + 1) + " " + std::to_string(b + 1) + " " +
+             std::to_string(b) + "\n";
     }
   Warnings w;
   std::vector<Mesh> meshes;

@@ -52,7 +52,8 @@ TEST(Registry, FlatOrInTheIntegratorsOwnObject) {
   EXPECT_EQ(resolve("path", {{"path", {{"max_depth", 3}}}}).params, (json{{"max_depth", 3}}));
   // DESIGN.md's render.irradiance is the irradiance integrator's flat parameter; its object is too.
   EXPECT_EQ(resolve("irradiance", {{"irradiance", "sh9"}}).params, (json{{"irradiance", "sh9"}}));
-  EXPECT_EQ(resolve("irradiance", {{"irradiance", {{"irradiance", "gaussian"}}}}).params, (json{{"irradiance", "gaussian"}}));
+  EXPECT_EQ(resolve("irradiance", {{"irradiance", {{"irradiance", "gaussian"}}}}).params,
+            (json{{"irradiance", "gaussian"}}));
 }
 
 TEST(Registry, ErrorsNameTheKey) {
@@ -67,14 +68,16 @@ TEST(Registry, ErrorsNameTheKey) {
   std::string blocks;
   for (const auto& e : integrator_registry()) blocks += std::string(blocks.empty() ? "" : ", ") + e.name;
   EXPECT_NE(error_of("path", {{"max_dept", 4}}).find("; or an integrator's object of parameters: " + blocks + ")"),
-            std::string::npos) << error_of("path", {{"max_dept", 4}});
+            std::string::npos)
+      << error_of("path", {{"max_dept", 4}});
   EXPECT_EQ(error_of("path", {{"max_depth", 0}}), "scene.json:$.render.max_depth: 0 is out of range [1, 1000]");
   EXPECT_EQ(error_of("path", {{"irradiance", "best"}}),
             "scene.json:$.render.irradiance: expected \"gaussian\", \"sh9\", \"exact\" or \"volume\"");
   EXPECT_EQ(error_of("raytrace", json::object()),
             "scene.json:$.render.integrator: unknown integrator 'raytrace' (known: realtime, irradiance, path)");
   // Another integrator's unknown key is refused too: a typo never waits for the day it is used.
-  EXPECT_NE(error_of("realtime", {{"path", {{"depth", 4}}}}).find("$.render.path.depth: unknown key"), std::string::npos);
+  EXPECT_NE(error_of("realtime", {{"path", {{"depth", 4}}}}).find("$.render.path.depth: unknown key"),
+            std::string::npos);
 }
 
 TEST(Registry, AnotherIntegratorsParametersAreWarnedOf) {
@@ -167,7 +170,8 @@ TEST_P(EveryIntegrator, FurnaceConvexObjectReflectsAlbedoTimesRadiance) {
       sum2 += x * x;
     }
     const Eigen::Array3d mean = sum / n, se = ((sum2 / n - mean * mean).max(0.0) / n).sqrt();
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c], expected[c], 4 * se[c] + 1e-3 * expected[c]) << "ray " << r << " channel " << c;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(mean[c], expected[c], 4 * se[c] + 1e-3 * expected[c]) << "ray " << r << " channel " << c;
   }
 }
 

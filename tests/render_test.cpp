@@ -51,7 +51,8 @@ TEST(Render, DepthIsCameraSpaceZAndNoHitIsDocumented) {
     const double big = 1e30;
     double x_lo = -big, x_hi = big, z_lo = -big, z_hi = big;
     if (box) {
-      j["environment"] = {{"image", "env.exr"}, {"room_box", {{"min", {-1, 0, -4}}, {"max", {2, 2.5, 2}}, {"capture", {0.5, 1, 0}}}}};
+      j["environment"] = {{"image", "env.exr"},
+                          {"room_box", {{"min", {-1, 0, -4}}, {"max", {2, 2.5, 2}}, {"capture", {0.5, 1, 0}}}}};
       x_lo = -1, x_hi = 2, z_lo = -4, z_hi = 2;
     }
     const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
@@ -86,8 +87,10 @@ TEST(Render, DepthIsCameraSpaceZAndNoHitIsDocumented) {
         }
       }
     EXPECT_GT(floor_pixels, 100);
-    if (box) EXPECT_GT(wall_pixels, 20) << "the view should show the walls";
-    else EXPECT_GT(empty_pixels, 20) << "the view should show some sky";
+    if (box)
+      EXPECT_GT(wall_pixels, 20) << "the view should show the walls";
+    else
+      EXPECT_GT(empty_pixels, 20) << "the view should show some sky";
   }
 }
 
@@ -136,8 +139,8 @@ TEST(Render, EveryLayerIsFiniteAtTheExtremes) {
   ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()));
   ASSERT_EQ(spec.nchannels, 28);
   for (std::size_t i = 0; i < pixels.size(); ++i)
-    ASSERT_TRUE(std::isfinite(pixels[i])) << "channel " << spec.channelnames[i % std::size_t(spec.nchannels)] << ", pixel "
-                                          << i / std::size_t(spec.nchannels);
+    ASSERT_TRUE(std::isfinite(pixels[i])) << "channel " << spec.channelnames[i % std::size_t(spec.nchannels)]
+                                          << ", pixel " << i / std::size_t(spec.nchannels);
 }
 
 // The variance layer predicts the spread between renders with different seeds: for independent

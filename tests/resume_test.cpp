@@ -35,8 +35,12 @@ LoadedScene fixture_scene(SceneFixture& fx, int spp) {
 
 void expect_same_layers(const RenderLayers& a, const RenderLayers& b) {
   EXPECT_EQ(a.spp_done, b.spp_done);
-  for (const auto& [x, y] : {std::pair{&a.objects, &b.objects}, {&a.alpha, &b.alpha}, {&a.with_objects, &b.with_objects},
-                             {&a.without_objects, &b.without_objects}, {&a.variance, &b.variance}, {&a.depth, &b.depth},
+  for (const auto& [x, y] : {std::pair{&a.objects, &b.objects},
+                             {&a.alpha, &b.alpha},
+                             {&a.with_objects, &b.with_objects},
+                             {&a.without_objects, &b.without_objects},
+                             {&a.variance, &b.variance},
+                             {&a.depth, &b.depth},
                              {&a.ratio_variance, &b.ratio_variance}})
     EXPECT_EQ(x->data, y->data);
   EXPECT_EQ(a.mean_relative_noise, b.mean_relative_noise);
@@ -63,9 +67,11 @@ TEST(Resume, StoppedAndContinuedIsBitIdentical) {
   for (int stop_after : {3, 9, 21}) {  // pass ends at 3, 6, …, 24 samples
     std::atomic<bool> stop{false};
     RenderState state;
-    const RenderResult part = render_scene(s, [&](const RenderProgress& p) {
-      if (p.noise >= 0 && p.spp_done >= stop_after) stop = true;
-    }, {&stop, &state});
+    const RenderResult part = render_scene(s,
+                                           [&](const RenderProgress& p) {
+                                             if (p.noise >= 0 && p.spp_done >= stop_after) stop = true;
+                                           },
+                                           {&stop, &state});
     EXPECT_TRUE(part.layers.interrupted);
     EXPECT_EQ(part.layers.spp_done, stop_after);
     EXPECT_EQ(*part.layers.samples.at(0, 0), float(stop_after));
@@ -80,7 +86,7 @@ TEST(Resume, StoppedAndContinuedIsBitIdentical) {
 // others not (the samples layer says which); continued from the state, or from its checkpoint, to
 // the uninterrupted render's layers.
 TEST(Resume, StoppedBetweenTilesIsBitIdentical) {
-  SceneFixture fx(160, 96);  // 60 tiles: more than any machine's threads have in flight
+  SceneFixture fx(160, 96);                     // 60 tiles: more than any machine's threads have in flight
   const LoadedScene s = fixture_scene(fx, 16);  // passes of 2 samples
   const RenderResult whole = render_scene(s);
   const int tiles = tiles_across(fx.width) * tiles_across(fx.height);
@@ -89,9 +95,12 @@ TEST(Resume, StoppedBetweenTilesIsBitIdentical) {
     std::atomic<bool> stop{false};
     int tile_reports = 0;
     RenderState state;
-    const RenderResult part = render_scene(s, [&](const RenderProgress& p) {
-      if (p.noise < 0 && p.fraction > double(pass) / 8 && ++tile_reports == 2) stop = true;
-    }, {&stop, &state});
+    const RenderResult part = render_scene(s,
+                                           [&](const RenderProgress& p) {
+                                             if (p.noise < 0 && p.fraction > double(pass) / 8 && ++tile_reports == 2)
+                                               stop = true;
+                                           },
+                                           {&stop, &state});
     ASSERT_TRUE(part.layers.interrupted);
     EXPECT_EQ(state.passes_done, pass);
     EXPECT_GE(state.tiles_done, 2);
@@ -126,12 +135,16 @@ TEST(Resume, StoppedAtOnceLeavesWholeSamplesAndNoResumableState) {
   RenderState state;
   RenderControl control{&stop, &state};
   control.stop_at_once = true;
-  const RenderResult part = render_scene(s, [&](const RenderProgress&) {
-    if (!stopper.joinable()) stopper = std::thread([&] {
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-      stop = true;
-    });
-  }, control);
+  const RenderResult part = render_scene(
+      s,
+      [&](const RenderProgress&) {
+        if (!stopper.joinable())
+          stopper = std::thread([&] {
+            std::this_thread::sleep_for(std::chrono::milliseconds(100));
+            stop = true;
+          });
+      },
+      control);
   stopper.join();
   ASSERT_TRUE(part.layers.interrupted);
   EXPECT_FALSE(state.resumable);
@@ -322,7 +335,8 @@ TEST(Resume, KilledAtRandomMomentsResumesToTheSameImage) {
       const double left_s = wait_for_sample_loop(pid, fx.dir.file("bg.err"), &code);
       const int sig = attempt == 2 ? SIGKILL : (attempt % 2 ? SIGTERM : SIGINT);
       if (code < 0) {
-        std::this_thread::sleep_for(std::chrono::duration<double>(std::uniform_real_distribution<double>(0.0, 0.8)(rng) * left_s));
+        std::this_thread::sleep_for(
+            std::chrono::duration<double>(std::uniform_real_distribution<double>(0.0, 0.8)(rng) * left_s));
         kill(pid, sig);
         code = wait_for(pid);
       }
@@ -342,7 +356,8 @@ TEST(Resume, KilledAtRandomMomentsResumesToTheSameImage) {
       ASSERT_EQ(test::run_insitu(fx.dir, "render " + scene + " -o " + out + resume).exit_code, 0);
     }
     EXPECT_TRUE(exr_pixels(out) == exr_pixels(fx.dir.file("ref.exr"))) << "trial " << trial;
-    EXPECT_TRUE(exr_pixels(fx.dir.file("run" + std::to_string(trial) + ".layers.exr")) == exr_pixels(fx.dir.file("ref.layers.exr")))
+    EXPECT_TRUE(exr_pixels(fx.dir.file("run" + std::to_string(trial) + ".layers.exr")) ==
+                exr_pixels(fx.dir.file("ref.layers.exr")))
         << "trial " << trial;
     EXPECT_FALSE(std::filesystem::exists(out + ".checkpoint")) << "a finished render leaves no checkpoint";
   }
@@ -356,7 +371,8 @@ TEST(Resume, CheckpointOfOtherSettingsIsRefused) {
   j["render"] = {{"integrator", "path"}, {"spp", 8}};
   const std::string scene = fx.write(j);
   const std::string out = fx.dir.file("o.exr");
-  test::expect_one_line_error(test::run_insitu(fx.dir, "render " + scene + " -o " + out + " --resume"), "no checkpoint");
+  test::expect_one_line_error(test::run_insitu(fx.dir, "render " + scene + " -o " + out + " --resume"),
+                              "no checkpoint");
   // A checkpoint written for spp 8, resumed with spp 9.
   const LoadedScene s = load_scene(parse_scene_file(scene));
   std::atomic<bool> stop{true};

@@ -31,7 +31,8 @@ std::vector<RoomOpening> window_and_door() {
 
 struct Room {
   explicit Room(CubeMap c = test::random_cube(4, 11), std::vector<RoomOpening> openings = {})
-      : cube(std::move(c)), light(cube, RoomBox{Vec3f(-2.5f, 0, -3), Vec3f(2.5f, 2.6f, 3), Vec3f(-0.2f, 0.9f, -1.2f), openings}) {}
+      : cube(std::move(c)),
+        light(cube, RoomBox{Vec3f(-2.5f, 0, -3), Vec3f(2.5f, 2.6f, 3), Vec3f(-0.2f, 0.9f, -1.2f), openings}) {}
   CubeMap cube;
   EnvSampler env{cube};
   RoomLight light;
@@ -41,27 +42,27 @@ struct Room {
 // what radiance() finds along it: the sampler and the lookup describe one emitter.
 TEST(RoomLight, SampleAgreesWithPdfAndRadiance) {
   for (const bool openings : {false, true}) {
-  SCOPED_TRACE(openings ? "with openings" : "closed");
-  Room r(test::random_cube(4, 11), openings ? window_and_door() : std::vector<RoomOpening>{});
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<float> u(0, 1);
-  for (const Vec3f& x : {Vec3f(1.0f, 0.4f, 1.5f), Vec3f(-2.3f, 2.4f, 2.8f), Vec3f(-0.2f, 0.9f, -1.2f)}) {
-    int checked = 0;
-    for (int k = 0; k < 2000; ++k) {
-      const RoomSample s = r.light.sample(x, u(rng), u(rng), u(rng));
-      if (!(s.pdf > 0)) continue;
-      ++checked;
-      ASSERT_NEAR(s.pdf, r.light.pdf(x, s.dir), 2e-3f * s.pdf) << k;
-      // The sampled point and the box along the direction agree to float precision; a texel
-      // boundary may lie between them, so the radiance is compared where it is well inside.
-      float t = 0;
-      int axis = 0;
-      ASSERT_TRUE(r.light.exit(x, s.dir, &t, &axis));
-      ASSERT_NEAR(t, s.distance, 1e-4f * s.distance);
-      ASSERT_TRUE((s.radiance == r.light.radiance(x, s.dir)).all());
+    SCOPED_TRACE(openings ? "with openings" : "closed");
+    Room r(test::random_cube(4, 11), openings ? window_and_door() : std::vector<RoomOpening>{});
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(0, 1);
+    for (const Vec3f& x : {Vec3f(1.0f, 0.4f, 1.5f), Vec3f(-2.3f, 2.4f, 2.8f), Vec3f(-0.2f, 0.9f, -1.2f)}) {
+      int checked = 0;
+      for (int k = 0; k < 2000; ++k) {
+        const RoomSample s = r.light.sample(x, u(rng), u(rng), u(rng));
+        if (!(s.pdf > 0)) continue;
+        ++checked;
+        ASSERT_NEAR(s.pdf, r.light.pdf(x, s.dir), 2e-3f * s.pdf) << k;
+        // The sampled point and the box along the direction agree to float precision; a texel
+        // boundary may lie between them, so the radiance is compared where it is well inside.
+        float t = 0;
+        int axis = 0;
+        ASSERT_TRUE(r.light.exit(x, s.dir, &t, &axis));
+        ASSERT_NEAR(t, s.distance, 1e-4f * s.distance);
+        ASSERT_TRUE((s.radiance == r.light.radiance(x, s.dir)).all());
+      }
+      EXPECT_GT(checked, 1500);
     }
-    EXPECT_GT(checked, 1500);
-  }
   }
 }
 
@@ -118,7 +119,9 @@ TEST(RoomLight, ChiSquareAgainstThePdf) { chi_square_at(Room(mild_cube(4)), Vec3
 
 // With a window and a door, the mixture of wall, directional-portal and area-portal samples
 // (rejected draws included) against the mixture's pdf, at a point that sees both openings.
-TEST(RoomLight, ChiSquareWithOpenings) { chi_square_at(Room(mild_cube(4), window_and_door()), Vec3f(1.0f, 0.4f, 1.5f)); }
+TEST(RoomLight, ChiSquareWithOpenings) {
+  chi_square_at(Room(mild_cube(4), window_and_door()), Vec3f(1.0f, 0.4f, 1.5f));
+}
 
 // ∫ pdf dω = 1 at points across the room, with the spiky cube: Monte Carlo over uniform directions,
 // E[4π·pdf] = 1 within 4 standard errors.

@@ -112,7 +112,8 @@ TEST(Sampler, EveryPowerOfTwoPrefixIsANetInEachPair) {
         for (int a = 0; a <= m; ++a) {
           std::vector<int> cells(std::size_t(n), 0);
           for (const auto& p : points) {
-            const std::uint32_t cx = p[std::size_t(2 * pair)] >> (24 - a), cy = p[std::size_t(2 * pair + 1)] >> (24 - (m - a));
+            const std::uint32_t cx = p[std::size_t(2 * pair)] >> (24 - a),
+                                cy = p[std::size_t(2 * pair + 1)] >> (24 - (m - a));
             ++cells[(cx << (m - a)) | cy];
           }
           for (int c : cells) ASSERT_EQ(c, 1) << "pixel " << pixel << " m " << m << " pair " << pair << " a " << a;

@@ -8,7 +8,11 @@ namespace insitu {
 namespace {
 
 std::vector<Vec3f> test_normals() {
-  std::vector<Vec3f> ns = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, 0, -1}, Vec3f(0.9f, 0.1f, 0).normalized(),
+  std::vector<Vec3f> ns = {{1, 0, 0},
+                           {-1, 0, 0},
+                           {0, 1, 0},
+                           {0, 0, -1},
+                           Vec3f(0.9f, 0.1f, 0).normalized(),
                            Vec3f(0.89999f, 0.43589f, 0).normalized()};
   std::mt19937 rng(1);
   std::normal_distribution<float> g(0, 1);
@@ -50,7 +54,8 @@ TEST(Sampling, CosineSamplesFollowTheirPdf) {
     const Vec3f l = f.to_local(w);
     const float sin2 = std::clamp(1 - l.z() * l.z(), 0.0f, 1.0f);
     const float phi = std::atan2(l.y(), l.x()) + kPiF;
-    hist[std::size_t(std::min(int(sin2 * bins), bins - 1) * bins + std::min(int(phi / (2 * kPiF) * bins), bins - 1))] += 1;
+    hist[std::size_t(std::min(int(sin2 * bins), bins - 1) * bins + std::min(int(phi / (2 * kPiF) * bins), bins - 1))] +=
+        1;
   }
   const double expected = double(count) / (bins * bins);
   double chi2 = 0;

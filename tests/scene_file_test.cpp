@@ -52,8 +52,8 @@ TEST(SceneFile, TheReadmesFirstSceneIsOneInsituReads) {
   ASSERT_NE(end, std::string::npos);
   const json doc = json::parse(readme.substr(begin + 8, end - begin - 8));
   test::TempDir room;
-  for (const char* f : {"room.jpg", "points.json", "east.jpg", "west.jpg", "south.jpg", "north.jpg", "ceiling.jpg", "floor.jpg",
-                        "chair.obj"})
+  for (const char* f : {"room.jpg", "points.json", "east.jpg", "west.jpg", "south.jpg", "north.jpg", "ceiling.jpg",
+                        "floor.jpg", "chair.obj"})
     room.write(f, "");
   const SceneSpec spec = parse_scene_json(doc, "README.md", room.path().string());
   EXPECT_EQ(spec.camera.kind, CameraSpec::Kind::Points);
@@ -71,7 +71,7 @@ TEST(SceneFile, TheLayersFollowTheImage) {
     if (!output.is_null()) j["output"] = output;
     const OutputSpec o = parse_scene_file(fx.write(j)).output;
     return Paths{fs::path(o.image).lexically_relative(fx.dir.path()).string(),
-                     o.layers.empty() ? "" : fs::path(o.layers).lexically_relative(fx.dir.path()).string()};
+                 o.layers.empty() ? "" : fs::path(o.layers).lexically_relative(fx.dir.path()).string()};
   };
   EXPECT_EQ(outputs(nullptr), Paths("out/composite.png", "out/layers.exr"));
   EXPECT_EQ(outputs({{"image", "out/sofa.png"}}), Paths("out/sofa.png", "out/sofa.layers.exr"));
@@ -91,9 +91,7 @@ TEST(SceneFile, MalformedJsonNamesLineAndColumn) {
   }
 }
 
-TEST(SceneFile, MissingSceneFile) {
-  EXPECT_THROW(parse_scene_file("/nonexistent/scene.json"), InputError);
-}
+TEST(SceneFile, MissingSceneFile) { EXPECT_THROW(parse_scene_file("/nonexistent/scene.json"), InputError); }
 
 TEST(SceneFile, UnknownKeys) {
   SceneFixture fx;
@@ -225,8 +223,13 @@ TEST(SceneFile, MissingFilesAndKeys) {
   expect_error(fx, j, ":$", "missing required key 'camera'");
   // A missing "faced" says what it is (issue 46).
   j = fx.scene;
-  j["environment"] = {{"shots", {{"+x", "photo.png"}, {"-x", "photo.png"}, {"+z", "photo.png"}, {"-z", "photo.png"},
-                                 {"up", "photo.png"}, {"down", "photo.png"}}}};
+  j["environment"] = {{"shots",
+                       {{"+x", "photo.png"},
+                        {"-x", "photo.png"},
+                        {"+z", "photo.png"},
+                        {"-z", "photo.png"},
+                        {"up", "photo.png"},
+                        {"down", "photo.png"}}}};
   expect_error(fx, j, ":$.environment.shots", "the wall you faced when you shot the ceiling and the floor");
 }
 
@@ -236,7 +239,11 @@ TEST(SceneFile, AShotThatShrinksTheEnvironmentIsNamed) {
   SceneFixture fx;
   nlohmann::json shots = {{"faced", "-z"}};
   for (const char* k : {"+x", "-x", "+z", "-z", "up", "down"}) {
-    const std::string name = std::string("shot") + (k[0] == '+' ? "p" : k[0] == '-' ? "n" : "") + (k + (k[0] == '+' || k[0] == '-')) + ".png";
+    const std::string name = std::string("shot") +
+                             (k[0] == '+'   ? "p"
+                              : k[0] == '-' ? "n"
+                                            : "") +
+                             (k + (k[0] == '+' || k[0] == '-')) + ".png";
     write_image(fx.dir.file(name), Image(64, 64, 3, 0.4f));
     shots[k] = name;
   }
@@ -260,8 +267,10 @@ TEST(SceneFile, ContextIsNamedOnce) {
   const InputError inner("sh.json:$.shots.+x: bad.jpg", "cannot read image");
   EXPECT_EQ(inner.with_context("sh.json:$.shots.+x").where(), "sh.json:$.shots.+x: bad.jpg");
   EXPECT_EQ(inner.with_context("sh.json").where(), "sh.json:$.shots.+x: bad.jpg");
-  EXPECT_EQ(inner.with_context("batch.json:$.entries[0]").where(), "batch.json:$.entries[0]: sh.json:$.shots.+x: bad.jpg");
-  EXPECT_EQ(InputError("bad.jpg", "x").with_context("sh.json:$.shots.+x").what(), std::string("sh.json:$.shots.+x: bad.jpg: x"));
+  EXPECT_EQ(inner.with_context("batch.json:$.entries[0]").where(),
+            "batch.json:$.entries[0]: sh.json:$.shots.+x: bad.jpg");
+  EXPECT_EQ(InputError("bad.jpg", "x").with_context("sh.json:$.shots.+x").what(),
+            std::string("sh.json:$.shots.+x: bad.jpg: x"));
 }
 
 TEST(SceneFile, BadMeshErrorCarriesJsonPathAndObjLine) {
@@ -316,7 +325,7 @@ TEST(SceneFile, ExplicitIntrinsicsAndPose) {
   const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
   EXPECT_DOUBLE_EQ(s.camera.fy, 40.0);
   EXPECT_DOUBLE_EQ(s.camera.cx, 20.0);
-  EXPECT_DOUBLE_EQ(s.camera.cy, 16.0);  // the image centre by default
+  EXPECT_DOUBLE_EQ(s.camera.cy, 16.0);                            // the image centre by default
   j["camera"]["pose"]["R"] = {{1, 0, 0}, {0, 1, 0}, {0, 0, -1}};  // a reflection
   expect_error(fx, j, ":$.camera.pose.R", "not a rotation");
 }
@@ -357,7 +366,8 @@ TEST(SceneFile, RotationRoundedByAnExporterIsAccepted) {
 TEST(SceneFile, ExactRotationGivesNoWarning) {
   SceneFixture fx;
   auto j = fx.scene;
-  j["camera"] = {{"intrinsics", {{"fx", 40.0}}}, {"pose", {{"R", {{1, 0, 0}, {0, -1, 0}, {0, 0, -1}}}, {"t", {0, 0, 3}}}}};
+  j["camera"] = {{"intrinsics", {{"fx", 40.0}}},
+                 {"pose", {{"R", {{1, 0, 0}, {0, -1, 0}, {0, 0, -1}}}, {"t", {0, 0, 3}}}}};
   const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
   for (const auto& w : s.warnings.items) EXPECT_EQ(w.find("rotation"), std::string::npos) << w;
 }
@@ -386,13 +396,15 @@ TEST(SceneFile, MessagesNameTheRealMistake) {
 TEST(SceneFile, TinyFocalLengthIsWarned) {
   SceneFixture fx;
   auto j = fx.scene;
-  j["camera"] = {{"intrinsics", {{"fx", 1e-9}}}, {"pose", {{"R", {{1, 0, 0}, {0, -1, 0}, {0, 0, -1}}}, {"t", {0, 0, 3}}}}};
+  j["camera"] = {{"intrinsics", {{"fx", 1e-9}}},
+                 {"pose", {{"R", {{1, 0, 0}, {0, -1, 0}, {0, 0, -1}}}, {"t", {0, 0, 3}}}}};
   const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
   bool warned = false;
   for (const auto& w : s.warnings.items) warned |= w.find("field of view of 180.0°") != std::string::npos;
   EXPECT_TRUE(warned);
   j["camera"]["intrinsics"]["fx"] = 40.0;
-  for (const auto& w : load_scene(parse_scene_file(fx.write(j))).warnings.items) EXPECT_EQ(w.find("field of view"), std::string::npos);
+  for (const auto& w : load_scene(parse_scene_file(fx.write(j))).warnings.items)
+    EXPECT_EQ(w.find("field of view"), std::string::npos);
 }
 
 // An object that covers no pixel is worth a warning; one in view is not.
@@ -424,8 +436,10 @@ TEST(SceneFile, NoObjectsReproducesThePhotoBitForBit) {
   SceneFixture fx;
   for (int variant = 0; variant < 2; ++variant) {
     auto j = fx.scene;
-    if (variant == 0) j["objects"] = nlohmann::json::array();
-    else j["objects"][0]["translate"] = {0, 0, 50};  // behind the camera
+    if (variant == 0)
+      j["objects"] = nlohmann::json::array();
+    else
+      j["objects"][0]["translate"] = {0, 0, 50};  // behind the camera
     j["output"] = {{"image", "out/composite.png"}};
     const LoadedScene s = load_scene(parse_scene_file(fx.write(j)));
     const RenderResult r = render_scene(s);

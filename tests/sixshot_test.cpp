@@ -73,7 +73,12 @@ TEST_P(SixShotFaced, ReassemblesTheEnvironment) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryFacedWall, SixShotFaced, ::testing::Values(kPosX, kNegX, kPosZ, kNegZ),
-                         [](const auto& p) { return std::string("faced_") + (p.param == kPosX ? "px" : p.param == kNegX ? "nx" : p.param == kPosZ ? "pz" : "nz"); });
+                         [](const auto& p) {
+                           return std::string("faced_") + (p.param == kPosX   ? "px"
+                                                           : p.param == kNegX ? "nx"
+                                                           : p.param == kPosZ ? "pz"
+                                                                              : "nz");
+                         });
 
 // The same through the scene file's front/right/back/left form: shots written as EXR files,
 // front given by front_axis, the faced wall named "front" / "right" / "back" / "left".
@@ -82,7 +87,12 @@ TEST(SixShot, FrontRightBackLeftFormInTheSceneFile) {
   const Image env = linearize(read_image_file(test::shared_data() + "/hdri/apartment.exr"));
   const int n = 24;
   test::TempDir dir;
-  struct Form { const char* front_axis; const char* faced_name; int faced; int walls[4]; };
+  struct Form {
+    const char* front_axis;
+    const char* faced_name;
+    int faced;
+    int walls[4];
+  };
   // Turning right (clockwise from above): −z → +x → +z → −x.
   const Form forms[] = {{"-z", "front", kNegZ, {kNegZ, kPosX, kPosZ, kNegX}},
                         {"+x", "right", kPosZ, {kPosX, kPosZ, kNegX, kNegZ}},
@@ -121,7 +131,10 @@ TEST(SixShot, NorthShotIsMirroredOntoItsFace) {
   const int n = 4;
   ShotSet set;
   set.faced_face = kNegZ;
-  for (int f = 0; f < 6; ++f) { set.shots[f] = Image(n, n, 3, 0.0f); set.names[f] = face_name(f); }
+  for (int f = 0; f < 6; ++f) {
+    set.shots[f] = Image(n, n, 3, 0.0f);
+    set.names[f] = face_name(f);
+  }
   set.shots[kNegZ].set_rgb(n - 1, 0, Rgb(1, 2, 3));  // top-right pixel of the north photo
   const CubeMap cube = assemble_cube(set, n);
   EXPECT_TRUE(cube.texel(kNegZ, 0, 0).isApprox(Rgb(1, 2, 3)));
@@ -137,7 +150,10 @@ TEST(SixShot, NorthShotIsMirroredOntoItsFace) {
 TEST(SixShot, LargeShotsAreFilteredDownToTheFace) {
   // A 4096² shot of a constant radiance onto a 16² face stays that constant (through OIIO resize).
   ShotSet set;
-  for (int f = 0; f < 6; ++f) { set.shots[f] = Image(f == 0 ? 4096 : 16, f == 0 ? 4096 : 16, 3, 0.25f); set.names[f] = face_name(f); }
+  for (int f = 0; f < 6; ++f) {
+    set.shots[f] = Image(f == 0 ? 4096 : 16, f == 0 ? 4096 : 16, 3, 0.25f);
+    set.names[f] = face_name(f);
+  }
   EXPECT_EQ(natural_face_size(set), 16);
   const CubeMap cube = assemble_cube(set, 16);
   for (int j = 0; j < 16; ++j)
@@ -228,7 +244,10 @@ TEST(SixShot, FillIsSmoothAndBounded) {
 
 TEST(SixShot, AShotThatCoversNothingIsAnErrorNamingIt) {
   ShotSet set;
-  for (int f = 0; f < 6; ++f) { set.shots[std::size_t(f)] = Image(8, 8, 3, 1.0f); set.names[std::size_t(f)] = std::string("shot") + face_name(f) + ".jpg"; }
+  for (int f = 0; f < 6; ++f) {
+    set.shots[std::size_t(f)] = Image(8, 8, 3, 1.0f);
+    set.names[std::size_t(f)] = std::string("shot") + face_name(f) + ".jpg";
+  }
   set.hfov_deg[kPosZ] = 0.5;  // a pinhole's worth: no texel centre falls inside
   try {
     assemble_cube(set, 8);
@@ -263,11 +282,13 @@ TEST(SixShot, TurnedShotsAreTurnedBackWithTheirFieldOfView) {
   for (int f = 0; f < 6; ++f) {
     const Image shot = render_shot(radiance, f, kNegZ, hfov_deg, 160, 120);
     const int k = f % 4;  // every turn, and one of each twice
-    const std::string a = std::string("plain") + std::to_string(f) + ".exr", b = std::string("turned") + std::to_string(f) + ".exr";
+    const std::string a = std::string("plain") + std::to_string(f) + ".exr",
+                      b = std::string("turned") + std::to_string(f) + ".exr";
     write_image(dir.file(a), shot);
     write_image(dir.file(b), turned_counter_clockwise(shot, k));
     plain[keys[f]] = {{"file", a}, {"hfov_deg", hfov_deg}};
-    const double stored_hfov_deg = k % 2 ? rad_to_deg(2 * std::atan(std::tan(deg_to_rad(0.5 * hfov_deg)) * 120 / 160)) : hfov_deg;
+    const double stored_hfov_deg =
+        k % 2 ? rad_to_deg(2 * std::atan(std::tan(deg_to_rad(0.5 * hfov_deg)) * 120 / 160)) : hfov_deg;
     turned[keys[f]] = {{"file", b}, {"hfov_deg", stored_hfov_deg}, {"rotate_deg", 90 * k}};
   }
   write_image(dir.file("photo.png"), Image(8, 8, 3, 0.5f));

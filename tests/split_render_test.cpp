@@ -36,7 +36,8 @@ std::string merge_of_parts(SceneFixture& fx, const std::string& scene, const std
   std::string parts;
   for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
     const std::string part = fx.dir.file(fmt::format("{}-{}.part", name, i));
-    const auto r = run_insitu(fx.dir, fmt::format("render {} --samples {}:{} --part {}", scene, edges[i], edges[i + 1], part));
+    const auto r =
+        run_insitu(fx.dir, fmt::format("render {} --samples {}:{} --part {}", scene, edges[i], edges[i + 1], part));
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.out, part + "\n");
     parts = part + " " + parts;
@@ -62,7 +63,8 @@ TEST(SplitRender, MergedPartsAreBitIdenticalToOneRender) {
       ASSERT_FALSE(exr_pixels(whole).empty());
       EXPECT_TRUE(exr_pixels(out) == exr_pixels(whole)) << name;
       EXPECT_TRUE(exr_pixels(fx.dir.file(name + ".layers.exr")) ==
-                  exr_pixels(fx.dir.file(fmt::format("whole{}.layers.exr", spp)))) << name;
+                  exr_pixels(fx.dir.file(fmt::format("whole{}.layers.exr", spp))))
+          << name;
     }
   }
 }
@@ -76,7 +78,8 @@ TEST(SplitRender, OnePartIsARenderOfItsSamples) {
   ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " --samples 4:10 --part " + part).exit_code, 0);
   // Not all the samples: refused, naming the range no part has (issue 46: exit 0 and
   // "interrupted": false before), unless asked for.
-  test::expect_one_line_error(run_insitu(fx.dir, "merge " + part + " -o " + out), "samples 0:4 of the 16 spp are in no part");
+  test::expect_one_line_error(run_insitu(fx.dir, "merge " + part + " -o " + out),
+                              "samples 0:4 of the 16 spp are in no part");
   EXPECT_FALSE(std::filesystem::exists(out));
   ASSERT_EQ(run_insitu(fx.dir, "merge " + part + " -o " + out + " --allow-partial").exit_code, 0);
   const auto report = nlohmann::json::parse(test::slurp(fx.dir.file("p.exr.report.json")));

@@ -20,7 +20,8 @@ namespace insitu::test {
 class StudioFixture {
  public:
   explicit StudioFixture(const TempDir& dir, const std::string& points_text = "") : folder_(dir.path() / "demo") {
-    std::filesystem::copy(std::filesystem::path(test::source_dir()) / "scenes/demo", folder_, std::filesystem::copy_options::recursive);
+    std::filesystem::copy(std::filesystem::path(test::source_dir()) / "scenes/demo", folder_,
+                          std::filesystem::copy_options::recursive);
     // Without the outputs the README's first command leaves in the source tree: a test of what the
     // studio writes must not find them there already.
     std::filesystem::remove_all(folder_ / "out");

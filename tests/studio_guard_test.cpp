@@ -31,20 +31,26 @@ const StudioGuard kGuard{"0123456789abcdef0123456789abcdef", 8123};
 
 // What the studio's own page sends: its Host, its cookie, its Origin and JSON.
 RequestHeaders page_request(const std::string& method) {
-  return {method, "127.0.0.1:8123", method == "GET" ? "" : "http://127.0.0.1:8123", "application/json", "",
-          "other=1; insitu_studio_8123=0123456789abcdef0123456789abcdef", ""};
+  return {method,
+          "127.0.0.1:8123",
+          method == "GET" ? "" : "http://127.0.0.1:8123",
+          "application/json",
+          "",
+          "other=1; insitu_studio_8123=0123456789abcdef0123456789abcdef",
+          ""};
 }
 
 TEST(StudioGuard, ThePagesOwnRequestsPass) {
-  for (const char* method : {"GET", "HEAD", "POST", "PUT"}) EXPECT_EQ(judge_request(kGuard, page_request(method)).status, 0) << method;
+  for (const char* method : {"GET", "HEAD", "POST", "PUT"})
+    EXPECT_EQ(judge_request(kGuard, page_request(method)).status, 0) << method;
   RequestHeaders r = page_request("POST");
   r.host = "localhost:8123", r.origin = "http://localhost:8123", r.content_type = "application/json; charset=utf-8";
   EXPECT_EQ(judge_request(kGuard, r).status, 0);
 }
 
 TEST(StudioGuard, AForeignHostIsRefusedWhateverElseItCarries) {
-  for (const char* host : {"evil.example:8123", "127.0.0.1:8124", "127.0.0.1", "localhost", "", "127.0.0.1:8123.evil.example",
-                           "[::1]:8123"}) {
+  for (const char* host : {"evil.example:8123", "127.0.0.1:8124", "127.0.0.1", "localhost", "",
+                           "127.0.0.1:8123.evil.example", "[::1]:8123"}) {
     RequestHeaders r = page_request("GET");
     r.host = host;
     const GuardVerdict v = judge_request(kGuard, r);
@@ -59,8 +65,8 @@ TEST(StudioGuard, EveryRequestNeedsTheToken) {
   EXPECT_EQ(judge_request(kGuard, r).status, 403);
   for (const char* cookie : {"insitu_studio_8123=0123456789abcdef0123456789abcdee",  // one digit off
                              "insitu_studio_8124=0123456789abcdef0123456789abcdef",  // another studio's cookie
-                             "xinsitu_studio_8123=0123456789abcdef0123456789abcdef", "insitu_studio_8123=",
-                             "insitu_studio_8123=0123456789abcdef0123456789abcdef0"}) {
+                             "xinsitu_studio_8123=0123456789abcdef0123456789abcdef",
+                             "insitu_studio_8123=", "insitu_studio_8123=0123456789abcdef0123456789abcdef0"}) {
     r.cookie = cookie;
     EXPECT_EQ(judge_request(kGuard, r).status, 403) << cookie;
   }
@@ -108,7 +114,8 @@ TEST(StudioGuard, TokensAreFreshAndHex) {
     seen.insert(t);
   }
   EXPECT_EQ(seen.size(), 64u);
-  EXPECT_EQ(token_cookie(kGuard), "insitu_studio_8123=0123456789abcdef0123456789abcdef; Path=/; HttpOnly; SameSite=Strict");
+  EXPECT_EQ(token_cookie(kGuard),
+            "insitu_studio_8123=0123456789abcdef0123456789abcdef; Path=/; HttpOnly; SameSite=Strict");
 }
 
 // The reply's status, or 0 with the failure noted.
@@ -127,7 +134,8 @@ TEST(StudioGuard, ServesNothingToAForeignHostOrWithoutTheToken) {
   auto bare = studio.bare_client();
   const httplib::Headers rebound = {{"Host", "evil.example:" + std::to_string(studio.port())},
                                     {"Authorization", "token " + studio.token()}};
-  for (const char* path : {"/", "/studio.js", "/api/state", "/api/photo.png", "/files/points.json", "/api/shots", "/api/render"}) {
+  for (const char* path :
+       {"/", "/studio.js", "/api/state", "/api/photo.png", "/files/points.json", "/api/shots", "/api/render"}) {
     EXPECT_EQ(status_of(good.Get(path), path), 200) << path;
     const auto foreign = good.Get(path, rebound);
     EXPECT_EQ(status_of(foreign, path), 403) << path;
@@ -202,8 +210,9 @@ TEST(StudioGuard, BadBodiesAreA400WithAMessage) {
   auto c = studio.client();
   // Not UTF-8 (a lone continuation byte, an overlong form, a truncated sequence), and bodies that
   // are JSON but not an object.
-  for (const std::string& body : {std::string("{\"spp\": \"\x80\"}"), std::string("{\"\xc0\xaf\": 1}"), std::string("\xe2\x82"),
-                                 std::string("[1, 2]"), std::string("\"path\""), std::string("16"), std::string("null")}) {
+  for (const std::string& body :
+       {std::string("{\"spp\": \"\x80\"}"), std::string("{\"\xc0\xaf\": 1}"), std::string("\xe2\x82"),
+        std::string("[1, 2]"), std::string("\"path\""), std::string("16"), std::string("null")}) {
     const auto r = c.Post("/api/render", body, "application/json");
     ASSERT_EQ(status_of(r, body), 400) << body;
     const json reply = json::parse(r->body);  // valid JSON, with a message
@@ -217,7 +226,8 @@ TEST(StudioGuard, ASecondStudioOnThePortIsAOneLineError) {
   StudioFixture studio(dir);
   StudioServer second(StudioOptions{(studio.folder() / "scene.json").string(), studio.port()});
   EXPECT_THROW(second.bind(), InputError);
-  const auto run = test::run_insitu(dir, fmt::format("studio {} --port {}", (studio.folder() / "scene.json").string(), studio.port()));
+  const auto run = test::run_insitu(
+      dir, fmt::format("studio {} --port {}", (studio.folder() / "scene.json").string(), studio.port()));
   test::expect_one_line_error(run, fmt::format("--port {}", studio.port()));
   EXPECT_EQ(run.out, "");  // no address printed as if all were well
 }
@@ -251,7 +261,8 @@ TEST(StudioGuard, StalledConnectionsDoNotStallThePage) {
   TempDir dir;
   StudioFixture studio(dir);
   std::vector<int> stalled;
-  for (int i = 0; i < 16; ++i) stalled.push_back(stalled_connection(studio.port(), "GET /api/state HTTP/1.1\r\nX-Slow: "));
+  for (int i = 0; i < 16; ++i)
+    stalled.push_back(stalled_connection(studio.port(), "GET /api/state HTTP/1.1\r\nX-Slow: "));
   std::atomic<bool> trickling{true};
   std::thread trickle([&] {
     while (trickling) {

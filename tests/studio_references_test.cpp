@@ -15,10 +15,10 @@
 namespace insitu {
 namespace {
 
-using test::StudioFixture;
-using test::TempDir;
 using test::get_json;
 using test::post;
+using test::StudioFixture;
+using test::TempDir;
 using test::text_of;
 namespace fs = std::filesystem;
 
@@ -30,8 +30,9 @@ TEST(StudioReferences, ADrawnSheetIsSavedToTheSceneFileAndRemoved) {
   const fs::path scene = studio.folder() / "scene.json";
   const json before = get_json(studio.client(), "/api/references");
   EXPECT_TRUE(before["references"].empty());
-  const auto [code, reply] = post(studio.client(), "/api/references",
-                                  {{"version", before["version"]}, {"op", "add"}, {"polygon_px", kSheet}, {"albedo", 0.8}});
+  const auto [code, reply] =
+      post(studio.client(), "/api/references",
+           {{"version", before["version"]}, {"op", "add"}, {"polygon_px", kSheet}, {"albedo", 0.8}});
   ASSERT_EQ(code, 200) << reply.dump();
   const SceneSpec spec = parse_scene_file(scene.string());
   ASSERT_EQ(spec.references.size(), 1u);
@@ -43,11 +44,12 @@ TEST(StudioReferences, ADrawnSheetIsSavedToTheSceneFileAndRemoved) {
   EXPECT_EQ(after["version"], reply["version"]);
   // A second tab still at the first version: refused, the file as the first left it.
   const std::string text = text_of(scene);
-  const auto [stale, stale_reply] = post(studio.client(), "/api/references",
-                                        {{"version", before["version"]}, {"op", "remove"}, {"index", 0}});
+  const auto [stale, stale_reply] =
+      post(studio.client(), "/api/references", {{"version", before["version"]}, {"op", "remove"}, {"index", 0}});
   EXPECT_EQ(stale, 409) << stale_reply.dump();
   EXPECT_EQ(text_of(scene), text);
-  const auto [removed, removed_reply] = post(studio.client(), "/api/references", {{"version", after["version"]}, {"op", "remove"}, {"index", 0}});
+  const auto [removed, removed_reply] =
+      post(studio.client(), "/api/references", {{"version", after["version"]}, {"op", "remove"}, {"index", 0}});
   ASSERT_EQ(removed, 200) << removed_reply.dump();
   EXPECT_FALSE(json::parse(text_of(scene)).contains("references"));
 }
@@ -77,7 +79,8 @@ TEST(StudioReferences, ABadReferenceIsRefusedWhereItIsAndNothingIsWritten) {
     EXPECT_NE(reply["where"].get<std::string>().find(where), std::string::npos) << where << ": " << reply.dump();
     EXPECT_EQ(text_of(scene), text);
   }
-  const auto [code, reply] = post(studio.client(), "/api/references", {{"version", version}, {"op", "remove"}, {"index", 0}});
+  const auto [code, reply] =
+      post(studio.client(), "/api/references", {{"version", version}, {"op", "remove"}, {"index", 0}});
   EXPECT_EQ(code, 400) << reply.dump();
   EXPECT_EQ(reply["where"], "scene.json:$.references");
 }

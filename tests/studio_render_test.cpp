@@ -18,9 +18,9 @@
 namespace insitu {
 namespace {
 
+using test::get_json;
 using test::StudioFixture;
 using test::TempDir;
-using test::get_json;
 namespace fs = std::filesystem;
 
 json post_render(const StudioFixture& studio, const json& body, int expect_status = 200) {
@@ -83,8 +83,8 @@ TEST(StudioRender, StreamsEveryPassToTheEndAndRemapsWithoutRendering) {
   ASSERT_EQ(as_photo.cols, 640);
   ASSERT_EQ(as_photo.rows, 480);
   if (!test::kUnderAsan) {
-    const test::CliRun cli =
-        test::run_insitu(dir, "render " + (studio.folder() / "scene.json").string() + " --spp 2 -o " + dir.file("cli.png"));
+    const test::CliRun cli = test::run_insitu(
+        dir, "render " + (studio.folder() / "scene.json").string() + " --spp 2 -o " + dir.file("cli.png"));
     ASSERT_EQ(cli.exit_code, 0) << cli.err;
     EXPECT_EQ(cv::norm(cv::imread(dir.file("cli.png")), as_photo, cv::NORM_INF), 0.0);
   }
@@ -233,7 +233,8 @@ TEST(StudioRender, CtrlCEndsTheStudioWithARenderUnderWay) {
   const std::regex printed(R"(http://127\.0\.0\.1:(\d+)/\?token=([0-9a-f]{32}))");
   const auto give_up = std::chrono::steady_clock::now() + std::chrono::minutes(2);
   std::string out;
-  while (!std::regex_search(out = test::slurp(dir.file("bg.out")), url, printed) && std::chrono::steady_clock::now() < give_up)
+  while (!std::regex_search(out = test::slurp(dir.file("bg.out")), url, printed) &&
+         std::chrono::steady_clock::now() < give_up)
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   ASSERT_FALSE(url.empty()) << out << test::slurp(dir.file("bg.err"));
   const int port = std::stoi(url[1]);
@@ -257,7 +258,8 @@ TEST(StudioRender, CtrlCEndsTheStudioWithARenderUnderWay) {
   }
   ASSERT_TRUE(WIFEXITED(status)) << "ended by signal " << WTERMSIG(status);
   EXPECT_EQ(WEXITSTATUS(status), 0) << test::slurp(dir.file("bg.err"));
-  EXPECT_NE(test::slurp(dir.file("bg.err")).find("insitu studio: stopped"), std::string::npos) << test::slurp(dir.file("bg.err"));
+  EXPECT_NE(test::slurp(dir.file("bg.err")).find("insitu studio: stopped"), std::string::npos)
+      << test::slurp(dir.file("bg.err"));
 }
 
 TEST(StudioRender, StopsAfterThePassUnderWayAndReportsTheLibrarysErrors) {

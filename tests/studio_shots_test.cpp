@@ -16,10 +16,10 @@
 namespace insitu {
 namespace {
 
-using test::StudioFixture;
-using test::TempDir;
 using test::get_json;
 using test::post;
+using test::StudioFixture;
+using test::TempDir;
 using test::text_of;
 namespace fs = std::filesystem;
 
@@ -47,7 +47,8 @@ TEST(StudioShots, ShowsEachShotAsTheLibraryAssemblesIt) {
   const auto r = c.Get("/api/shot/0.png");
   ASSERT_TRUE(r);
   ASSERT_EQ(r->status, 200);
-  const cv::Mat png = cv::imdecode(cv::Mat(1, int(r->body.size()), CV_8U, const_cast<char*>(r->body.data())), cv::IMREAD_COLOR);
+  const cv::Mat png =
+      cv::imdecode(cv::Mat(1, int(r->body.size()), CV_8U, const_cast<char*>(r->body.data())), cv::IMREAD_COLOR);
   ASSERT_FALSE(png.empty());
   EXPECT_LE(std::max(png.cols, png.rows), 320);
   EXPECT_EQ(png.cols, png.rows);
@@ -61,7 +62,8 @@ TEST(StudioShots, TurningAShotRewritesTheSceneFileAndAStalePageIsRefused) {
   StudioFixture studio(dir);
   const fs::path scene = studio.folder() / "scene.json";
   const json before = get_json(studio.client(), "/api/shots");
-  const auto [code, reply] = post(studio.client(), "/api/shots", {{"version", before["version"]}, {"op", "turn"}, {"key", "+x"}, {"by_deg", 90}});
+  const auto [code, reply] = post(studio.client(), "/api/shots",
+                                  {{"version", before["version"]}, {"op", "turn"}, {"key", "+x"}, {"by_deg", 90}});
   ASSERT_EQ(code, 200) << reply.dump();
   const json file = json::parse(text_of(scene));
   EXPECT_EQ(file["environment"]["shots"]["+x"]["rotate_deg"], 90);
@@ -73,7 +75,8 @@ TEST(StudioShots, TurningAShotRewritesTheSceneFileAndAStalePageIsRefused) {
   EXPECT_EQ(after["shots"][0]["rotate_deg"], 90);
   // A second tab, still at the first version: refused, and the file is as the first left it.
   const std::string text = text_of(scene);
-  const auto [stale, stale_reply] = post(studio.client(), "/api/shots", {{"version", before["version"]}, {"op", "turn"}, {"key", "-x"}});
+  const auto [stale, stale_reply] =
+      post(studio.client(), "/api/shots", {{"version", before["version"]}, {"op", "turn"}, {"key", "-x"}});
   EXPECT_EQ(stale, 409) << stale_reply.dump();
   EXPECT_EQ(text_of(scene), text);
   // Three more quarters bring it back, and the key goes away.
@@ -92,7 +95,8 @@ TEST(StudioShots, SwappingTwoShotsTradesTheirFilesAndTheFacedWallIsSet) {
   const fs::path scene = studio.folder() / "scene.json";
   const json old_file = json::parse(text_of(scene));
   json v = get_json(studio.client(), "/api/shots");
-  auto [code, reply] = post(studio.client(), "/api/shots", {{"version", v["version"]}, {"op", "swap"}, {"a", "+x"}, {"b", "-z"}});
+  auto [code, reply] =
+      post(studio.client(), "/api/shots", {{"version", v["version"]}, {"op", "swap"}, {"a", "+x"}, {"b", "-z"}});
   ASSERT_EQ(code, 200) << reply.dump();
   const SceneSpec spec = parse_scene_file(scene.string());
   EXPECT_EQ(fs::path(spec.environment.shots[kPosX].files[1]).filename(), "north.jpg");
@@ -101,7 +105,8 @@ TEST(StudioShots, SwappingTwoShotsTradesTheirFilesAndTheFacedWallIsSet) {
   json expect = old_file;
   std::swap(expect["environment"]["shots"]["+x"], expect["environment"]["shots"]["-z"]);
   EXPECT_EQ(json::parse(text_of(scene)), expect);
-  std::tie(code, reply) = post(studio.client(), "/api/shots", {{"version", reply["version"]}, {"op", "faced"}, {"wall", "+x"}});
+  std::tie(code, reply) =
+      post(studio.client(), "/api/shots", {{"version", reply["version"]}, {"op", "faced"}, {"wall", "+x"}});
   ASSERT_EQ(code, 200) << reply.dump();
   EXPECT_EQ(parse_scene_file(scene.string()).environment.faced_face, kPosX);
   // Refused with the reason, and nothing written: a floor as the faced wall, an unknown shot.
@@ -139,7 +144,8 @@ TEST(StudioShots, ErrorsAreNextToTheShotOrTheKeyThatCausedThem) {
 TEST(StudioShots, SceneEditsKeepEverythingElse) {
   const std::string text = R"({"photo": "p.jpg", "environment": {"shots": {"+x": "a.jpg", "-x": ["b1.jpg", "b2.jpg"],
     "+z": {"file": "c.jpg", "hfov_deg": 70}, "-z": "d.jpg", "up": "e.jpg", "down": "f.jpg", "faced": "-z"}}, "render": {"spp": 4}})";
-  const json turned = json::parse(turn_shot(turn_shot(turn_shot(text, "s.json", "+x", 90), "s.json", "-x", 270), "s.json", "+z", -90));
+  const json turned =
+      json::parse(turn_shot(turn_shot(turn_shot(text, "s.json", "+x", 90), "s.json", "-x", 270), "s.json", "+z", -90));
   EXPECT_EQ(turned["environment"]["shots"]["+x"], json({{"file", "a.jpg"}, {"rotate_deg", 90}}));
   EXPECT_EQ(turned["environment"]["shots"]["-x"], json({{"files", {"b1.jpg", "b2.jpg"}}, {"rotate_deg", 270}}));
   EXPECT_EQ(turned["environment"]["shots"]["+z"], json({{"file", "c.jpg"}, {"hfov_deg", 70}, {"rotate_deg", 270}}));

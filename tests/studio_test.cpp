@@ -23,9 +23,9 @@
 namespace insitu {
 namespace {
 
+using test::get_json;
 using test::StudioFixture;
 using test::TempDir;
-using test::get_json;
 namespace fs = std::filesystem;
 
 json five_points() {
@@ -75,8 +75,8 @@ TEST(Studio, ServesOnlyFilesUnderTheScenesFolder) {
   EXPECT_EQ(ok->body, test::slurp((studio.folder() / "scene.json").string()));
   for (const char* path : {"/files/../secret.txt", "/files/%2e%2e/secret.txt", "/files/%2E%2E%2Fsecret.txt",
                            "/files/shots/../../secret.txt", "/files/shots/%2e%2e/%2e%2e/secret.txt", "/files/link.txt",
-                           "/files/up/secret.txt", "/files//etc/passwd", "/files/%2fetc%2fpasswd", "/files/..%5csecret.txt",
-                           "/files/missing.png", "/files/shots", "/../secret.txt"}) {
+                           "/files/up/secret.txt", "/files//etc/passwd", "/files/%2fetc%2fpasswd",
+                           "/files/..%5csecret.txt", "/files/missing.png", "/files/shots", "/../secret.txt"}) {
     const auto r = c.Get(path);
     ASSERT_TRUE(r) << path;
     EXPECT_NE(r->status, 200) << path;
@@ -94,8 +94,8 @@ TEST(Studio, FileUnderRefusesEveryWayOut) {
   EXPECT_TRUE(file_under(root, "a/b.txt"));
   EXPECT_TRUE(file_under(root, "in.txt"));  // a symlink that stays inside is fine
   EXPECT_TRUE(file_under(root, "./a/b.txt"));
-  for (const char* bad : {"", "../outside.txt", "a/../../outside.txt", "out.txt", "a", "/etc/passwd", "a\\b.txt",
-                          "a/../a/b.txt"})
+  for (const char* bad :
+       {"", "../outside.txt", "a/../../outside.txt", "out.txt", "a", "/etc/passwd", "a\\b.txt", "a/../a/b.txt"})
     EXPECT_FALSE(file_under(root, bad)) << bad;
   EXPECT_FALSE(file_under(root, std::string("a/b.txt\0x", 9)));
   dir.write("rootkit/x.txt", "x");  // "root" is a prefix of "rootkit" as text, not as a folder
@@ -109,7 +109,8 @@ TEST(Studio, SavesPointsAtomicallyAndTheCliReadsThem) {
   const json state = get_json(c, "/api/state");
   EXPECT_TRUE(state["points"].empty());
   const json points = five_points();
-  const auto r = c.Put("/api/points", json{{"version", state["version"]}, {"points", points}}.dump(), "application/json");
+  const auto r =
+      c.Put("/api/points", json{{"version", state["version"]}, {"points", points}}.dump(), "application/json");
   ASSERT_TRUE(r);
   ASSERT_EQ(r->status, 200) << r->body;
   const auto read = read_control_points((studio.folder() / "points.json").string(), false, 480);
@@ -174,7 +175,8 @@ TEST(Studio, CalibrationShowsTheDemosModelAndCamera) {
   StudioFixture studio(dir);
   auto c = studio.client();
   const json state = get_json(c, "/api/state");
-  const auto r = c.Post("/api/calibrate", json{{"points", state["points"]}, {"model", "auto"}}.dump(), "application/json");
+  const auto r =
+      c.Post("/api/calibrate", json{{"points", state["points"]}, {"model", "auto"}}.dump(), "application/json");
   ASSERT_EQ(r->status, 200) << r->body;
   const json view = json::parse(r->body);
   // The demo's photo was made by a camera with its principal point at the centre and square
@@ -199,7 +201,8 @@ TEST(Studio, CalibrationShowsTheDemosModelAndCamera) {
   ASSERT_EQ(few->status, 400);
   const json error = json::parse(few->body);
   EXPECT_NE(error["error"].get<std::string>().find("points.json: 4 control point(s): calibration needs at least 5"),
-            std::string::npos) << error;
+            std::string::npos)
+      << error;
 }
 
 TEST(Studio, ListensOnTheLoopbackOnly) {
@@ -211,7 +214,8 @@ TEST(Studio, ListensOnTheLoopbackOnly) {
   const std::string local = fmt::format("0100007F:{:04X}", studio.port());
   bool found = false;
   for (std::string line; std::getline(tcp, line);)
-    if (line.find(fmt::format(":{:04X} ", studio.port())) != std::string::npos && line.find(" 0A ") != std::string::npos) {
+    if (line.find(fmt::format(":{:04X} ", studio.port())) != std::string::npos &&
+        line.find(" 0A ") != std::string::npos) {
       found = true;
       EXPECT_NE(line.find(local), std::string::npos) << line;
     }
@@ -232,7 +236,8 @@ TEST(Studio, OpensASceneWhoseCameraIsNotFromPoints) {
   const int port = server.bind();
   std::thread serving([&] { server.run(); });
   httplib::Client c("127.0.0.1", port);
-  c.set_default_headers({{"Authorization", "token " + server.token()}, {"Origin", "http://127.0.0.1:" + std::to_string(port)}});
+  c.set_default_headers(
+      {{"Authorization", "token " + server.token()}, {"Origin", "http://127.0.0.1:" + std::to_string(port)}});
   c.set_read_timeout(300, 0);
   const json state = test::get_json(c, "/api/state");
   EXPECT_TRUE(state["points_file"].is_null()) << state.dump();

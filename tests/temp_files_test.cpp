@@ -27,7 +27,10 @@ TEST(TempFiles, InterruptRemovesTemporaryOutputs) {
       // ignored, and install_interrupt_cleanup rightly leaves an ignored signal ignored.
       std::signal(sig, SIG_DFL);
       install_interrupt_cleanup();
-      { const TempFileGuard finished(done); std::ofstream(done) << "renamed already, say"; }
+      {
+        const TempFileGuard finished(done);
+        std::ofstream(done) << "renamed already, say";
+      }
       const TempFileGuard guard(tmp);
       std::ofstream(tmp) << "half written";
       std::raise(sig);

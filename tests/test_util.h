@@ -35,10 +35,10 @@ inline std::string shared_data() {
   return fs::is_directory(p) ? p.string() : std::string();
 }
 
-#define INSITU_REQUIRE_SHARED()                                                                      \
-  do {                                                                                               \
-    if (::insitu::test::shared_data().empty())                                                       \
-      GTEST_SKIP() << "../shared/data is absent: this test needs the shared HDRIs and meshes";       \
+#define INSITU_REQUIRE_SHARED()                                                                \
+  do {                                                                                         \
+    if (::insitu::test::shared_data().empty())                                                 \
+      GTEST_SKIP() << "../shared/data is absent: this test needs the shared HDRIs and meshes"; \
   } while (0)
 
 // A fresh temporary folder, removed at the end of the test.
@@ -47,8 +47,8 @@ class TempDir {
   TempDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     path_ = fs::temp_directory_path() /
-            (std::string("insitu-") + (info ? std::string(info->test_suite_name()) + "-" + info->name() : "t") +
-             "-" + std::to_string(::getpid()));
+            (std::string("insitu-") + (info ? std::string(info->test_suite_name()) + "-" + info->name() : "t") + "-" +
+             std::to_string(::getpid()));
     fs::remove_all(path_);
     fs::create_directories(path_);
   }

@@ -26,7 +26,8 @@ TEST(TexelGeometry, FaceTableIsTheTexelFormula) {
     double sum = 0;
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        EXPECT_NEAR(omega[std::size_t(j) * std::size_t(n) + std::size_t(i)], texel_solid_angle(i, j, n), 1e-15) << n << " " << i << " " << j;
+        EXPECT_NEAR(omega[std::size_t(j) * std::size_t(n) + std::size_t(i)], texel_solid_angle(i, j, n), 1e-15)
+            << n << " " << i << " " << j;
         sum += omega[std::size_t(j) * std::size_t(n) + std::size_t(i)];
       }
     EXPECT_NEAR(sum, 4 * kPi / 6, 1e-12);  // a face is a sixth of the sphere

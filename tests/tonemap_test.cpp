@@ -111,7 +111,7 @@ TEST(ToneMapping, ClippedPhotoIsShownNeutral) {
     const Image plain = tonemap(img, with(op)), shown = tonemap(img, with(op), &weight);
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(shown.at(1, 1)[k], shown.at(2, 1)[k], 1e-6f) << tonemap_name(op);
     EXPECT_GT(plain.at(1, 1)[0] - plain.at(1, 1)[1], 0.005f) << tonemap_name(op);  // pink without the weight
-    const float half_spread = shown.at(3, 1)[0] - shown.at(3, 1)[1];  // half-way: less pink, not grey
+    const float half_spread = shown.at(3, 1)[0] - shown.at(3, 1)[1];               // half-way: less pink, not grey
     EXPECT_GT(half_spread, 0.0f) << tonemap_name(op);
     EXPECT_LT(half_spread, plain.at(1, 1)[0] - plain.at(1, 1)[1]) << tonemap_name(op);
     for (int y = 0; y < 4; ++y)

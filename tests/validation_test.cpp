@@ -22,7 +22,6 @@
 namespace insitu {
 namespace {
 
-
 // All channels of an EXR (Blender writes RGBA).
 Image read_all_channels(const std::string& path) {
   auto in = OIIO::ImageInput::open(path);
@@ -154,9 +153,11 @@ double check_against_cycles(const std::string& name, double goal, bool jpeg = fa
   if (jpeg) {
     EXPECT_NEAR(brightness, 1.0, 0.1);
   }
-  std::printf("validation: %s%s, 256 spp: %.2f %% (bound %.2f %%: σ_insitu %.2f %%, σ_truth %.2f %%), objects' brightness %.3f\n",
-              name.c_str(), jpeg ? " (JPEG shots)" : "", 100 * error, 100 * bound, 100 * sigma_insitu, 100 * sigma_truth,
-              brightness);
+  std::printf(
+      "validation: %s%s, 256 spp: %.2f %% (bound %.2f %%: σ_insitu %.2f %%, σ_truth %.2f %%), objects' brightness "
+      "%.3f\n",
+      name.c_str(), jpeg ? " (JPEG shots)" : "", 100 * error, 100 * bound, 100 * sigma_insitu, 100 * sigma_truth,
+      brightness);
   return error;
 }
 
@@ -190,7 +191,8 @@ double ball_jpeg_goal(double hdr) { return std::min(1.5 * hdr, kBallAbsoluteGoal
 TEST(Validation, OpenGroundAgainstCyclesWithinTheGoal) {
   const double hdr = check_against_cycles("open_ground", kOpenGroundGoal);
   if (hdr < 0) return;  // skipped: no Cycles truth, or under AddressSanitizer
-  check_against_cycles("open_ground", ball_jpeg_goal(hdr), true, grey_ball_on_a_plate("open_ground_ball_edge", Vec3d(1.4, 0.15, 0.6)));
+  check_against_cycles("open_ground", ball_jpeg_goal(hdr), true,
+                       grey_ball_on_a_plate("open_ground_ball_edge", Vec3d(1.4, 0.15, 0.6)));
 }
 
 // A closed room: a low sun through the window (an opening of the room box), a ceiling lamp, the
@@ -201,9 +203,7 @@ TEST(Validation, ClosedRoomAgainstCyclesWithinTheGoal) { check_against_cycles("c
 // recovered by inverse lighting against the photo, within 1.5 × the HDR goal and the objects'
 // brightness within 10 %. A six-texel speck beside the window (true added power 0) is one source
 // with it, and must be held at the lower bound, not fitted with it whole: 33.4 % without that.
-TEST(Validation, ClosedRoomFromJpegShotsWithinTheGoal) {
-  check_against_cycles("closed_room", 1.5 * 0.08, true);
-}
+TEST(Validation, ClosedRoomFromJpegShotsWithinTheGoal) { check_against_cycles("closed_room", 1.5 * 0.08, true); }
 
 // The open ground with a grey ball in the real scene, given as a reference (issue 13): from clipped
 // JPEG shots the ball tells the ceiling lamps from the windows (the objects 0.67× as bright without
@@ -227,8 +227,8 @@ TEST(Validation, OpenGroundWithAGreyBallFromJpegShots) {
   const double hdr = check_against_cycles("open_ground_ball", kBallAbsoluteGoal, false);
   if (hdr < 0) return;  // skipped: no Cycles truth
   const double in_photo = check_against_cycles("open_ground_ball", ball_jpeg_goal(hdr), true);
-  const double on_plate =
-      check_against_cycles("open_ground", kBallAbsoluteGoal, true, grey_ball_on_a_plate("open_ground_ball", Vec3d(-0.6, 0.15, 1.6)));
+  const double on_plate = check_against_cycles("open_ground", kBallAbsoluteGoal, true,
+                                               grey_ball_on_a_plate("open_ground_ball", Vec3d(-0.6, 0.15, 1.6)));
   if (on_plate >= 0) {
     EXPECT_LT(on_plate, 1.3 * in_photo) << "on a plate";
   }

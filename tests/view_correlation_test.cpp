@@ -28,9 +28,9 @@ Vec2d vc_screen_project(const ViewCorrelation& vc, const Vec3d& p) {
   const Vec3d y = z.cross(x).normalized();
   const Vec3d d = p - vc.eye;
   const double xv = d.dot(x), yv = d.dot(y), zv = d.dot(z);
-  return {-(vc.d_over_s * vc.halfx * xv / zv) + vc.xcenter, -(vc.aspect * vc.d_over_s * vc.halfx * yv / zv) + vc.ycenter};
+  return {-(vc.d_over_s * vc.halfx * xv / zv) + vc.xcenter,
+          -(vc.aspect * vc.d_over_s * vc.halfx * yv / zv) + vc.ycenter};
 }
-
 
 TEST(ViewCorrelation, ProjectionAgreesWithTheOriginalFormula) {
   std::mt19937 rng(20);

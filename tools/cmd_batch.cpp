@@ -75,8 +75,10 @@ std::vector<Entry> read_batch(const std::string& path) {
   const json doc = read_json_file(path);
   if (!doc.is_object()) throw InputError(path, "a batch is a JSON object {\"scene\": ..., \"entries\": [...]}");
   for (const auto& [key, value] : doc.items())
-    if (key != "scene" && key != "entries") throw InputError(path + ":$." + key, "unknown key (a batch has scene and entries)");
-  if (!doc.contains("scene") || !doc["scene"].is_string()) throw InputError(path + ":$.scene", "the room's scene file is required (a string)");
+    if (key != "scene" && key != "entries")
+      throw InputError(path + ":$." + key, "unknown key (a batch has scene and entries)");
+  if (!doc.contains("scene") || !doc["scene"].is_string())
+    throw InputError(path + ":$.scene", "the room's scene file is required (a string)");
   if (!doc.contains("entries") || !doc["entries"].is_array() || doc["entries"].empty())
     throw InputError(path + ":$.entries", "a non-empty array of entries is required");
   const std::filesystem::path scene_path = std::filesystem::path(path).parent_path() / doc["scene"].get<std::string>();
@@ -86,7 +88,8 @@ std::vector<Entry> read_batch(const std::string& path) {
   for (std::size_t i = 0; i < doc["entries"].size(); ++i) {
     const json& patch = doc["entries"][i];
     const std::string where = fmt::format("{}:$.entries[{}]", path, i);
-    if (!patch.is_object()) throw InputError(where, "an entry is a JSON object (a merge patch of the room's scene file)");
+    if (!patch.is_object())
+      throw InputError(where, "an entry is a JSON object (a merge patch of the room's scene file)");
     if (!patch.contains("output") || !patch["output"].is_object() || !patch["output"].contains("image"))
       throw InputError(where, "every entry names its own output.image");
     json merged = room;
@@ -103,7 +106,8 @@ void hash_file(Fnv1a& h, const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   h.text(f ? "present" : "absent");
   std::vector<char> buffer(1 << 16);
-  while (f.read(buffer.data(), std::streamsize(buffer.size())) || f.gcount() > 0) h.bytes(buffer.data(), std::size_t(f.gcount()));
+  while (f.read(buffer.data(), std::streamsize(buffer.size())) || f.gcount() > 0)
+    h.bytes(buffer.data(), std::size_t(f.gcount()));
 }
 
 // The entry's inputs hash (see the top of the file), in hex; `mesh_files`: what its meshes read.
@@ -149,7 +153,8 @@ void render_entry(const BatchArgs& a, const Entry& e, int index, SharedRoom& roo
   // Hashed as loaded, before the render: a file edited meanwhile makes the next run render again.
   std::vector<std::string> mesh_files;
   for (const NamedPath& f : loaded_mesh_files(*scene)) mesh_files.push_back(f.path);
-  const json batch = {{"file", a.batch}, {"index", index}, {"inputs_hash", inputs_hash(e, mesh_files)}, {"mesh_files", mesh_files}};
+  const json batch = {
+      {"file", a.batch}, {"index", index}, {"inputs_hash", inputs_hash(e, mesh_files)}, {"mesh_files", mesh_files}};
   print_warnings(scene->warnings);
   Progress progress(fmt::format("entry {}", index));
   std::string detail;
@@ -176,7 +181,8 @@ int run_batch(const BatchArgs& a) {
   if (a.index >= tasks)
     throw InputError("--index " + std::to_string(a.index),
                      a.per_task == 1 ? fmt::format("{} has entries 0 to {}", a.batch, n - 1)
-                                     : fmt::format("{} has {} entries: tasks 0 to {} of {} entries", a.batch, n, tasks - 1, a.per_task));
+                                     : fmt::format("{} has {} entries: tasks 0 to {} of {} entries", a.batch, n,
+                                                   tasks - 1, a.per_task));
   const int first = a.index < 0 ? 0 : int(std::int64_t(a.index) * a.per_task);
   const int last = a.index < 0 ? n : int(std::min<std::int64_t>(n, std::int64_t(first) + a.per_task));
   SharedRoom room;
@@ -201,11 +207,14 @@ Command add_batch_command(CLI::App& app) {
   auto a = std::make_shared<BatchArgs>();
   CLI::App* cmd = app.add_subcommand("batch", "render the entries of a batch file: one room, many objects and outputs");
   cmd->add_option("batch", a->batch, "the batch file (JSON: the room's scene file and its entries)")->required();
-  cmd->add_option("--index", a->index, "render entry I only (a Slurm array task's $SLURM_ARRAY_TASK_ID)")->check(CLI::Range(0, std::numeric_limits<int>::max()));
+  cmd->add_option("--index", a->index, "render entry I only (a Slurm array task's $SLURM_ARRAY_TASK_ID)")
+      ->check(CLI::Range(0, std::numeric_limits<int>::max()));
   cmd->add_option("--per-task", a->per_task, "entries per --index: task I renders entries I*K to I*K+K-1 (default 1)")
       ->check(CLI::Range(1, std::numeric_limits<int>::max()));
   cmd->add_flag("--force", a->force, "render entries whose outputs are there, of the same inputs, again");
-  cmd->add_flag("--count", a->count, "print the number of tasks (entries, or groups of --per-task) and render nothing (for sbatch --array=0-(N-1))");
+  cmd->add_flag(
+      "--count", a->count,
+      "print the number of tasks (entries, or groups of --per-task) and render nothing (for sbatch --array=0-(N-1))");
   return [cmd, a] { return cmd->parsed() ? run_batch(*a) : -1; };
 }
 

@@ -37,7 +37,8 @@ std::vector<NamedPoint> parse_box(const std::vector<std::string>& b) {
       used = 0;
     }
     if (used == 0 || used != b[std::size_t(i) + 1].size() || !std::isfinite(v[i]))
-      throw InputError(where, "expected six finite numbers XMIN YMIN ZMIN XMAX YMAX ZMAX, got '" + b[std::size_t(i) + 1] + "'");
+      throw InputError(
+          where, "expected six finite numbers XMIN YMIN ZMIN XMAX YMAX ZMAX, got '" + b[std::size_t(i) + 1] + "'");
   }
   if (v[0] > v[3] || v[1] > v[4] || v[2] > v[5]) throw InputError(where, "each minimum must not exceed its maximum");
   return box_corners(Vec3d(v[0], v[1], v[2]), Vec3d(v[3], v[4], v[5]));
@@ -45,10 +46,15 @@ std::vector<NamedPoint> parse_box(const std::vector<std::string>& b) {
 
 int run_calibrate(const CalibrateArgs& a) {
   if (a.image.empty() && a.size.empty()) throw InputError("calibrate", "give --image PHOTO or --size W H");
-  check_outputs({{a.points, "the control points"}, {a.image, "the photo"}}, {{a.output, "-o"}, {a.vc, "--vc"}, {a.blender, "--blender"}});
+  check_outputs({{a.points, "the control points"}, {a.image, "the photo"}},
+                {{a.output, "-o"}, {a.vc, "--vc"}, {a.blender, "--blender"}});
   int width = 0, height = 0;
-  if (!a.image.empty()) std::tie(width, height) = read_image_size(a.image);
-  else { width = a.size[0]; height = a.size[1]; }
+  if (!a.image.empty())
+    std::tie(width, height) = read_image_size(a.image);
+  else {
+    width = a.size[0];
+    height = a.size[1];
+  }
   CalibrationOptions options;
   if (a.model != "auto") options.model = parse_model(a.model);
   if (!a.at.empty()) options.insertion_world = Vec3d(a.at[0], a.at[1], a.at[2]);
@@ -89,18 +95,26 @@ Command add_calibrate_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("calibrate", "recover the camera from 2D-3D control points");
   cmd->add_option("--points", a->points, "control points: .json, .csv or a View Correlation .vc file")->required();
   auto* image_opt = cmd->add_option("--image", a->image, "the photo (for its size)");
-  auto* size_opt = cmd->add_option("--size", a->size, "the photo's size in pixels")->expected(2)->check(CLI::Range(1, 1 << 20));
+  auto* size_opt =
+      cmd->add_option("--size", a->size, "the photo's size in pixels")->expected(2)->check(CLI::Range(1, 1 << 20));
   image_opt->excludes(size_opt);
-  cmd->add_option("--model", a->model, "camera model: auto, f, f+c, f+c+a")->check(CLI::IsMember({"auto", "f", "f+c", "f+c+a"}))->capture_default_str();
+  cmd->add_option("--model", a->model, "camera model: auto, f, f+c, f+c+a")
+      ->check(CLI::IsMember({"auto", "f", "f+c", "f+c+a"}))
+      ->capture_default_str();
   cmd->add_option("--origin", a->origin, std::string("pixel origin of the points: ") + kOriginNames)
-      ->check([](const std::string& s) { return parse_bottom_left_origin(s) ? "" : std::string("expected ") + kOriginNames; })
+      ->check([](const std::string& s) {
+        return parse_bottom_left_origin(s) ? "" : std::string("expected ") + kOriginNames;
+      })
       ->capture_default_str();
   cmd->add_option("--at", a->at, "world point (m) where the uncertainty in pixels is reported")->expected(3);
-  cmd->add_option("--box", a->boxes, "an object's bounding box: NAME XMIN YMIN ZMIN XMAX YMAX ZMAX (m); the uncertainty at its corners is reported")
+  cmd->add_option(
+         "--box", a->boxes,
+         "an object's bounding box: NAME XMIN YMIN ZMIN XMAX YMAX ZMAX (m); the uncertainty at its corners is reported")
       ->expected(7);
   cmd->add_option("-o,--output", a->output, "write camera.json");
   cmd->add_option("--vc", a->vc, "also write the View Correlation parameter set");
-  cmd->add_option("--blender", a->blender, "also write a Blender Python script that creates the camera (and sets the photo as its background)");
+  cmd->add_option("--blender", a->blender,
+                  "also write a Blender Python script that creates the camera (and sets the photo as its background)");
   return [cmd, a] { return cmd->parsed() ? run_calibrate(*a) : -1; };
 }
 

@@ -28,7 +28,8 @@ int run_compare(const CompareArgs& args) {
   if (!args.mask.empty()) {
     mask = read_image_file(args.mask).stored;
     if (mask.width != a.width || mask.height != a.height)
-      throw InputError(args.mask, fmt::format("mask is {}x{}, the images {}x{}", mask.width, mask.height, a.width, a.height));
+      throw InputError(args.mask,
+                       fmt::format("mask is {}x{}, the images {}x{}", mask.width, mask.height, a.width, a.height));
   }
   // A linear (scene-referred) image against a display-referred one: the latter is clipped at 1 and
   // quantized, so its highlights cannot match; the numbers still compare linear values.
@@ -42,7 +43,8 @@ int run_compare(const CompareArgs& args) {
   }
   const CompareResult r = compare_images(a, b, args.mask.empty() ? nullptr : &mask);
   auto row = [](const char* name, const CompareNumbers& n) {
-    std::printf("| %s | %ld | %.6g | %.6g | %.6f | %.6g |\n", name, n.pixels, n.rmse, n.relative_rmse, n.ssim, n.max_error);
+    std::printf("| %s | %ld | %.6g | %.6g | %.6f | %.6g |\n", name, n.pixels, n.rmse, n.relative_rmse, n.ssim,
+                n.max_error);
   };
   std::printf("| region | pixels | RMSE | relative RMSE | SSIM | max error |\n|---|---|---|---|---|---|\n");
   row("image", r.whole);

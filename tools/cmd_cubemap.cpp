@@ -54,26 +54,28 @@ int run_cubemap(const CubemapArgs& a) {
   std::string photo_path;
   const EnvironmentSpec spec = environment_from_argument(a.env, &photo_path);
   {  // Before any work: the outputs replace none of the inputs.
-    std::vector<NamedPath> inputs = {{a.env, "the environment argument"}, {spec.image, "the environment image"},
-                                     {photo_path, "the photo"}};
+    std::vector<NamedPath> inputs = {
+        {a.env, "the environment argument"}, {spec.image, "the environment image"}, {photo_path, "the photo"}};
     for (int f = 0; f < 6; ++f)
-      for (const auto& file : spec.shots[std::size_t(f)].files) inputs.push_back({file, std::string("shot ") + face_name(f)});
+      for (const auto& file : spec.shots[std::size_t(f)].files)
+        inputs.push_back({file, std::string("shot ") + face_name(f)});
     std::vector<NamedPath> outputs;
     for (const char* name : {"cube.exr", "cube.png", "equirect.exr"})
       outputs.push_back({(std::filesystem::path(a.out) / name).string(), "an output"});
     // The directional modes only: the volume needs a room box, which this verb does not take.
     for (IrradianceMode mode : directional_irradiance_modes())
       for (const char* ext : {".exr", ".png"})
-        outputs.push_back({(std::filesystem::path(a.out) / (std::string("irradiance_") + irradiance_mode_name(mode) + ext)).string(),
-                           "an output"});
+        outputs.push_back(
+            {(std::filesystem::path(a.out) / (std::string("irradiance_") + irradiance_mode_name(mode) + ext)).string(),
+             "an output"});
     check_outputs(inputs, outputs);
   }
   std::optional<ImageFile> photo;
   if (!photo_path.empty()) photo = read_image_file(photo_path);
   CubeMap cube = load_environment(spec, warnings, &info, photo ? &*photo : nullptr);
   print_warnings(warnings);
-  const std::string light_line = (!photo_path.empty() && info.clipped_cube && spec.inverse_lighting)
-                                     ? recover_light(a.env, cube) : std::string();
+  const std::string light_line =
+      (!photo_path.empty() && info.clipped_cube && spec.inverse_lighting) ? recover_light(a.env, cube) : std::string();
   namespace fs = std::filesystem;
   const fs::path dir(a.out);
   const double exposure = preview_exposure(cube);
@@ -85,7 +87,8 @@ int run_cubemap(const CubemapArgs& a) {
   for (IrradianceMode mode : directional_irradiance_modes()) {
     written += (written.empty() ? "" : ",") + std::string(irradiance_mode_name(mode));
     const auto field = make_irradiance(mode, cube, a.irradiance_size);
-    const CubeMap e = irradiance_cube(*field, a.irradiance_size), e_over_pi = irradiance_cube(*field, a.irradiance_size, 1 / kPiF);
+    const CubeMap e = irradiance_cube(*field, a.irradiance_size),
+                  e_over_pi = irradiance_cube(*field, a.irradiance_size, 1 / kPiF);
     const std::string name = std::string("irradiance_") + irradiance_mode_name(mode);
     write_image(out(name + ".exr"), cube_to_strip(e));
     write_image(out(name + ".png"), cube_cross_preview(e_over_pi, exposure));
@@ -95,10 +98,12 @@ int run_cubemap(const CubemapArgs& a) {
               info.response ? ", camera response recovered from brackets" : "");
   if (spec.from_shots())
     for (int f = 0; f < 6; ++f)
-      std::printf("  %-3s %-40s coverage %5.1f%%, clipped %5.2f%%\n", face_name(f), spec.shots[std::size_t(f)].files.front().c_str(),
-                  100 * info.coverage[std::size_t(f)], 100 * info.clipped[std::size_t(f)]);
+      std::printf("  %-3s %-40s coverage %5.1f%%, clipped %5.2f%%\n", face_name(f),
+                  spec.shots[std::size_t(f)].files.front().c_str(), 100 * info.coverage[std::size_t(f)],
+                  100 * info.clipped[std::size_t(f)]);
   std::printf("%s", light_line.c_str());
-  std::printf("wrote cube.exr, cube.png, equirect.exr and irradiance_{%s}.{exr,png} to %s\n", written.c_str(), a.out.c_str());
+  std::printf("wrote cube.exr, cube.png, equirect.exr and irradiance_{%s}.{exr,png} to %s\n", written.c_str(),
+              a.out.c_str());
   return 0;
 }
 
@@ -106,10 +111,13 @@ int run_cubemap(const CubemapArgs& a) {
 
 Command add_cubemap_command(CLI::App& app) {
   auto a = std::make_shared<CubemapArgs>();
-  CLI::App* cmd = app.add_subcommand("cubemap", "assemble the environment into an HDR cube, previews and irradiance cubes");
+  CLI::App* cmd =
+      app.add_subcommand("cubemap", "assemble the environment into an HDR cube, previews and irradiance cubes");
   cmd->add_option("env", a->env, "a scene file (its environment) or an HDR image")->required();
   cmd->add_option("-o,--output", a->out, "output folder")->required();
-  cmd->add_option("--irradiance-size", a->irradiance_size, "face size of the irradiance cubes")->check(CLI::Range(1, 512))->capture_default_str();
+  cmd->add_option("--irradiance-size", a->irradiance_size, "face size of the irradiance cubes")
+      ->check(CLI::Range(1, 512))
+      ->capture_default_str();
   return [cmd, a] { return cmd->parsed() ? run_cubemap(*a) : -1; };
 }
 

@@ -24,10 +24,12 @@ int run_export_blender(const ExportArgs& a) {
   if (lower_extension(a.output) != ".py") throw InputError("-o " + a.output, "the export is a Python script: use .py");
   SceneSpec spec = parse_scene_file(a.scene);
   spec.output = {};  // this verb writes no render: the scene's outputs are neither checked nor made
-  for (auto it = spec.given.begin(); it != spec.given.end();) it = it->rfind("output.", 0) == 0 ? spec.given.erase(it) : std::next(it);
+  for (auto it = spec.given.begin(); it != spec.given.end();)
+    it = it->rfind("output.", 0) == 0 ? spec.given.erase(it) : std::next(it);
   if (a.spp > 0) spec.render.spp = a.spp;
   const BlenderExportPaths paths = blender_export_paths(a.output);
-  const std::vector<NamedPath> outputs = {{paths.script, "-o"}, {paths.meshes, "the meshes"}, {paths.world, "the world"}};
+  const std::vector<NamedPath> outputs = {
+      {paths.script, "-o"}, {paths.meshes, "the meshes"}, {paths.world, "the world"}};
   std::vector<NamedPath> inputs = scene_input_files(spec);
   inputs.push_back({a.scene, "the scene file"});
   check_outputs(inputs, outputs);  // before any work
@@ -48,11 +50,14 @@ int run_export_blender(const ExportArgs& a) {
 
 Command add_export_blender_command(CLI::App& app) {
   auto a = std::make_shared<ExportArgs>();
-  CLI::App* cmd = app.add_subcommand("export-blender", "write the scene as a Blender script (camera, objects, room, shadow catchers, world)");
+  CLI::App* cmd = app.add_subcommand(
+      "export-blender", "write the scene as a Blender script (camera, objects, room, shadow catchers, world)");
   cmd->add_option("scene", a->scene, "the scene file (JSON)")->required();
-  cmd->add_option("-o,--output", a->output, "the script (.py); SCRIPT_STEM.meshes.bin and SCRIPT_STEM.world.exr are written beside it")
+  cmd->add_option("-o,--output", a->output,
+                  "the script (.py); SCRIPT_STEM.meshes.bin and SCRIPT_STEM.world.exr are written beside it")
       ->required();
-  cmd->add_option("--spp", a->spp, "Cycles samples per pixel [default: the scene's render.spp]")->check(CLI::Range(1, kMaxSpp));
+  cmd->add_option("--spp", a->spp, "Cycles samples per pixel [default: the scene's render.spp]")
+      ->check(CLI::Range(1, kMaxSpp));
   return [cmd, a] { return cmd->parsed() ? run_export_blender(*a) : -1; };
 }
 

@@ -29,8 +29,11 @@ int run_report(const ReportArgs& a) {
   std::vector<NamedPath> inputs;
   for (const auto& e : a.envs) inputs.push_back({e, "an environment argument"});
   check_outputs(inputs, {{a.csv, "--csv"}});
-  std::string csv = "environment,face_size,mode,precompute_ms,lookup_ns,mean_rel_error,max_rel_error,brightest_rel_error\n";
-  std::printf("| environment | face | mode | precompute (ms) | lookup (ns) | mean rel. error | max rel. error | error facing the brightest texel |\n");
+  std::string csv =
+      "environment,face_size,mode,precompute_ms,lookup_ns,mean_rel_error,max_rel_error,brightest_rel_error\n";
+  std::printf(
+      "| environment | face | mode | precompute (ms) | lookup (ns) | mean rel. error | max rel. error | error facing "
+      "the brightest texel |\n");
   std::printf("|---|---|---|---|---|---|---|---|\n");
   for (const std::string& env : a.envs) {
     std::string photo_path;
@@ -49,8 +52,9 @@ int run_report(const ReportArgs& a) {
       std::printf("| %s | %d | %s | %.2f | %.1f | %.4f | %.4f | %.4f |\n", name.c_str(), rep.face_size,
                   irradiance_mode_name(m.mode), m.precompute_ms, m.lookup_ns, m.mean_rel_error, m.max_rel_error,
                   m.brightest_rel_error);
-      csv += fmt::format("{},{},{},{:.4f},{:.2f},{:.6f},{:.6f},{:.6f}\n", name, rep.face_size, irradiance_mode_name(m.mode),
-                         m.precompute_ms, m.lookup_ns, m.mean_rel_error, m.max_rel_error, m.brightest_rel_error);
+      csv += fmt::format("{},{},{},{:.4f},{:.2f},{:.6f},{:.6f},{:.6f}\n", name, rep.face_size,
+                         irradiance_mode_name(m.mode), m.precompute_ms, m.lookup_ns, m.mean_rel_error, m.max_rel_error,
+                         m.brightest_rel_error);
     }
     std::fflush(stdout);
   }
@@ -62,11 +66,17 @@ int run_report(const ReportArgs& a) {
 
 Command add_irradiance_report_command(CLI::App& app) {
   auto a = std::make_shared<ReportArgs>();
-  CLI::App* cmd = app.add_subcommand("irradiance-report", "time and error of each irradiance mode against the exact integral");
+  CLI::App* cmd =
+      app.add_subcommand("irradiance-report", "time and error of each irradiance mode against the exact integral");
   cmd->add_option("env", a->envs, "scene files or HDR images")->required();
-  cmd->add_option("--normals", a->normals, "number of test normals (Fibonacci sphere)")->check(CLI::Range(1, 100000))->capture_default_str();
-  cmd->add_option("--exact-size", a->exact_size, "face size of the exact irradiance cube")->check(CLI::Range(1, 512))->capture_default_str();
-  cmd->add_option("--face-size", a->face_size, "resample images to this cube face size [default: the image's own]")->check(CLI::Range(1, 4096));
+  cmd->add_option("--normals", a->normals, "number of test normals (Fibonacci sphere)")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd->add_option("--exact-size", a->exact_size, "face size of the exact irradiance cube")
+      ->check(CLI::Range(1, 512))
+      ->capture_default_str();
+  cmd->add_option("--face-size", a->face_size, "resample images to this cube face size [default: the image's own]")
+      ->check(CLI::Range(1, 4096));
   cmd->add_option("--csv", a->csv, "also write the rows as CSV");
   return [cmd, a] { return cmd->parsed() ? run_report(*a) : -1; };
 }

@@ -71,11 +71,11 @@ void require_all_samples(const std::vector<Part>& parts) {
   const RenderState &first = parts.front().file.state, &last = parts.back().file.state;
   const std::string advice = " (render the missing part, or merge what there is with --allow-partial)";
   if (first.sample_begin != 0)
-    throw InputError(parts.front().path, fmt::format("samples 0:{} of the {} spp are in no part given{}", first.sample_begin,
-                                                     first.spp, advice));
+    throw InputError(parts.front().path, fmt::format("samples 0:{} of the {} spp are in no part given{}",
+                                                     first.sample_begin, first.spp, advice));
   if (last.sample_end != last.spp)
-    throw InputError(parts.back().path, fmt::format("samples {}:{} of the {} spp are in no part given{}", last.sample_end,
-                                                    last.spp, last.spp, advice));
+    throw InputError(parts.back().path, fmt::format("samples {}:{} of the {} spp are in no part given{}",
+                                                    last.sample_end, last.spp, last.spp, advice));
 }
 
 // The state of one render of all the parts' samples.
@@ -130,14 +130,17 @@ Command add_merge_command(CLI::App& app) {
   auto m = std::make_shared<MergeArgs>();
   CLI::App* cmd = app.add_subcommand("merge", "add the parts of a split render (render --samples A:B) into its image");
   cmd->add_option("parts", m->parts, "the part files, in any order")->required();
-  cmd->add_option("-o,--output", m->outputs.output, "the composite image (.png, .jpg, .exr, .tif); the layers and the "
-                                                    "report follow it: OUT_STEM.layers.exr, OUT.report.json")->required();
+  cmd->add_option("-o,--output", m->outputs.output,
+                  "the composite image (.png, .jpg, .exr, .tif); the layers and the "
+                  "report follow it: OUT_STEM.layers.exr, OUT.report.json")
+      ->required();
   cmd->add_option("--layers", m->outputs.layers, "the layered EXR (overrides -o's), or none");
   cmd->add_option("--tonemap", m->outputs.tonemap, "for PNG/JPEG: " + quoted_choices(names_of(kToneMaps)))
       ->check(CLI::IsMember(names_of(kToneMaps)));
   cmd->add_option("--key", m->outputs.key, "tone-mapping key")->check(CLI::PositiveNumber);
-  cmd->add_flag("--allow-partial", m->allow_partial, "merge parts that do not cover all the render's samples (the report "
-                                                      "says \"interrupted\": true)");
+  cmd->add_flag("--allow-partial", m->allow_partial,
+                "merge parts that do not cover all the render's samples (the report "
+                "says \"interrupted\": true)");
   return [cmd, m] { return cmd->parsed() ? run_merge(*m) : -1; };
 }
 

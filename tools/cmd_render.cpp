@@ -38,7 +38,6 @@ void print_warnings(const Warnings& w) {
 
 namespace {
 
-
 // The render of samples [begin, end) (end −1: all), stoppable by SIGINT/SIGTERM and resumable
 // from `state`.
 RenderResult render_with_progress(const LoadedScene& scene, RenderState& state, int begin = 0, int end = -1) {
@@ -46,11 +45,14 @@ RenderResult render_with_progress(const LoadedScene& scene, RenderState& state, 
   std::string detail;
   const int samples = (end < 0 ? scene.spec.render.spp : end) - begin;
   arm_graceful_stop(true);
-  RenderResult result = render_scene(scene, [&](const RenderProgress& p) {
-    const bool pass_end = p.noise >= 0;
-    if (pass_end) detail = fmt::format("{}/{} spp, noise {:.1f}%", p.spp_done, samples, 100 * p.noise);
-    progress.update(p.fraction, detail, pass_end);
-  }, {&graceful_stop_flag(), &state, begin, end});
+  RenderResult result =
+      render_scene(scene,
+                   [&](const RenderProgress& p) {
+                     const bool pass_end = p.noise >= 0;
+                     if (pass_end) detail = fmt::format("{}/{} spp, noise {:.1f}%", p.spp_done, samples, 100 * p.noise);
+                     progress.update(p.fraction, detail, pass_end);
+                   },
+                   {&graceful_stop_flag(), &state, begin, end});
   arm_graceful_stop(false);
   return result;
 }
@@ -61,7 +63,8 @@ std::pair<int, int> parse_sample_range(const std::string& text, int spp) {
   if (std::sscanf(text.c_str(), "%d:%d%n", &begin, &end, &used) != 2 || used != int(text.size()))
     throw InputError("--samples " + text, "not a range of sample indices A:B (for example 0:16)");
   if (begin < 0 || end <= begin || end > spp)
-    throw InputError("--samples " + text, fmt::format("not within the render's {} samples per pixel (0 <= A < B <= {})", spp, spp));
+    throw InputError("--samples " + text,
+                     fmt::format("not within the render's {} samples per pixel (0 <= A < B <= {})", spp, spp));
   return {begin, end};
 }
 
@@ -70,9 +73,11 @@ std::pair<int, int> parse_sample_range(const std::string& text, int spp) {
 int run_part(const RenderArgs& a, const SceneSpec& spec) {
   const auto [begin, end] = parse_sample_range(a.samples, spec.render.spp);
   if (spec.render.noise_target > 0)
-    throw InputError("--samples " + a.samples, "a part of a split render cannot stop its pixels by their noise: render "
-                                                "it without render.noise_target (--noise-target 0)");
-  const std::string part = a.part.empty() ? fmt::format("{}.samples-{}-{}.part", spec.output.image, begin, end) : a.part;
+    throw InputError("--samples " + a.samples,
+                     "a part of a split render cannot stop its pixels by their noise: render "
+                     "it without render.noise_target (--noise-target 0)");
+  const std::string part =
+      a.part.empty() ? fmt::format("{}.samples-{}-{}.part", spec.output.image, begin, end) : a.part;
   const std::string checkpoint = checkpoint_path(part);
   const LoadedScene scene = load_scene(spec);
   print_warnings(scene.warnings);
@@ -81,7 +86,8 @@ int run_part(const RenderArgs& a, const SceneSpec& spec) {
   RenderState state;
   if (a.resume) state = read_checkpoint(checkpoint, fingerprint);
   if (a.resume && (state.sample_begin != begin || state.sample_end != end))
-    throw InputError(checkpoint, fmt::format("a checkpoint of samples {}:{}, not {}", state.sample_begin, state.sample_end, a.samples));
+    throw InputError(checkpoint, fmt::format("a checkpoint of samples {}:{}, not {}", state.sample_begin,
+                                             state.sample_end, a.samples));
   const RenderResult result = render_with_progress(scene, state, begin, end);
   if (result.layers.interrupted) {
     write_checkpoint(checkpoint, state, fingerprint);
@@ -90,8 +96,8 @@ int run_part(const RenderArgs& a, const SceneSpec& spec) {
     return 130;
   }
   const nlohmann::json record = {{"args", sum_args_json(a)},
-                                  {"prepare_seconds", result.prepare_seconds},
-                                  {"render_seconds", result.layers.seconds}};
+                                 {"prepare_seconds", result.prepare_seconds},
+                                 {"render_seconds", result.layers.seconds}};
   write_checkpoint(part, state, fingerprint, json_text(record));
   std::error_code ignored;
   std::filesystem::remove(checkpoint, ignored);
@@ -116,7 +122,8 @@ int run_render(const RenderArgs& a) {
   write_outputs(scene, result);
   if (result.layers.interrupted) {
     write_checkpoint(checkpoint, state, fingerprint);
-    std::fprintf(stderr, "insitu: interrupted after %d of %d spp: wrote the partial image and %s (continue with --resume)\n",
+    std::fprintf(stderr,
+                 "insitu: interrupted after %d of %d spp: wrote the partial image and %s (continue with --resume)\n",
                  result.layers.spp_done, spec.render.spp, checkpoint.c_str());
     return 130;
   }
@@ -154,7 +161,8 @@ Command add_render_command(CLI::App& app) {
                   "adaptive sampling: each pixel stops at this relative standard error (0.01: 1 %), spp the most it "
                   "takes; 0: off [default: the scene's render.noise_target, else 0]")
       ->check(CLI::Range(0.0, 1.0));
-  cmd->add_option("--seed", a->seed, "random seed [default: the scene's render.seed, else 1]")->check(CLI::Range(0L, kMaxSeed));
+  cmd->add_option("--seed", a->seed, "random seed [default: the scene's render.seed, else 1]")
+      ->check(CLI::Range(0L, kMaxSeed));
   std::string help = "integrator:";
   for (const auto& e : integrator_registry()) help += fmt::format(" {} ({})", e.name, e.summary);
   cmd->add_option("--integrator", a->integrator, help);
@@ -170,7 +178,8 @@ Command add_render_command(CLI::App& app) {
                   "A:B: render only the samples A to B-1 of the spp, as a part of a split render, and write their sums "
                   "to the part file instead of the image (merge the parts with `insitu merge`)");
   cmd->add_option("--part", a->part, "the part file of --samples [default: OUT.samples-A-B.part]");
-  cmd->add_option("--key", a->key, "tone-mapping key [default: adaptive_log 1, reinhard 0.18, linear 1]")->check(CLI::PositiveNumber);
+  cmd->add_option("--key", a->key, "tone-mapping key [default: adaptive_log 1, reinhard 0.18, linear 1]")
+      ->check(CLI::PositiveNumber);
   return [cmd, a] { return cmd->parsed() ? run_render(*a) : -1; };
 }
 

@@ -44,9 +44,13 @@ int run_studio(const StudioArgs& a) {
 
 Command add_studio_command(CLI::App& app) {
   auto a = std::make_shared<StudioArgs>();
-  CLI::App* cmd = app.add_subcommand("studio", "serve a web page on 127.0.0.1 to click the control points and check the calibration");
-  cmd->add_option("scene", a->scene, "the scene file (its camera.points is the points.json the page edits)")->required();
-  cmd->add_option("--port", a->port, "the port on 127.0.0.1 (0: any free port)")->check(CLI::Range(0, 65535))->capture_default_str();
+  CLI::App* cmd = app.add_subcommand(
+      "studio", "serve a web page on 127.0.0.1 to click the control points and check the calibration");
+  cmd->add_option("scene", a->scene, "the scene file (its camera.points is the points.json the page edits)")
+      ->required();
+  cmd->add_option("--port", a->port, "the port on 127.0.0.1 (0: any free port)")
+      ->check(CLI::Range(0, 65535))
+      ->capture_default_str();
   return [cmd, a] { return cmd->parsed() ? run_studio(*a) : -1; };
 }
 

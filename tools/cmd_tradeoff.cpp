@@ -53,26 +53,35 @@ Image plot(const std::vector<Row>& rows) {
   cv::Mat m(H, W, CV_8UC3, cv::Scalar(255, 255, 255));
   double tmin = 1e30, tmax = 0, emin = 1e30, emax = 0;
   for (const Row& r : rows) {
-    tmin = std::min(tmin, r.seconds); tmax = std::max(tmax, r.seconds);
-    emin = std::min(emin, std::max(r.rel_rmse, 1e-4)); emax = std::max(emax, r.rel_rmse);
+    tmin = std::min(tmin, r.seconds);
+    tmax = std::max(tmax, r.seconds);
+    emin = std::min(emin, std::max(r.rel_rmse, 1e-4));
+    emax = std::max(emax, r.rel_rmse);
   }
   const double lt0 = std::floor(std::log10(tmin)), lt1 = std::ceil(std::log10(tmax));
   const double le0 = std::floor(std::log10(emin)), le1 = std::ceil(std::log10(emax));
-  auto px = [&](double t) { return left + int((std::log10(t) - lt0) / std::max(1e-9, lt1 - lt0) * (W - left - right)); };
-  auto py = [&](double e) { return H - bottom - int((std::log10(std::max(e, 1e-4)) - le0) / std::max(1e-9, le1 - le0) * (H - top - bottom)); };
+  auto px = [&](double t) {
+    return left + int((std::log10(t) - lt0) / std::max(1e-9, lt1 - lt0) * (W - left - right));
+  };
+  auto py = [&](double e) {
+    return H - bottom - int((std::log10(std::max(e, 1e-4)) - le0) / std::max(1e-9, le1 - le0) * (H - top - bottom));
+  };
   const cv::Scalar black(0, 0, 0), grey(200, 200, 200);
   for (double d = lt0; d <= lt1; ++d) {
     cv::line(m, {px(std::pow(10, d)), top}, {px(std::pow(10, d)), H - bottom}, grey);
-    cv::putText(m, fmt::format("{:g}", std::pow(10, d)), {px(std::pow(10, d)) - 12, H - bottom + 18}, cv::FONT_HERSHEY_SIMPLEX, 0.4, black);
+    cv::putText(m, fmt::format("{:g}", std::pow(10, d)), {px(std::pow(10, d)) - 12, H - bottom + 18},
+                cv::FONT_HERSHEY_SIMPLEX, 0.4, black);
   }
   for (double d = le0; d <= le1; ++d) {
     cv::line(m, {left, py(std::pow(10, d))}, {W - right, py(std::pow(10, d))}, grey);
-    cv::putText(m, fmt::format("{:g}", std::pow(10, d)), {8, py(std::pow(10, d)) + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4, black);
+    cv::putText(m, fmt::format("{:g}", std::pow(10, d)), {8, py(std::pow(10, d)) + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4,
+                black);
   }
   cv::putText(m, "seconds", {W / 2 - 60, H - 12}, cv::FONT_HERSHEY_SIMPLEX, 0.5, black);
-  cv::putText(m, "relative RMSE against the reference (objects and shadows)", {left, 18}, cv::FONT_HERSHEY_SIMPLEX, 0.45, black);
+  cv::putText(m, "relative RMSE against the reference (objects and shadows)", {left, 18}, cv::FONT_HERSHEY_SIMPLEX,
+              0.45, black);
   const cv::Scalar colours[] = {{40, 40, 200}, {200, 120, 40}, {40, 160, 40}, {160, 60, 160},
-                                {0, 140, 220}, {20, 20, 20},    {150, 150, 0}, {120, 120, 120}};
+                                {0, 140, 220}, {20, 20, 20},   {150, 150, 0}, {120, 120, 120}};
   std::vector<std::string> modes;
   for (const Row& r : rows)
     if (std::find(modes.begin(), modes.end(), r.mode) == modes.end()) modes.push_back(r.mode);
@@ -84,7 +93,8 @@ Image plot(const std::vector<Row>& rows) {
       const cv::Point p(px(r.seconds), py(r.rel_rmse));
       cv::circle(m, p, 5, c, cv::FILLED);
       if (prev.x >= 0) cv::line(m, prev, p, c, 2);
-      if (r.monte_carlo) cv::putText(m, fmt::format("{}", r.spp), {p.x + 6, p.y - 6}, cv::FONT_HERSHEY_SIMPLEX, 0.35, c);
+      if (r.monte_carlo)
+        cv::putText(m, fmt::format("{}", r.spp), {p.x + 6, p.y - 6}, cv::FONT_HERSHEY_SIMPLEX, 0.35, c);
       prev = p;
     }
     cv::circle(m, {W - right + 20, top + 20 + 20 * int(k)}, 5, c, cv::FILLED);
@@ -106,8 +116,9 @@ void write_outputs(const TradeoffArgs& a, const std::vector<Row>& rows, const Re
   write_text_file((dir / "tradeoff.csv").string(), csv);
   write_image((dir / "tradeoff.png").string(), plot(rows));
   const CompareResult ab = compare_images(legacy_result.composite_linear, best_reference.composite_linear);
-  write_image((dir / "ab.png").string(), comparison_picture(legacy_result.composite_linear, best_reference.composite_linear, ab,
-                                                            &legacy_result.composite_encoded, &best_reference.composite_encoded));
+  write_image((dir / "ab.png").string(),
+              comparison_picture(legacy_result.composite_linear, best_reference.composite_linear, ab,
+                                 &legacy_result.composite_encoded, &best_reference.composite_encoded));
   std::printf("| mode | spp | seconds | relative RMSE |\n|---|---|---|---|\n");
   for (const Row& r : rows) std::printf("| %s | %d | %.3f | %.4f |\n", r.label().c_str(), r.spp, r.seconds, r.rel_rmse);
 }
@@ -142,13 +153,14 @@ int run_tradeoff(const TradeoffArgs& a) {
   const Image mask = changed_mask(scene.photo_linear, reference.composite_linear, reference.layers);
   std::vector<Row> rows;
   RenderResult legacy_result, best_reference;
-  auto measure = [&](const std::string& name, const std::string& integrator, IrradianceMode mode, int spp, RenderResult* keep,
-                     double noise_target = 0) {
+  auto measure = [&](const std::string& name, const std::string& integrator, IrradianceMode mode, int spp,
+                     RenderResult* keep, double noise_target = 0) {
     RenderResult r;
     const double seconds = run(integrator, mode, spp, std::uint64_t(a.seed), &r, noise_target);
     const CompareResult c = compare_images(r.composite_linear, reference.composite_linear, &mask);
     if (noise_target > 0) spp = int(std::lround(mean_spp(r.layers)));
-    rows.push_back({name, spp, seconds, c.masked->relative_rmse, noise_target, find_integrator(integrator)->uses.monte_carlo});
+    rows.push_back(
+        {name, spp, seconds, c.masked->relative_rmse, noise_target, find_integrator(integrator)->uses.monte_carlo});
     std::fprintf(stderr, "tradeoff: %-20s %5d spp %8.3f s  rel. RMSE %.4f\n", rows.back().label().c_str(), spp, seconds,
                  c.masked->relative_rmse);
     if (keep) *keep = std::move(r);
@@ -159,13 +171,15 @@ int run_tradeoff(const TradeoffArgs& a) {
   for (const IntegratorEntry& e : integrator_registry()) {
     const std::string name = e.name;
     Warnings ignored;
-    const bool reads_mode = resolve_integrator(name, {json::object(), "", "$.render"}, ignored).params.contains("irradiance");
+    const bool reads_mode =
+        resolve_integrator(name, {json::object(), "", "$.render"}, ignored).params.contains("irradiance");
     for (const auto& [mode, mode_name] : kIrradianceModes) {
       if (!reads_mode && mode != IrradianceMode::kExact) continue;
       if (mode == IrradianceMode::kVolume && !scene.spec.environment.room_box) continue;  // it needs one
       const std::string label = reads_mode ? name + "/" + mode_name : name;
       if (!e.uses.monte_carlo) {
-        for (int spp : {1, 16}) measure(label, name, mode, spp, name == legacy_name && spp == 16 ? &legacy_result : nullptr);
+        for (int spp : {1, 16})
+          measure(label, name, mode, spp, name == legacy_name && spp == 16 ? &legacy_result : nullptr);
         continue;
       }
       for (int spp : a.ladder) measure(label, name, mode, spp, name == reference_name ? &best_reference : nullptr);
@@ -176,7 +190,8 @@ int run_tradeoff(const TradeoffArgs& a) {
     measure(reference_name + " adaptive", reference_name, IrradianceMode::kExact, cap, nullptr, target);
   write_outputs(a, rows, legacy_result, best_reference);
   std::printf("wrote tradeoff.csv, tradeoff.png and ab.png to %s (reference: %s, %d spp, %ld pixels changed)\n",
-              a.out.c_str(), reference_name.c_str(), a.reference_spp, long(std::count(mask.data.begin(), mask.data.end(), 1.0f)));
+              a.out.c_str(), reference_name.c_str(), a.reference_spp,
+              long(std::count(mask.data.begin(), mask.data.end(), 1.0f)));
   return 0;
 }
 
@@ -191,7 +206,9 @@ Command add_tradeoff_command(CLI::App& app) {
       ->delimiter(',')
       ->check(CLI::Range(1, kMaxSpp))
       ->capture_default_str();
-  cmd->add_option("--reference-spp", a->reference_spp, "samples of the reference")->check(CLI::Range(1, kMaxSpp))->capture_default_str();
+  cmd->add_option("--reference-spp", a->reference_spp, "samples of the reference")
+      ->check(CLI::Range(1, kMaxSpp))
+      ->capture_default_str();
   cmd->add_option("--noise-targets", a->noise_targets,
                   "also path with adaptive sampling to these relative standard errors, comma-separated, capped at the "
                   "ladder's largest spp")

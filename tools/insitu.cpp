@@ -37,10 +37,12 @@ int main(int argc, char** argv) {
   CLI::App app{"insitu: physically based insertion of 3D furniture into a photograph of a room"};
   app.set_version_flag("--version", std::string("insitu ") + INSITU_VERSION);
   app.require_subcommand(1);
-  const std::vector<Command> commands = {add_render_command(app), add_calibrate_command(app), add_cubemap_command(app),
-                                         add_irradiance_report_command(app), add_compare_command(app),
-                                         add_tradeoff_command(app), add_export_blender_command(app), add_merge_command(app),
-                                         add_batch_command(app), add_studio_command(app), add_modes_command(app)};
+  const std::vector<Command> commands = {add_render_command(app),         add_calibrate_command(app),
+                                         add_cubemap_command(app),        add_irradiance_report_command(app),
+                                         add_compare_command(app),        add_tradeoff_command(app),
+                                         add_export_blender_command(app), add_merge_command(app),
+                                         add_batch_command(app),          add_studio_command(app),
+                                         add_modes_command(app)};
   // An unknown verb is named (CLI11 would say only that a subcommand is required).
   if (argc > 1 && argv[1][0] != '-') {
     std::string verbs;
@@ -50,7 +52,8 @@ int main(int argc, char** argv) {
       verbs += (verbs.empty() ? "" : ", ") + sub->get_name();
     }
     if (!known) {
-      std::fprintf(stderr, "insitu: error: unknown verb '%s' (one of: %s; see insitu --help)\n", argv[1], verbs.c_str());
+      std::fprintf(stderr, "insitu: error: unknown verb '%s' (one of: %s; see insitu --help)\n", argv[1],
+                   verbs.c_str());
       return 2;
     }
   }

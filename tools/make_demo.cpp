@@ -65,8 +65,8 @@ Rgb albedo_at(const Vec3f& p, int axis, int side) {
     if (p.x() < kDoorX0 || p.x() > kDoorX1 || p.y() > kDoorY1) return Rgb(0.85f, 0.85f, 0.83f);
     return Rgb(0.30f, 0.19f, 0.11f);
   }
-  if (p.y() < 0.1f) return Rgb(0.88f, 0.88f, 0.86f);          // skirting board
-  return Rgb(0.72f, 0.68f, 0.60f);                              // warm off-white walls
+  if (p.y() < 0.1f) return Rgb(0.88f, 0.88f, 0.86f);  // skirting board
+  return Rgb(0.72f, 0.68f, 0.60f);                    // warm off-white walls
 }
 
 Vec3f lamp_irradiance_dir(const Vec3f& p) { return kLampCentre - p; }
@@ -104,7 +104,11 @@ Rgb room_radiance(const Vec3f& o, const Vec3f& dir) {
   for (int k = 0; k < 3; ++k) {
     if (dir[k] == 0) continue;
     const float t = ((dir[k] > 0 ? kRoomHi[k] : kRoomLo[k]) - o[k]) / dir[k];
-    if (t < t_exit) { t_exit = t; axis = k; side = dir[k] > 0 ? 1 : 0; }
+    if (t < t_exit) {
+      t_exit = t;
+      axis = k;
+      side = dir[k] > 0 ? 1 : 0;
+    }
   }
   const Vec3f p = o + t_exit * dir;
   if (axis == 0 && side == 0 && p.y() > kWinY0 && p.y() < kWinY1 && p.z() > kWinZ0 && p.z() < kWinZ1) {
@@ -140,7 +144,8 @@ struct ObjWriter {
       text += fmt::format("vn {} {} {}\n", normals[f][0], normals[f][1], normals[f][2]);
       ++nn;
       for (int c = 0; c < 4; ++c) {
-        const Vec3f p(faces[f][c][0] ? hi.x() : lo.x(), faces[f][c][1] ? hi.y() : lo.y(), faces[f][c][2] ? hi.z() : lo.z());
+        const Vec3f p(faces[f][c][0] ? hi.x() : lo.x(), faces[f][c][1] ? hi.y() : lo.y(),
+                      faces[f][c][2] ? hi.z() : lo.z());
         text += fmt::format("v {:.4f} {:.4f} {:.4f}\n", p.x(), p.y(), p.z());
         const int a = f / 2;  // UVs: the two coordinates other than the face's axis
         text += fmt::format("vt {:.4f} {:.4f}\n", p[(a + 1) % 3], p[(a + 2) % 3]);
@@ -161,7 +166,9 @@ struct ObjWriter {
         const Vec3f p = centre + r * n;
         text += fmt::format("v {:.5f} {:.5f} {:.5f}\nvn {:.5f} {:.5f} {:.5f}\nvt {:.5f} {:.5f}\n", p.x(), p.y(), p.z(),
                             n.x(), n.y(), n.z(), float(i) / float(nu), 1 - float(j) / float(nvv));
-        ++nv; ++nn; ++nt;
+        ++nv;
+        ++nn;
+        ++nt;
       }
     auto id = [&](int i, int j) { return base + j * (nu + 1) + i + 1; };
     for (int j = 0; j < nvv; ++j)
@@ -186,7 +193,8 @@ void write_furniture(const fs::path& dir) {
     w.box({-0.6f, 0.71f, -0.35f}, {0.6f, 0.75f, 0.35f}, "oak");
     for (float sx : {-1.0f, 1.0f})
       for (float sz : {-1.0f, 1.0f})
-        w.box({sx * 0.52f - 0.025f, 0.0f, sz * 0.28f - 0.025f}, {sx * 0.52f + 0.025f, 0.71f, sz * 0.28f + 0.025f}, "steel");
+        w.box({sx * 0.52f - 0.025f, 0.0f, sz * 0.28f - 0.025f}, {sx * 0.52f + 0.025f, 0.71f, sz * 0.28f + 0.025f},
+              "steel");
     write_text(dir / "table.obj", w.text);
     write_text(dir / "table.mtl",
                "newmtl oak\nKd 1 1 1\nmap_Kd oak.png\n\nnewmtl steel\nKd 0.08 0.08 0.09\nKs 0.5 0.5 0.5\nNs 200\n");
@@ -213,8 +221,9 @@ void write_furniture(const fs::path& dir) {
     for (float sx : {-0.95f, 0.95f})
       for (float sz : {-0.4f, 0.4f}) w.box({sx - 0.03f, 0.0f, sz - 0.03f}, {sx + 0.03f, 0.08f, sz + 0.03f}, "feet");
     write_text(dir / "sofa.obj", w.text);
-    write_text(dir / "sofa.mtl",
-               "newmtl fabric\nKd 0.16 0.24 0.38\n\nnewmtl cushion\nKd 0.20 0.29 0.44\n\nnewmtl feet\nKd 0.05 0.04 0.03\n");
+    write_text(
+        dir / "sofa.mtl",
+        "newmtl fabric\nKd 0.16 0.24 0.38\n\nnewmtl cushion\nKd 0.20 0.29 0.44\n\nnewmtl feet\nKd 0.05 0.04 0.03\n");
   }
   {  // Ball: a smooth sphere of radius 0.2 m resting on the floor (origin at its bottom).
     ObjWriter w;
@@ -238,7 +247,6 @@ void write_photo(const fs::path& out, const Camera& cam, const Exposure& exif) {
       photo.set_rgb(x, y, sum / 4.0f);
     }
   write_image((out / "photo.jpg").string(), encode_srgb(photo), &exif);
-
 }
 
 // Six 90° shots from where the furniture stands, 256 × 256 (rendered at 768² and shrunk), each
@@ -257,10 +265,10 @@ void write_shots(const fs::path& out, const Vec3f& shot_origin, const Exposure& 
       for (float& v : exposed.data) v *= float(bracket_factor[b]);
       Exposure e = exif;
       e.time_s = *exif.time_s * bracket_factor[b];
-      write_image((out / "shots" / (std::string(names[f]) + bracket_suffix[b] + ".jpg")).string(), encode_srgb(exposed), &e);
+      write_image((out / "shots" / (std::string(names[f]) + bracket_suffix[b] + ".jpg")).string(), encode_srgb(exposed),
+                  &e);
     }
   }
-
 }
 
 // The corner where the end of the plank under (x_m, z_m) meets its back edge (albedo_at's floor):
@@ -280,13 +288,20 @@ Vec3d plank_end_corner(double x_m, double z_m) {
 // click noise (σ = 0.7 px per axis), rounded to 0.1 px.
 void write_points(const fs::path& out, const Camera& cam) {
   const std::vector<std::pair<std::string, Vec3d>> landmarks = {
-      {"floor corner, back left", {-2.5, 0.0, -3.0}},       {"floor corner, back right", {2.5, 0.0, -3.0}},
-      {"ceiling corner, back left", {-2.5, 2.6, -3.0}},     {"ceiling corner, back right", {2.5, 2.6, -3.0}},
-      {"window, bottom back", {-2.5, 0.9, -2.2}},           {"window, bottom front", {-2.5, 0.9, -0.6}},
-      {"window, top back", {-2.5, 2.1, -2.2}},              {"window, top front", {-2.5, 2.1, -0.6}},
-      {"window, mullion cross", {-2.5, 1.5, -1.4}},         {"skirting top, back left", {-2.5, 0.1, -3.0}},
-      {"door, bottom left", {0.3, 0.0, -3.0}},              {"door, bottom right", {1.2, 0.0, -3.0}},
-      {"door, top left", {0.3, 2.05, -3.0}},                {"door, top right", {1.2, 2.05, -3.0}},
+      {"floor corner, back left", {-2.5, 0.0, -3.0}},
+      {"floor corner, back right", {2.5, 0.0, -3.0}},
+      {"ceiling corner, back left", {-2.5, 2.6, -3.0}},
+      {"ceiling corner, back right", {2.5, 2.6, -3.0}},
+      {"window, bottom back", {-2.5, 0.9, -2.2}},
+      {"window, bottom front", {-2.5, 0.9, -0.6}},
+      {"window, top back", {-2.5, 2.1, -2.2}},
+      {"window, top front", {-2.5, 2.1, -0.6}},
+      {"window, mullion cross", {-2.5, 1.5, -1.4}},
+      {"skirting top, back left", {-2.5, 0.1, -3.0}},
+      {"door, bottom left", {0.3, 0.0, -3.0}},
+      {"door, bottom right", {1.2, 0.0, -3.0}},
+      {"door, top left", {0.3, 2.05, -3.0}},
+      {"door, top right", {1.2, 2.05, -3.0}},
       {"plank end, front left", plank_end_corner(-0.5, 0.6)},
       {"plank end, front", plank_end_corner(0.0, 0.9)},
       {"plank end, by the ball", plank_end_corner(1.0, 0.6)},
@@ -309,24 +324,30 @@ void write_points(const fs::path& out, const Camera& cam) {
                       {"xyz", {p.x(), p.y(), p.z()}}});
   }
   write_text(out / "points.json", points.dump(2) + "\n");
-
 }
 
 void write_scene(const fs::path& out, const Vec3f& shot_origin) {
   auto r3 = [](float v) { return std::round(double(v) * 1000) / 1000; };  // float constants, printed cleanly
   auto brackets = [](const std::string& name) {
-    return nlohmann::ordered_json::array({"shots/" + name + "_short.jpg", "shots/" + name + ".jpg", "shots/" + name + "_long.jpg"});
+    return nlohmann::ordered_json::array(
+        {"shots/" + name + "_short.jpg", "shots/" + name + ".jpg", "shots/" + name + "_long.jpg"});
   };
   nlohmann::ordered_json scene = {
       {"photo", "photo.jpg"},
       {"camera", {{"points", "points.json"}}},
       {"environment",
        {{"shots",
-         {{"+x", brackets("east")}, {"-x", brackets("west")}, {"+z", brackets("south")}, {"-z", brackets("north")},
-          {"up", brackets("ceiling")}, {"down", brackets("floor")}, {"faced", "-z"}}},
-        {"room_box", {{"min", {r3(kRoomLo.x()), r3(kRoomLo.y()), r3(kRoomLo.z())}},
-                      {"max", {r3(kRoomHi.x()), r3(kRoomHi.y()), r3(kRoomHi.z())}},
-                      {"capture", {r3(shot_origin.x()), r3(shot_origin.y()), r3(shot_origin.z())}}}}}},
+         {{"+x", brackets("east")},
+          {"-x", brackets("west")},
+          {"+z", brackets("south")},
+          {"-z", brackets("north")},
+          {"up", brackets("ceiling")},
+          {"down", brackets("floor")},
+          {"faced", "-z"}}},
+        {"room_box",
+         {{"min", {r3(kRoomLo.x()), r3(kRoomLo.y()), r3(kRoomLo.z())}},
+          {"max", {r3(kRoomHi.x()), r3(kRoomHi.y()), r3(kRoomHi.z())}},
+          {"capture", {r3(shot_origin.x()), r3(shot_origin.y()), r3(shot_origin.z())}}}}}},
       {"local_scene", {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}}},
       {"objects",
        {{{"mesh", "table.obj"}, {"translate", {-0.2, 0, -1.2}}, {"rotate", 12}},
@@ -354,7 +375,8 @@ void write_fspy(const fs::path& out, const Camera& cam) {
     return r;
   };
   const nlohmann::ordered_json fspy = {
-      {"principalPoint", {{"x", (cam.cx - 0.5 * cam.width) / half_long + 0.0}, {"y", (0.5 * cam.height - cam.cy) / half_long + 0.0}}},
+      {"principalPoint",
+       {{"x", (cam.cx - 0.5 * cam.width) / half_long + 0.0}, {"y", (0.5 * cam.height - cam.cy) / half_long + 0.0}}},
       {"viewTransform", {{"rows", rows(M.inverse())}}},
       {"cameraTransform", {{"rows", rows(M)}}},
       {"horizontalFieldOfView", 2 * std::atan(1 / f_rel)},

@@ -63,7 +63,8 @@ void Progress::update(double fraction, const std::string& detail, bool milestone
     const int decile = int(fraction * 10 + 1e-9);
     if (!milestone || detail.empty() || decile <= last_decile_) return;
     last_decile_ = decile;
-    std::fprintf(sink_.out, "%s: %d%% (%.1f s) %s\n", label_.c_str(), int(fraction * 100 + 0.5), elapsed, detail.c_str());
+    std::fprintf(sink_.out, "%s: %d%% (%.1f s) %s\n", label_.c_str(), int(fraction * 100 + 0.5), elapsed,
+                 detail.c_str());
   }
   shown_ = true;
   std::fflush(sink_.out);

@@ -25,7 +25,8 @@ SceneSpec render_spec(const RenderArgs& a) {
     if (a.layers == "none") {
       spec.output.layers.clear();
     } else {
-      if (lower_extension(a.layers) != ".exr") throw InputError("--layers " + a.layers, "the layers are a multi-layer EXR: use .exr, or none");
+      if (lower_extension(a.layers) != ".exr")
+        throw InputError("--layers " + a.layers, "the layers are a multi-layer EXR: use .exr, or none");
       spec.output.layers = a.layers;
     }
   }
@@ -51,8 +52,11 @@ SceneSpec render_spec(const RenderArgs& a) {
 }
 
 nlohmann::json sum_args_json(const RenderArgs& a) {
-  return {{"scene", std::filesystem::absolute(a.scene).lexically_normal().string()}, {"spp", a.spp}, {"seed", a.seed},
-          {"integrator", a.integrator}, {"irradiance", a.irradiance}};
+  return {{"scene", std::filesystem::absolute(a.scene).lexically_normal().string()},
+          {"spp", a.spp},
+          {"seed", a.seed},
+          {"integrator", a.integrator},
+          {"irradiance", a.irradiance}};
 }
 
 PartRecord part_record_from_json(const std::string& text, const std::string& where) {

@@ -27,7 +27,8 @@ std::vector<ControlPoint> control_points(const insitu_control_point* p, std::siz
 
 std::optional<std::string> model_name_or_auto(const char* model) {
   if (!model || std::string(model) == "auto") return std::nullopt;
-  if (!parse_model(model)) throw InputError("model", fmt::format("'{}': expected \"auto\", \"f\", \"f+c\" or \"f+c+a\"", model));
+  if (!parse_model(model))
+    throw InputError("model", fmt::format("'{}': expected \"auto\", \"f\", \"f+c\" or \"f+c+a\"", model));
   return std::string(model);
 }
 
@@ -125,10 +126,12 @@ insitu_status insitu_scene_set_camera(insitu_scene* scene, const insitu_camera* 
     insitu_scene& s = require(scene, "the scene");
     const insitu_camera& c = require(camera, "the camera");
     json R = json::array();
-    for (int r = 0; r < 3; ++r) R.push_back({c.R_cam_from_world[3 * r], c.R_cam_from_world[3 * r + 1], c.R_cam_from_world[3 * r + 2]});
+    for (int r = 0; r < 3; ++r)
+      R.push_back({c.R_cam_from_world[3 * r], c.R_cam_from_world[3 * r + 1], c.R_cam_from_world[3 * r + 2]});
     json doc = s.doc;
-    doc["camera"] = {{"intrinsics", {{"fx", c.fx}, {"fy", c.fy}, {"cx", c.cx}, {"cy", c.cy}}},
-                     {"pose", {{"R", R}, {"t", {c.t_cam_from_world[0], c.t_cam_from_world[1], c.t_cam_from_world[2]}}}}};
+    doc["camera"] = {
+        {"intrinsics", {{"fx", c.fx}, {"fy", c.fy}, {"cx", c.cx}, {"cy", c.cy}}},
+        {"pose", {{"R", R}, {"t", {c.t_cam_from_world[0], c.t_cam_from_world[1], c.t_cam_from_world[2]}}}}};
     auto points = std::move(s.points);
     s.points.reset();
     try {

@@ -15,14 +15,14 @@
 #include "scene/pipeline.h"
 
 struct insitu_scene {
-  insitu::json doc;            // the scene file as JSON, as insitu_scene_set changed it
-  std::string name, base_dir;  // for messages; where relative paths start
-  insitu::SceneSpec spec;      // parsed from doc, with the overrides below
+  insitu::json doc;                                      // the scene file as JSON, as insitu_scene_set changed it
+  std::string name, base_dir;                            // for messages; where relative paths start
+  insitu::SceneSpec spec;                                // parsed from doc, with the overrides below
   std::optional<std::vector<insitu::PointSpec>> points;  // insitu_scene_set_control_points
   std::optional<std::string> points_model;
-  std::optional<std::pair<int, int>> camera_size;  // insitu_scene_set_camera's, checked at load
-  std::vector<insitu::Mesh> memory_meshes;          // placed
-  insitu::Warnings mesh_warnings;                    // theirs (degenerate triangles dropped)
+  std::optional<std::pair<int, int>> camera_size;     // insitu_scene_set_camera's, checked at load
+  std::vector<insitu::Mesh> memory_meshes;            // placed
+  insitu::Warnings mesh_warnings;                     // theirs (degenerate triangles dropped)
   std::shared_ptr<const insitu::LoadedScene> loaded;  // null: to be (re)loaded
   std::string warnings_text, calibration_text;
   std::atomic<bool> cancel{false};

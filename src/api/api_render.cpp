@@ -46,9 +46,7 @@ const OutputLayer& layer_named(const insitu_result& r, const char* name) {
 
 }  // namespace
 
-extern "C" {
-
-}  // extern "C"
+extern "C" {}  // extern "C"
 
 namespace {
 

@@ -30,7 +30,7 @@ void reparse(insitu_scene& s, json doc) {
     spec.camera.point_list = *s.points;
     spec.camera.model = s.points_model;
   }
-  Warnings ignored;  // (given again when the scene loads)
+  Warnings ignored;                                                        // (given again when the scene loads)
   resolve_integrator(spec.render.integrator, spec.render.block, ignored);  // its parameters, now
   s.spec = std::move(spec);
   s.doc = std::move(doc);
@@ -41,8 +41,9 @@ const LoadedScene& loaded(insitu_scene& s) {
   if (s.loaded) return *s.loaded;
   auto scene = std::make_shared<LoadedScene>(load_scene(s.spec, s.memory_meshes));
   if (s.camera_size && (s.camera_size->first != scene->camera.width || s.camera_size->second != scene->camera.height))
-    throw InputError(s.name + ":$.camera", fmt::format("the camera is for {}x{} images, the photo is {}x{}", s.camera_size->first,
-                                                       s.camera_size->second, scene->camera.width, scene->camera.height));
+    throw InputError(s.name + ":$.camera",
+                     fmt::format("the camera is for {}x{} images, the photo is {}x{}", s.camera_size->first,
+                                 s.camera_size->second, scene->camera.width, scene->camera.height));
   s.warnings_text.clear();
   for (const auto& w : s.mesh_warnings.items) s.warnings_text += w + "\n";
   for (const auto& w : scene->warnings.items) s.warnings_text += w + "\n";
@@ -162,8 +163,18 @@ insitu_status insitu_scene_add_mesh(insitu_scene* scene, const insitu_mesh* mesh
     insitu_scene& s = require(scene, "the scene");
     const insitu_mesh& m = require(mesh, "the mesh");
     const std::string n = name ? name : fmt::format("mesh {}", s.memory_meshes.size());
-    MeshArrays a{m.positions, m.vertex_count, m.normals, m.uvs, m.indices, m.triangle_count,
-                 Rgb(m.kd[0], m.kd[1], m.kd[2]), Rgb(m.ks[0], m.ks[1], m.ks[2]), m.ns, m.map_kd, m.map_kd_width, m.map_kd_height};
+    MeshArrays a{m.positions,
+                 m.vertex_count,
+                 m.normals,
+                 m.uvs,
+                 m.indices,
+                 m.triangle_count,
+                 Rgb(m.kd[0], m.kd[1], m.kd[2]),
+                 Rgb(m.ks[0], m.ks[1], m.ks[2]),
+                 m.ns,
+                 m.map_kd,
+                 m.map_kd_width,
+                 m.map_kd_height};
     Warnings warnings;
     Mesh placed = mesh_from_arrays(a, n, warnings);
     const Mat4d M = matrix_or_identity(world_from_object);

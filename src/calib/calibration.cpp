@@ -24,9 +24,12 @@ namespace insitu {
 
 const char* model_name(CameraModel m) {
   switch (m) {
-    case CameraModel::kF: return "f";
-    case CameraModel::kFC: return "f+c";
-    default: return "f+c+a";
+    case CameraModel::kF:
+      return "f";
+    case CameraModel::kFC:
+      return "f+c";
+    default:
+      return "f+c+a";
   }
 }
 
@@ -43,9 +46,9 @@ namespace {
 
 using namespace calib_detail;
 
-constexpr double kExactFitPx = 1e-6;     // an RMS below this is a numerically exact fit
-constexpr double kCauchyScalePx = 2.0;   // robust loss scale for the outlier search
-constexpr double kOutlierMinPx = 3.0;    // never call a residual below this an outlier
+constexpr double kExactFitPx = 1e-6;    // an RMS below this is a numerically exact fit
+constexpr double kCauchyScalePx = 2.0;  // robust loss scale for the outlier search
+constexpr double kOutlierMinPx = 3.0;   // never call a residual below this an outlier
 
 // ---- Least squares (Ceres) -------------------------------------------------------------------
 
@@ -64,8 +67,10 @@ void add_residuals(ceres::Problem& problem, Params& p, CameraModel model, const 
     ceres::LossFunction* loss = cauchy_scale_norm > 0 ? new ceres::CauchyLoss(cauchy_scale_norm) : nullptr;
     problem.AddResidualBlock(ReprojectionCost::Create(q.uv, q.p), loss, p.aa, p.t, p.intr);
   }
-  if (model == CameraModel::kF) problem.SetManifold(p.intr, new ceres::SubsetManifold(4, {1, 2, 3}));
-  else if (model == CameraModel::kFC) problem.SetManifold(p.intr, new ceres::SubsetManifold(4, {3}));
+  if (model == CameraModel::kF)
+    problem.SetManifold(p.intr, new ceres::SubsetManifold(4, {1, 2, 3}));
+  else if (model == CameraModel::kFC)
+    problem.SetManifold(p.intr, new ceres::SubsetManifold(4, {3}));
 }
 
 FitOutcome refine(Params start, CameraModel model, const std::vector<NormPoint>& pts, double cauchy_scale_norm) {
@@ -105,7 +110,10 @@ std::optional<Params> dlt_start(const std::vector<NormPoint>& pts, CameraModel m
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 4; ++c) P(r, c) = v(4 * r + c);
   Mat3d M = P.leftCols<3>();
-  if (M.determinant() < 0) { P = -P; M = -M; }
+  if (M.determinant() < 0) {
+    P = -P;
+    M = -M;
+  }
   if (!(std::abs(M.determinant()) > 1e-300)) return std::nullopt;
   // RQ: with the row-reversal J, QR of (J M)ᵀ = Q U gives M = (J Uᵀ J)(J Qᵀ).
   Mat3d J;
@@ -165,7 +173,10 @@ std::vector<Params> focal_sweep_starts(const std::vector<NormPoint>& pts, double
     }
     if (!ok) continue;
     Params p;
-    for (int k = 0; k < 3; ++k) { p.aa[k] = rvec[k]; p.t[k] = tvec[k]; }
+    for (int k = 0; k < 3; ++k) {
+      p.aa[k] = rvec[k];
+      p.t[k] = tvec[k];
+    }
     p.intr[0] = f;
     double worst_depth = 1;
     std::vector<double> r;
@@ -212,17 +223,19 @@ void check_inputs(const std::vector<ControlPoint>& points, int width, int height
   if (n < 5) throw InputError("", fmt::format("{} control point(s): calibration needs at least 5", n));
   if (width < 1 || height < 1) throw InputError("", "image size must be positive");
   for (const auto& p : points)
-    if (!p.uv_px.allFinite() || !p.p_world.allFinite()) throw InputError(p.where, fmt::format("point {} is not finite", p.name));
+    if (!p.uv_px.allFinite() || !p.p_world.allFinite())
+      throw InputError(p.where, fmt::format("point {} is not finite", p.name));
   std::string outside;
   int n_outside = 0;
   for (const auto& p : points)
     if (p.uv_px.x() < 0 || p.uv_px.y() < 0 || p.uv_px.x() > width || p.uv_px.y() > height)
-      outside += (n_outside++ < 5 ? fmt::format("{}{} ({:.1f}, {:.1f})", outside.empty() ? "" : ", ", p.name, p.uv_px.x(),
-                                                p.uv_px.y())
+      outside += (n_outside++ < 5 ? fmt::format("{}{} ({:.1f}, {:.1f})", outside.empty() ? "" : ", ", p.name,
+                                                p.uv_px.x(), p.uv_px.y())
                                   : "");
   if (n_outside > 0)
-    throw InputError("", fmt::format("{} point(s) outside the {}x{} image: {}{} — is the image size (or the origin) right?",
-                                     n_outside, width, height, outside, n_outside > 5 ? ", ..." : ""));
+    throw InputError("",
+                     fmt::format("{} point(s) outside the {}x{} image: {}{} — is the image size (or the origin) right?",
+                                 n_outside, width, height, outside, n_outside > 5 ? ", ..." : ""));
 }
 
 // Normalized frames (Hartley's normalization): the image centred and scaled to ±1, the points
@@ -250,9 +263,11 @@ void check_geometry(const std::vector<ControlPoint>& points, const Frames& fr, C
   for (int i = 0; i < n; ++i)
     for (int j = i + 1; j < n; ++j) {
       if ((points[i].p_world - points[j].p_world).norm() <= 1e-9 * fr.world_scale)
-        result.warnings.add("", fmt::format("points {} and {} have the same 3D position", points[i].name, points[j].name));
+        result.warnings.add("",
+                            fmt::format("points {} and {} have the same 3D position", points[i].name, points[j].name));
       else if ((points[i].uv_px - points[j].uv_px).norm() <= 1e-6 * fr.image_scale)
-        result.warnings.add("", fmt::format("points {} and {} were clicked at the same pixel", points[i].name, points[j].name));
+        result.warnings.add(
+            "", fmt::format("points {} and {} were clicked at the same pixel", points[i].name, points[j].name));
     }
 }
 
@@ -265,7 +280,8 @@ void check_requested_model(const CalibrationOptions& options, int n, Calibration
                                      model_name(*options.model), k, (k + 1) / 2));
   if (*options.model != CameraModel::kF && result.coplanar)
     result.warnings.add("", fmt::format("the points are coplanar: one view of a plane cannot separate the principal "
-                                        "point from the pose, so model {} is poorly determined", model_name(*options.model)));
+                                        "point from the pose, so model {} is poorly determined",
+                                        model_name(*options.model)));
 }
 
 // Step 1. Starts (the focal sweep, and the DLT for six or more non-coplanar points), each refined
@@ -297,8 +313,8 @@ struct OutlierSearch {
 // errors, corrected for the degrees of freedom the fit used) and beyond 3 px, is left out and the
 // robust fit repeated; this stops while the remaining points still over-determine the model by at
 // least two residuals. `best` is refined in place.
-OutlierSearch find_outliers(const std::vector<ControlPoint>& points, const std::vector<NormPoint>& norm, const Frames& fr,
-                            CameraModel search_model, double cauchy, FitOutcome& best) {
+OutlierSearch find_outliers(const std::vector<ControlPoint>& points, const std::vector<NormPoint>& norm,
+                            const Frames& fr, CameraModel search_model, double cauchy, FitOutcome& best) {
   const int n = int(points.size());
   OutlierSearch out{std::vector<bool>(std::size_t(n), false), n, {}, kOutlierMinPx};
   for (;;) {
@@ -333,10 +349,11 @@ OutlierSearch find_outliers(const std::vector<ControlPoint>& points, const std::
 
 // Step 3. Plain least squares on the inliers for each model the points can support, from the
 // robust fit and from the DLT; result.fits gets one row per model. Returns the parameters by model.
-std::vector<Params> fit_models(const std::vector<NormPoint>& inl, const Params& start, const CalibrationOptions& options,
-                               const Frames& fr, CalibrationResult& result) {
+std::vector<Params> fit_models(const std::vector<NormPoint>& inl, const Params& start,
+                               const CalibrationOptions& options, const Frames& fr, CalibrationResult& result) {
   const int kept = int(inl.size()), m = 2 * kept;
-  const std::optional<Params> dlt_full = (kept >= 6 && !result.coplanar) ? dlt_start(inl, CameraModel::kFCA) : std::nullopt;
+  const std::optional<Params> dlt_full =
+      (kept >= 6 && !result.coplanar) ? dlt_start(inl, CameraModel::kFCA) : std::nullopt;
   std::vector<Params> fitted(3);
   const FitOutcome f_fit = refine(start, CameraModel::kF, inl, 0);
   fitted[0] = f_fit.params;
@@ -349,9 +366,21 @@ std::vector<Params> fit_models(const std::vector<NormPoint>& inl, const Params& 
     // objects (object_uncertainty.h); auto fits all three.
     const bool requested = options.model && *options.model == model;
     const bool next_richer = options.model && int(model) == int(*options.model) + 1;
-    if (options.model && !requested && !next_richer) { mf.note = "not requested"; result.fits.push_back(mf); continue; }
-    if (m - k < (requested ? 0 : 1)) { mf.note = fmt::format("needs more than {} points", (k + 1) / 2); result.fits.push_back(mf); continue; }
-    if (!requested && model != CameraModel::kF && result.coplanar) { mf.note = "coplanar points"; result.fits.push_back(mf); continue; }
+    if (options.model && !requested && !next_richer) {
+      mf.note = "not requested";
+      result.fits.push_back(mf);
+      continue;
+    }
+    if (m - k < (requested ? 0 : 1)) {
+      mf.note = fmt::format("needs more than {} points", (k + 1) / 2);
+      result.fits.push_back(mf);
+      continue;
+    }
+    if (!requested && model != CameraModel::kF && result.coplanar) {
+      mf.note = "coplanar points";
+      result.fits.push_back(mf);
+      continue;
+    }
     if (next_richer) mf.note = "fitted for the model's own error at the objects";
     const int idx = int(model);
     if (model != CameraModel::kF) {
@@ -389,18 +418,22 @@ CameraModel choose_model(const CalibrationOptions& options, int m, CalibrationRe
     }
     const double F = ((cur.rss_px2 - alt.rss_px2) / (k2 - k1)) / (alt.rss_px2 / (m - k2));
     alt.p_value = f_distribution_sf(F, k2 - k1, m - k2);
-    alt.note = fmt::format("F({}, {}) = {:.3g} against {}, p = {:.3g}", k2 - k1, m - k2, F, model_name(chosen), alt.p_value);
+    alt.note =
+        fmt::format("F({}, {}) = {:.3g} against {}, p = {:.3g}", k2 - k1, m - k2, F, model_name(chosen), alt.p_value);
     if (alt.p_value < options.significance) {
       chosen = richer;
-      result.selection = fmt::format("auto: {} (F-test p = {:.2g} < {})", model_name(richer), alt.p_value, options.significance);
+      result.selection =
+          fmt::format("auto: {} (F-test p = {:.2g} < {})", model_name(richer), alt.p_value, options.significance);
     }
   }
-  if (chosen == CameraModel::kF) result.selection += fmt::format(" (no richer model improves the fit beyond noise at α = {})", options.significance);
+  if (chosen == CameraModel::kF)
+    result.selection += fmt::format(" (no richer model improves the fit beyond noise at α = {})", options.significance);
   return chosen;
 }
 
 // Each point's residual under the chosen camera, and the plausibility warnings.
-void report_points(const std::vector<ControlPoint>& points, const std::vector<bool>& outlier, CalibrationResult& result) {
+void report_points(const std::vector<ControlPoint>& points, const std::vector<bool>& outlier,
+                   CalibrationResult& result) {
   std::vector<std::string> behind;
   for (std::size_t i = 0; i < points.size(); ++i) {
     PointResidual pr;
@@ -416,7 +449,8 @@ void report_points(const std::vector<ControlPoint>& points, const std::vector<bo
   if (!behind.empty()) result.warnings.add("", "point(s) behind the camera: " + join_names(behind));
   const double hfov = result.camera.hfov_deg();
   if (hfov < 1.0 || hfov > 150.0)
-    result.warnings.add("", fmt::format("implausible horizontal field of view {:.3g}° (focal length {:.4g} px)", hfov, result.camera.fx));
+    result.warnings.add("", fmt::format("implausible horizontal field of view {:.3g}° (focal length {:.4g} px)", hfov,
+                                        result.camera.fx));
 }
 
 // g(θ): what the report gives a σ for — fx, fy, cx, cy, aspect, eye (3), hfov, forward (3),
@@ -440,7 +474,11 @@ void set_sigmas(const Eigen::Matrix<double, 16, 16>& G, CalibrationResult& resul
   auto sd = [&](int i) { return std::sqrt(std::max(0.0, G(i, i))); };
   CalibrationUncertainty& s = result.sigma;
   s.known = true;
-  s.fx_px = sd(0); s.fy_px = sd(1); s.cx_px = sd(2); s.cy_px = sd(3); s.aspect = sd(4);
+  s.fx_px = sd(0);
+  s.fy_px = sd(1);
+  s.cx_px = sd(2);
+  s.cy_px = sd(3);
+  s.aspect = sd(4);
   s.eye_world = Vec3d(sd(5), sd(6), sd(7));
   s.hfov_deg = sd(8);
   // Angular spread of a unit vector: sqrt(trace of its covariance), in degrees.
@@ -451,19 +489,22 @@ void set_sigmas(const Eigen::Matrix<double, 16, 16>& G, CalibrationResult& resul
 // Step 5. Uncertainty: the chosen model's covariance (model_covariance), propagated to the derived
 // quantities by their Jacobian; kept in `state` with the next richer model's for object_uncertainty.h.
 void estimate_uncertainty(const std::vector<Params>& fitted, CameraModel chosen, const std::vector<NormPoint>& inl,
-                          const Frames& fr, int width, int height, CalibrationResult& result, CalibrationFitState& state) {
+                          const Frames& fr, int width, int height, CalibrationResult& result,
+                          CalibrationFitState& state) {
   const int m = 2 * int(inl.size()), k = model_parameter_count(chosen), idx = int(chosen);
   if (idx + 1 < 3) {
     const ModelFit& next = result.fits[std::size_t(idx + 1)];
     if (next.fitted) state.richer = model_covariance(fitted[std::size_t(idx + 1)], next.model, inl, next.rss_px2, fr);
-    state.richer_note = state.richer ? "" : next.fitted ? std::string(model_name(next.model)) + "'s covariance is singular"
-                                                        : std::string(model_name(next.model)) + " not fitted: " + next.note;
+    state.richer_note = state.richer  ? ""
+                        : next.fitted ? std::string(model_name(next.model)) + "'s covariance is singular"
+                                      : std::string(model_name(next.model)) + " not fitted: " + next.note;
   } else {
     state.richer_note = "f+c+a is the richest model";
   }
   if (m <= k) {
-    result.warnings.add("", fmt::format("{} points exactly determine model {}: no redundancy, so no uncertainty estimate",
-                                        inl.size(), model_name(chosen)));
+    result.warnings.add(
+        "", fmt::format("{} points exactly determine model {}: no redundancy, so no uncertainty estimate", inl.size(),
+                        model_name(chosen)));
     return;
   }
   const double rss_px2 = result.fits[std::size_t(idx)].rss_px2;
@@ -499,8 +540,9 @@ void set_click_span(const std::vector<ControlPoint>& points, const std::vector<b
 
 }  // namespace
 
-std::optional<ModelCovariance> model_covariance(const Params& params, CameraModel model, const std::vector<NormPoint>& inliers,
-                                                double rss_px2, const Frames& fr) {
+std::optional<ModelCovariance> model_covariance(const Params& params, CameraModel model,
+                                                const std::vector<NormPoint>& inliers, double rss_px2,
+                                                const Frames& fr) {
   const int m = 2 * int(inliers.size()), k = model_parameter_count(model);
   if (m <= k || !(rss_px2 > 0)) return std::nullopt;
   Params Pc = params;
@@ -540,16 +582,17 @@ CalibrationResult calibrate(const std::vector<ControlPoint>& points, int width, 
   // The outlier search uses the richest model the points can afford (a poorer one would call its
   // own systematic error an outlier): the requested model, else f+c+a for eight or more
   // non-coplanar points, else f.
-  const CameraModel search_model = options.model ? *options.model
-                                   : (n >= 8 && !result.coplanar) ? CameraModel::kFCA : CameraModel::kF;
+  const CameraModel search_model = options.model                  ? *options.model
+                                   : (n >= 8 && !result.coplanar) ? CameraModel::kFCA
+                                                                  : CameraModel::kF;
   if (search_model != CameraModel::kF) {
     const FitOutcome rich = refine(best.params, search_model, norm, cauchy);
     if (rich.converged && rich.params.intr[0] > 0) best = rich;
   }
   const OutlierSearch outliers = find_outliers(points, norm, fr, search_model, cauchy, best);
   if (!outliers.names.empty())
-    result.warnings.add("", fmt::format("outlier(s) left out of the fit: {} (threshold {:.1f} px)", join_names(outliers.names),
-                                        outliers.threshold_px));
+    result.warnings.add("", fmt::format("outlier(s) left out of the fit: {} (threshold {:.1f} px)",
+                                        join_names(outliers.names), outliers.threshold_px));
   std::vector<NormPoint> inl;
   for (int i = 0; i < n; ++i)
     if (!outliers.outlier[std::size_t(i)]) inl.push_back(norm[std::size_t(i)]);
@@ -575,7 +618,8 @@ CalibrationResult calibrate(const std::vector<ControlPoint>& points, int width, 
   estimate_uncertainty(fitted, chosen, inl, fr, width, height, result, *state);
   result.state = std::move(state);
   // One figure at the insertion point, the one the objects' corners get (object_uncertainty.h).
-  const PointUncertainty at = object_uncertainty(result, "insertion", {{"insertion", result.insertion_world}}).points.at(0);
+  const PointUncertainty at =
+      object_uncertainty(result, "insertion", {{"insertion", result.insertion_world}}).points.at(0);
   if (result.sigma.known) {
     result.insertion_sigma_px = at.noise_sigma_px;
     result.insertion_noise_radius95_px = at.noise_radius95_px;

@@ -27,14 +27,14 @@
 namespace insitu {
 
 enum class CameraModel { kF, kFC, kFCA };
-const char* model_name(CameraModel model);                      // "f", "f+c", "f+c+a"
+const char* model_name(CameraModel model);                        // "f", "f+c", "f+c+a"
 std::optional<CameraModel> parse_model(const std::string& name);  // nullopt unless one of those
-int model_parameter_count(CameraModel model);                    // 7, 9, 10
+int model_parameter_count(CameraModel model);                     // 7, 9, 10
 
 struct CalibrationOptions {
-  std::optional<CameraModel> model;        // nullopt: choose automatically
-  std::optional<Vec3d> insertion_world;    // default: below the points' centroid on y = 0
-  double significance = 0.01;              // of the F-test in auto mode
+  std::optional<CameraModel> model;      // nullopt: choose automatically
+  std::optional<Vec3d> insertion_world;  // default: below the points' centroid on y = 0
+  double significance = 0.01;            // of the F-test in auto mode
 };
 
 struct PointResidual {
@@ -48,9 +48,9 @@ struct PointResidual {
 struct ModelFit {
   CameraModel model = CameraModel::kF;
   bool fitted = false;
-  std::string note;     // why it was not fitted, or the test that decided
-  double rss_px2 = 0;   // sum of squared residuals over the inliers
-  int residuals = 0;    // 2 × inliers
+  std::string note;    // why it was not fitted, or the test that decided
+  double rss_px2 = 0;  // sum of squared residuals over the inliers
+  int residuals = 0;   // 2 × inliers
   double rms_px = 0;
   double p_value = -1;  // of the F-test against the model chosen before it (−1: not tested)
 };
@@ -70,8 +70,8 @@ struct CalibrationResult {
   std::string selection;  // how the model was chosen
   std::vector<ModelFit> fits;
   std::vector<PointResidual> points;
-  double rms_px = 0;      // over the inliers
-  double sigma_px = 0;    // residual standard deviation, sqrt(RSS / (m − k))
+  double rms_px = 0;    // over the inliers
+  double sigma_px = 0;  // residual standard deviation, sqrt(RSS / (m − k))
   int inliers = 0;
   bool coplanar = false;
   CalibrationUncertainty sigma;

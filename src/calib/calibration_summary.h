@@ -15,7 +15,7 @@ namespace insitu {
 using NamedBox = std::pair<std::string, std::vector<NamedPoint>>;  // a name and its 8 corners
 
 struct CalibrationSummary {
-  std::string report;   // for people, as the CLI prints it
+  std::string report;  // for people, as the CLI prints it
   nlohmann::json camera_json;
 };
 

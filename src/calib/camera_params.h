@@ -45,7 +45,9 @@ Eigen::Matrix<double, N, 10> numeric_jacobian(const Params& P, const G& g) {
 }
 
 inline void constrain(Params& p, CameraModel model) {
-  if (model == CameraModel::kF) { p.intr[1] = p.intr[2] = 0; }
+  if (model == CameraModel::kF) {
+    p.intr[1] = p.intr[2] = 0;
+  }
   if (model != CameraModel::kFCA) p.intr[3] = 1;
 }
 

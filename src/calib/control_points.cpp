@@ -97,10 +97,14 @@ std::vector<ControlPoint> read_control_points(const std::string& path, bool bott
   require_existing(path);
   const std::string ext = lower_extension(path);
   std::vector<ControlPoint> points;
-  if (ext == ".json") points = read_json_points(path);
-  else if (ext == ".csv" || ext == ".txt") points = read_csv_points(path);
-  else if (ext == ".vc") return read_view_correlation(path).points;  // converted by the reader
-  else throw InputError(path, "unknown control-point format '" + ext + "' (use .json, .csv or .vc)");
+  if (ext == ".json")
+    points = read_json_points(path);
+  else if (ext == ".csv" || ext == ".txt")
+    points = read_csv_points(path);
+  else if (ext == ".vc")
+    return read_view_correlation(path).points;  // converted by the reader
+  else
+    throw InputError(path, "unknown control-point format '" + ext + "' (use .json, .csv or .vc)");
   if (bottom_left_origin)
     for (auto& p : points) p.uv_px.y() = image_height - p.uv_px.y();
   return points;

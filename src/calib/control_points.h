@@ -16,7 +16,7 @@
 namespace insitu {
 
 struct ControlPoint {
-  Vec2d uv_px = Vec2d::Zero();   // pixel position, top-left origin
+  Vec2d uv_px = Vec2d::Zero();    // pixel position, top-left origin
   Vec3d p_world = Vec3d::Zero();  // metres
   std::string name;               // "#3" when unnamed (1-based)
   std::string where;              // file and place, for messages

@@ -23,10 +23,10 @@ struct ModelCovariance {
 
 struct CalibrationFitState {
   calib_detail::Frames frames;
-  std::optional<ModelCovariance> chosen;  // nullopt: no redundancy or a singular covariance
-  std::optional<ModelCovariance> richer;  // the next richer model, when the points fit it
-  std::string richer_note;                // why there is none (empty when there is)
-  std::vector<Vec2d> clicks_hull_px;      // the convex hull of the inliers' pixels (fewer than 3: none)
+  std::optional<ModelCovariance> chosen;            // nullopt: no redundancy or a singular covariance
+  std::optional<ModelCovariance> richer;            // the next richer model, when the points fit it
+  std::string richer_note;                          // why there is none (empty when there is)
+  std::vector<Vec2d> clicks_hull_px;                // the convex hull of the inliers' pixels (fewer than 3: none)
   double click_depth_min = 0, click_depth_max = 0;  // their depths along the optical axis
 };
 

@@ -35,9 +35,11 @@ void set_pose(const JsonValue& rows, Camera& cam, Warnings* warnings) {
 Camera camera_from_fspy(const std::string& path, int width, int height, Warnings* warnings) {
   const json doc = read_json_file(path);
   JsonObject o(JsonValue(doc, path, "$"));
-  const double w = double(o.get("imageWidth").integer(1, 1 << 20)), h = double(o.get("imageHeight").integer(1, 1 << 20));
+  const double w = double(o.get("imageWidth").integer(1, 1 << 20)),
+               h = double(o.get("imageHeight").integer(1, 1 << 20));
   if (std::abs((w / h) / (double(width) / height) - 1) > 0.01)
-    o.get("imageWidth").fail(fmt::format("fSpy's image is {}x{}, the photo {}x{}: not the same aspect ratio", w, h, width, height));
+    o.get("imageWidth")
+        .fail(fmt::format("fSpy's image is {}x{}, the photo {}x{}: not the same aspect ratio", w, h, width, height));
   const JsonValue hfov = o.get("horizontalFieldOfView");
   const double f_rel = 1.0 / std::tan(0.5 * hfov.number(1e-6, M_PI - 1e-6));
   if (auto rel = o.find("relativeFocalLength"))

@@ -36,7 +36,8 @@ Mat10 with_observation(const ModelCovariance& m, const Jac& Jc) {
 // Candidates: a 24 × 18 grid of the photo's pixels, followed to the floor plane y = floor_y, and
 // the objects' feet; each in front of the camera and inside the photo with a margin of 3 % (a
 // click at the very edge is neither easy nor, with the camera's error, surely in the photo).
-std::vector<Vec3d> floor_candidates(const CalibrationResult& r, const std::vector<ObjectUncertainty>& objects, double floor_y) {
+std::vector<Vec3d> floor_candidates(const CalibrationResult& r, const std::vector<ObjectUncertainty>& objects,
+                                    double floor_y) {
   const Camera& cam = r.camera;
   std::vector<Vec3d> out;
   const Vec3d eye = cam.eye_world();
@@ -58,7 +59,8 @@ std::vector<Vec3d> floor_candidates(const CalibrationResult& r, const std::vecto
     double depth = 0;
     const Vec2d uv = cam.project(c, &depth);
     const double mx = 0.03 * cam.width, my = 0.03 * cam.height;
-    if (depth > 0 && uv.x() >= mx && uv.y() >= my && uv.x() <= cam.width - mx && uv.y() <= cam.height - my) seen.push_back(c);
+    if (depth > 0 && uv.x() >= mx && uv.y() >= my && uv.x() <= cam.width - mx && uv.y() <= cam.height - my)
+      seen.push_back(c);
   }
   return seen;
 }

@@ -79,7 +79,8 @@ std::vector<NamedPoint> box_corners(const Vec3d& lo, const Vec3d& hi) {
   return out;
 }
 
-ObjectUncertainty object_uncertainty(const CalibrationResult& r, const std::string& name, const std::vector<NamedPoint>& points) {
+ObjectUncertainty object_uncertainty(const CalibrationResult& r, const std::string& name,
+                                     const std::vector<NamedPoint>& points) {
   if (!r.state) throw std::logic_error("object_uncertainty: the calibration has no fit state");
   const CalibrationFitState& st = *r.state;
   ObjectUncertainty o;
@@ -90,12 +91,14 @@ ObjectUncertainty object_uncertainty(const CalibrationResult& r, const std::stri
     outside += o.points.back().outside_clicks;
     if (o.points.back().radius95_px > o.points[o.worst].radius95_px) o.worst = o.points.size() - 1;
   }
-  o.model_note = st.richer ? fmt::format("against {}", model_name(st.richer->model))
+  o.model_note = st.richer          ? fmt::format("against {}", model_name(st.richer->model))
                  : int(r.model) < 2 ? "the model's own error is not bounded: " + st.richer_note
                                     : st.richer_note;
   if (outside > 0)
-    o.outside = fmt::format("{} of its {} corners lie outside the clicked points' span (the convex hull of their pixels, "
-                            "or their range of depths)", outside, points.size());
+    o.outside = fmt::format(
+        "{} of its {} corners lie outside the clicked points' span (the convex hull of their pixels, "
+        "or their range of depths)",
+        outside, points.size());
   return o;
 }
 

@@ -44,9 +44,9 @@ struct PointUncertainty {
 struct ObjectUncertainty {
   std::string name;
   std::vector<PointUncertainty> points;
-  std::size_t worst = 0;        // the point with the largest radius95_px
-  std::string model_note;       // "against f+c", or why the model's own error is not bounded
-  std::string outside;          // empty, or why the object lies outside the clicks' span
+  std::size_t worst = 0;   // the point with the largest radius95_px
+  std::string model_note;  // "against f+c", or why the model's own error is not bounded
+  std::string outside;     // empty, or why the object lies outside the clicks' span
   double radius95_px() const { return points.empty() ? 0 : points[worst].radius95_px; }
 };
 
@@ -76,9 +76,11 @@ namespace insitu {
 
 // For people: a line per object (its 95 % radius, the worst corner, noise and the model's share),
 // the objects outside the clicks' span, and the hint.
-std::string object_uncertainty_report(const std::vector<ObjectUncertainty>& objects, const std::optional<ClickHint>& hint);
+std::string object_uncertainty_report(const std::vector<ObjectUncertainty>& objects,
+                                      const std::optional<ClickHint>& hint);
 // For programs: {"objects": [...], "click_next": {...} or null}.
-nlohmann::json object_uncertainty_json(const std::vector<ObjectUncertainty>& objects, const std::optional<ClickHint>& hint);
+nlohmann::json object_uncertainty_json(const std::vector<ObjectUncertainty>& objects,
+                                       const std::optional<ClickHint>& hint);
 // The warning for objects outside the clicks' span ("" when none is), with the hint.
 std::string outside_clicks_warning(const std::vector<ObjectUncertainty>& objects, const std::optional<ClickHint>& hint);
 

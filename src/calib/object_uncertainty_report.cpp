@@ -17,29 +17,33 @@ std::string px(double v) {
 nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 std::string hint_text(const ClickHint& h) {
-  return fmt::format("click next a floor point near pixel ({:.0f}, {:.0f}), world ({:.2f}, {:.2f}, {:.2f}) m: the worst 1σ "
-                     "at the objects would fall from {} to {} (predicted, model {})",
-                     h.uv_px.x(), h.uv_px.y(), h.p_world.x(), h.p_world.y(), h.p_world.z(), px(h.sigma_before_px),
-                     px(h.sigma_after_px), h.model);
+  return fmt::format(
+      "click next a floor point near pixel ({:.0f}, {:.0f}), world ({:.2f}, {:.2f}, {:.2f}) m: the worst 1σ "
+      "at the objects would fall from {} to {} (predicted, model {})",
+      h.uv_px.x(), h.uv_px.y(), h.p_world.x(), h.p_world.y(), h.p_world.z(), px(h.sigma_before_px),
+      px(h.sigma_after_px), h.model);
 }
 
 }  // namespace
 
-std::string object_uncertainty_report(const std::vector<ObjectUncertainty>& objects, const std::optional<ClickHint>& hint) {
+std::string object_uncertainty_report(const std::vector<ObjectUncertainty>& objects,
+                                      const std::optional<ClickHint>& hint) {
   std::string out;
   for (const ObjectUncertainty& o : objects) {
     if (o.points.empty()) continue;
     const PointUncertainty& w = o.points[o.worst];
-    out += fmt::format("object       {}: up to {} (95%) at its {} corner, pixel ({:.1f}, {:.1f}); noise alone {}, "
-                       "model shift {} ({}){}\n",
-                       o.name, px(w.radius95_px), w.point.name, w.uv_px.x(), w.uv_px.y(), px(w.noise_radius95_px),
-                       px(w.model_shift_px), o.model_note, o.outside.empty() ? "" : "; OUTSIDE the clicks' span");
+    out += fmt::format(
+        "object       {}: up to {} (95%) at its {} corner, pixel ({:.1f}, {:.1f}); noise alone {}, "
+        "model shift {} ({}){}\n",
+        o.name, px(w.radius95_px), w.point.name, w.uv_px.x(), w.uv_px.y(), px(w.noise_radius95_px),
+        px(w.model_shift_px), o.model_note, o.outside.empty() ? "" : "; OUTSIDE the clicks' span");
   }
   if (hint) out += "hint         " + hint_text(*hint) + "\n";
   return out;
 }
 
-nlohmann::json object_uncertainty_json(const std::vector<ObjectUncertainty>& objects, const std::optional<ClickHint>& hint) {
+nlohmann::json object_uncertainty_json(const std::vector<ObjectUncertainty>& objects,
+                                       const std::optional<ClickHint>& hint) {
   using nlohmann::json;
   json list = json::array();
   for (const ObjectUncertainty& o : objects) {
@@ -70,7 +74,8 @@ nlohmann::json object_uncertainty_json(const std::vector<ObjectUncertainty>& obj
   return {{"objects", list}, {"click_next", h}};
 }
 
-std::string outside_clicks_warning(const std::vector<ObjectUncertainty>& objects, const std::optional<ClickHint>& hint) {
+std::string outside_clicks_warning(const std::vector<ObjectUncertainty>& objects,
+                                   const std::optional<ClickHint>& hint) {
   std::string names;
   double worst = 0;
   for (const ObjectUncertainty& o : objects)
@@ -79,9 +84,10 @@ std::string outside_clicks_warning(const std::vector<ObjectUncertainty>& objects
       worst = std::max(worst, o.radius95_px());
     }
   if (names.empty()) return "";
-  return fmt::format("object(s) {} lie outside the span of the clicked points, where the camera is extrapolated: up to {} "
-                     "(95%){}",
-                     names, px(worst), hint ? "; " + hint_text(*hint) : "");
+  return fmt::format(
+      "object(s) {} lie outside the span of the clicked points, where the camera is extrapolated: up to {} "
+      "(95%){}",
+      names, px(worst), hint ? "; " + hint_text(*hint) : "");
 }
 
 }  // namespace insitu

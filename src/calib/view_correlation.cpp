@@ -27,7 +27,8 @@ class NumberReader {
     }
   }
   double next(const char* what) {
-    if (pos_ >= tokens_.size()) throw InputError(fmt::format("{}:{}", path_, last_line()), fmt::format("missing {}", what));
+    if (pos_ >= tokens_.size())
+      throw InputError(fmt::format("{}:{}", path_, last_line()), fmt::format("missing {}", what));
     const auto& [tok, line] = tokens_[pos_++];
     char* end = nullptr;
     const double x = std::strtod(tok.c_str(), &end);
@@ -69,7 +70,8 @@ ViewCorrelation read_view_correlation(const std::string& path) {
     throw InputError(where, "eye, look and up do not define a view");
   const int n_line = r.line();
   const double n = r.next("number of points");
-  if (n < 0 || n != std::floor(n) || n > 1e6) throw InputError(fmt::format("{}:{}", path, n_line), "bad number of points");
+  if (n < 0 || n != std::floor(n) || n > 1e6)
+    throw InputError(fmt::format("{}:{}", path, n_line), "bad number of points");
   for (int i = 0; i < int(n); ++i) {
     ControlPoint p;
     p.where = fmt::format("{}:{}", path, r.line());

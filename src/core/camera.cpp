@@ -4,8 +4,8 @@
 
 namespace insitu {
 
-Camera Camera::look_at(const Vec3d& eye_world, const Vec3d& look_world, const Vec3d& up_world,
-                       double hfov_deg, int width, int height) {
+Camera Camera::look_at(const Vec3d& eye_world, const Vec3d& look_world, const Vec3d& up_world, double hfov_deg,
+                       int width, int height) {
   Camera cam;
   cam.width = width;
   cam.height = height;
@@ -43,25 +43,20 @@ Ray Camera::ray(const Vec2d& uv) const {
 }
 
 // The field of view through the image edges, which need not be symmetric about the axis.
-double Camera::hfov_deg() const {
-  return rad_to_deg(std::atan(cx / fx) + std::atan((width - cx) / fx));
-}
-double Camera::vfov_deg() const {
-  return rad_to_deg(std::atan(cy / fy) + std::atan((height - cy) / fy));
-}
+double Camera::hfov_deg() const { return rad_to_deg(std::atan(cx / fx) + std::atan((width - cx) / fx)); }
+double Camera::vfov_deg() const { return rad_to_deg(std::atan(cy / fy) + std::atan((height - cy) / fy)); }
 
 nlohmann::json camera_to_json(const Camera& cam) {
   using nlohmann::json;
   json R = json::array();
-  for (int r = 0; r < 3; ++r) R.push_back({cam.R_cam_from_world(r, 0), cam.R_cam_from_world(r, 1),
-                                          cam.R_cam_from_world(r, 2)});
+  for (int r = 0; r < 3; ++r)
+    R.push_back({cam.R_cam_from_world(r, 0), cam.R_cam_from_world(r, 1), cam.R_cam_from_world(r, 2)});
   const Vec3d eye = cam.eye_world(), fwd = cam.forward_world(), up = cam.up_world();
   return json{
       {"width", cam.width},
       {"height", cam.height},
       {"intrinsics", {{"fx", cam.fx}, {"fy", cam.fy}, {"cx", cam.cx}, {"cy", cam.cy}}},
-      {"pose", {{"R", R}, {"t", {cam.t_cam_from_world.x(), cam.t_cam_from_world.y(),
-                                 cam.t_cam_from_world.z()}}}},
+      {"pose", {{"R", R}, {"t", {cam.t_cam_from_world.x(), cam.t_cam_from_world.y(), cam.t_cam_from_world.z()}}}},
       {"eye", {eye.x(), eye.y(), eye.z()}},
       {"look", {eye.x() + fwd.x(), eye.y() + fwd.y(), eye.z() + fwd.z()}},
       {"up", {up.x(), up.y(), up.z()}},

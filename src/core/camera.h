@@ -25,8 +25,8 @@ struct Camera {
 
   // eye at `eye_world`, looking at `look_world`, `up_world` roughly up in the image; square
   // pixels, principal point at the image centre, horizontal field of view `hfov_deg`.
-  static Camera look_at(const Vec3d& eye_world, const Vec3d& look_world, const Vec3d& up_world,
-                        double hfov_deg, int width, int height);
+  static Camera look_at(const Vec3d& eye_world, const Vec3d& look_world, const Vec3d& up_world, double hfov_deg,
+                        int width, int height);
 
   Vec3d to_camera(const Vec3d& p_world) const { return R_cam_from_world * p_world + t_cam_from_world; }
   // Pixel position of a world point; *depth_m receives Z_c (<= 0: behind the camera).

@@ -14,7 +14,8 @@ class InputError : public std::runtime_error {
  public:
   InputError(std::string where, std::string what)
       : std::runtime_error(where.empty() ? what : where + ": " + what),
-        where_(std::move(where)), what_(std::move(what)) {}
+        where_(std::move(where)),
+        what_(std::move(what)) {}
   const std::string& where() const { return where_; }
   const std::string& message() const { return what_; }
   // A copy with `outer` prepended to the place: "outer: where: what". A place that already begins

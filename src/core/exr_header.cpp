@@ -27,8 +27,7 @@ std::int64_t bytes_per_pixel(exr_const_context_t ctx, int part) {
   const exr_attr_chlist_t* channels = nullptr;
   if (exr_get_channels(ctx, part, &channels) != EXR_ERR_SUCCESS || !channels) return 0;
   std::int64_t bytes = 0;
-  for (int c = 0; c < channels->num_channels; ++c)
-    bytes += channels->entries[c].pixel_type == EXR_PIXEL_HALF ? 2 : 4;
+  for (int c = 0; c < channels->num_channels; ++c) bytes += channels->entries[c].pixel_type == EXR_PIXEL_HALF ? 2 : 4;
   return bytes;
 }
 

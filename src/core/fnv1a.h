@@ -15,10 +15,14 @@ class Fnv1a {
     for (std::size_t i = 0; i < n; ++i) h_ = (h_ ^ p[i]) * 1099511628211ull;
   }
   template <class T>
-  void value(const T& v) { bytes(&v, sizeof(T)); }
+  void value(const T& v) {
+    bytes(&v, sizeof(T));
+  }
   void text(const std::string& s) { value(s.size()), bytes(s.data(), s.size()); }
   template <class T>
-  void array(const std::vector<T>& v) { value(v.size()), bytes(v.data(), v.size() * sizeof(T)); }
+  void array(const std::vector<T>& v) {
+    value(v.size()), bytes(v.data(), v.size() * sizeof(T));
+  }
   std::uint64_t digest() const { return h_; }
 
  private:

@@ -110,10 +110,9 @@ Image decode_rgb(ImageInput& in, const std::string& path) {
     const int y1 = std::min(spec.height, y0 + band_rows);
     band.resize(row_values * std::size_t(y1 - y0));
     const bool ok = tiled ? in.read_tiles(0, 0, spec.x, spec.x + spec.width, spec.y + y0, spec.y + y1, spec.z,
-                                          spec.z + 1, 0, channels_read, TypeDesc::FLOAT,
-                                          band.data())
-                          : in.read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, channels_read,
-                                              TypeDesc::FLOAT, band.data());
+                                          spec.z + 1, 0, channels_read, TypeDesc::FLOAT, band.data())
+                          : in.read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, channels_read, TypeDesc::FLOAT,
+                                              band.data());
     if (!ok) throw InputError(path, "cannot decode image: " + one_line(in.geterror()));
     // A truncated file may decode "successfully" with its missing rows grey: the reader's error
     // says so.
@@ -143,9 +142,10 @@ void check_declared_size(const std::string& path, std::int64_t width, std::int64
   std::error_code ec;
   const double bytes = double(std::filesystem::file_size(path, ec));
   if (!ec && decoded_bytes > double(kBombFloorBytes) && decoded_bytes > double(kMaxDecodedBytesPerByte) * bytes)
-    throw InputError(path, fmt::format("the header declares {}x{} pixels of {} bytes ({:.0f} MB) in a file of {} bytes: "
-                                       "too compressed to be a photo or an environment (a decompression bomb?)",
-                                       width, height, bytes_per_pixel, decoded_bytes / 1e6, bytes));
+    throw InputError(path,
+                     fmt::format("the header declares {}x{} pixels of {} bytes ({:.0f} MB) in a file of {} bytes: "
+                                 "too compressed to be a photo or an environment (a decompression bomb?)",
+                                 width, height, bytes_per_pixel, decoded_bytes / 1e6, bytes));
 }
 
 // An EXR's header is read before OpenEXR's reader allocates its line buffers (exr_header.h).
@@ -154,10 +154,10 @@ void check_exr_header(const std::string& path) {
   if (!exr) return;
   check_declared_size(path, exr->width, exr->height, exr->bytes_per_pixel);
   if (exr->chunk_bytes > kMaxChunkBytes)
-    throw InputError(path, fmt::format("the header declares chunks of {:.0f} MB ({} bytes per pixel), more than the {} MB "
-                                       "insitu reads (OpenEXR reserves several before the first pixel)",
-                                       exr->chunk_bytes / 1e6, exr->bytes_per_pixel,
-                                       std::uint64_t(kMaxChunkBytes) >> 20));
+    throw InputError(path,
+                     fmt::format("the header declares chunks of {:.0f} MB ({} bytes per pixel), more than the {} MB "
+                                 "insitu reads (OpenEXR reserves several before the first pixel)",
+                                 exr->chunk_bytes / 1e6, exr->bytes_per_pixel, std::uint64_t(kMaxChunkBytes) >> 20));
 }
 
 // EXIF orientation 1–8 (TIFF 6.0, tag 274): 5–8 swap width and height. Others are ignored (1).
@@ -171,14 +171,22 @@ int exif_orientation(const ImageSpec& spec) {
 // it swaps 5 and 7, transverse for transpose (issue #4661), which the test of every tag caught.
 ImageBuf shown_as_tagged(const ImageBuf& stored, int orientation) {
   switch (orientation) {
-    case 2: return ImageBufAlgo::flop(stored);                        // mirrored left–right
-    case 3: return ImageBufAlgo::rotate180(stored);
-    case 4: return ImageBufAlgo::flip(stored);                        // mirrored top–bottom
-    case 5: return ImageBufAlgo::transpose(stored);                   // row 0 left, column 0 top
-    case 6: return ImageBufAlgo::rotate90(stored);                    // clockwise
-    case 7: return ImageBufAlgo::rotate180(ImageBufAlgo::transpose(stored));  // transverse
-    case 8: return ImageBufAlgo::rotate270(stored);                   // anticlockwise
-    default: return ImageBufAlgo::copy(stored);
+    case 2:
+      return ImageBufAlgo::flop(stored);  // mirrored left–right
+    case 3:
+      return ImageBufAlgo::rotate180(stored);
+    case 4:
+      return ImageBufAlgo::flip(stored);  // mirrored top–bottom
+    case 5:
+      return ImageBufAlgo::transpose(stored);  // row 0 left, column 0 top
+    case 6:
+      return ImageBufAlgo::rotate90(stored);  // clockwise
+    case 7:
+      return ImageBufAlgo::rotate180(ImageBufAlgo::transpose(stored));  // transverse
+    case 8:
+      return ImageBufAlgo::rotate270(stored);  // anticlockwise
+    default:
+      return ImageBufAlgo::copy(stored);
   }
 }
 
@@ -197,15 +205,14 @@ ImageFile read_image_file_quietly(const std::string& path, PixelGrid grid) {
   auto in = ImageInput::open(path);
   if (!in) throw InputError(path, "cannot read image: " + one_line(geterror()));
   const ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-    throw InputError(path, "image has no pixels");
-  if (spec.depth > 1) throw InputError(path, fmt::format("a volume image ({} slices); insitu reads flat images", spec.depth));
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) throw InputError(path, "image has no pixels");
+  if (spec.depth > 1)
+    throw InputError(path, fmt::format("a volume image ({} slices); insitu reads flat images", spec.depth));
   check_declared_size(path, spec.width, spec.height, std::int64_t(spec.pixel_bytes(true)));
   ImageFile file;
   file.path = path;
   file.format = in->format_name();
-  file.display_referred = !(spec.format.basetype == TypeDesc::FLOAT ||
-                            spec.format.basetype == TypeDesc::HALF ||
+  file.display_referred = !(spec.format.basetype == TypeDesc::FLOAT || spec.format.basetype == TypeDesc::HALF ||
                             spec.format.basetype == TypeDesc::DOUBLE);
   file.bits = int(spec.format.size()) * 8;
   if (const float t = spec.get_float_attribute("ExposureTime", 0.0f); t > 0) file.exposure.time_s = t;
@@ -213,7 +220,8 @@ ImageFile read_image_file_quietly(const std::string& path, PixelGrid grid) {
   int iso = spec.get_int_attribute("Exif:PhotographicSensitivity", 0);
   if (iso <= 0) iso = spec.get_int_attribute("Exif:ISOSpeedRatings", 0);
   if (iso > 0) file.exposure.iso = iso;
-  if (const int f35 = spec.get_int_attribute("Exif:FocalLengthIn35mmFilm", 0); f35 > 0) file.exposure.focal_35mm_mm = f35;
+  if (const int f35 = spec.get_int_attribute("Exif:FocalLengthIn35mmFilm", 0); f35 > 0)
+    file.exposure.focal_35mm_mm = f35;
   file.orientation = grid == PixelGrid::kAsDisplayed ? exif_orientation(spec) : 1;
   file.stored = reoriented(decode_rgb(*in, path), file.orientation, path);
   in->close();
@@ -241,7 +249,10 @@ std::pair<int, int> read_image_size(const std::string& path) {
 std::size_t sanitize(Image& img) {
   std::size_t count = 0;
   for (float& v : img.data)
-    if (!(v >= 0.0f) || !std::isfinite(v)) { v = 0.0f; ++count; }
+    if (!(v >= 0.0f) || !std::isfinite(v)) {
+      v = 0.0f;
+      ++count;
+    }
   return count;
 }
 
@@ -260,9 +271,8 @@ namespace {
 // extension (so OpenImageIO picks the same format).
 std::string temporary_name(const fs::path& final_path) {
   static std::atomic<int> counter{0};
-  return (final_path.parent_path() /
-          fmt::format(".{}.tmp-{}-{}{}", final_path.stem().string(), ::getpid(), counter++,
-                      final_path.extension().string()))
+  return (final_path.parent_path() / fmt::format(".{}.tmp-{}-{}{}", final_path.stem().string(), ::getpid(), counter++,
+                                                 final_path.extension().string()))
       .string();
 }
 
@@ -305,13 +315,14 @@ std::string read_back_failure(const std::string& path, const ImageSpec& spec) {
   const ImageSpec& got = in->spec();
   if (got.width != spec.width || got.height != spec.height || got.nchannels != spec.nchannels) {
     capture.failed();
-    return fmt::format("the file written reads back as {}x{}x{}, not {}x{}x{}", got.width, got.height, got.nchannels, spec.width,
-                       spec.height, spec.nchannels);
+    return fmt::format("the file written reads back as {}x{}x{}, not {}x{}x{}", got.width, got.height, got.nchannels,
+                       spec.width, spec.height, spec.nchannels);
   }
   constexpr int kBandRows = 64;
   std::vector<float> band(std::size_t(spec.width) * std::size_t(spec.nchannels) * kBandRows);
   for (int y = 0; y < spec.height; y += kBandRows)
-    if (!in->read_scanlines(0, 0, y, std::min(spec.height, y + kBandRows), 0, 0, spec.nchannels, TypeDesc::FLOAT, band.data())) {
+    if (!in->read_scanlines(0, 0, y, std::min(spec.height, y + kBandRows), 0, 0, spec.nchannels, TypeDesc::FLOAT,
+                            band.data())) {
       capture.failed();
       return "the file written is cut short or damaged (a full disk?): " + one_line(in->geterror());
     }
@@ -344,7 +355,8 @@ void write_atomically(const std::string& path, const std::string& format, const 
   const std::string tmp = temporary_name(p);
   auto out = ImageOutput::create(format.empty() ? tmp : format);
   if (!out) throw InputError(path, "no image format for '" + p.extension().string() + "'");
-  if (spec.format == TypeDesc::UINT8 && out->supports("ioproxy")) return write_through_memory(path, spec, *out, write_pixels, stage);
+  if (spec.format == TypeDesc::UINT8 && out->supports("ioproxy"))
+    return write_through_memory(path, spec, *out, write_pixels, stage);
   const TempFileGuard guard(tmp);  // removed if the process is interrupted meanwhile
   std::string err;
   if (!out->open(tmp, spec) || !write_pixels(*out) || !out->close()) err = out->geterror();
@@ -356,8 +368,10 @@ void write_atomically(const std::string& path, const std::string& format, const 
     fs::remove(tmp, ec);
     throw InputError(path, "cannot write image: " + err);
   }
-  if (stage) stage->add(tmp, path);
-  else commit(tmp, path);
+  if (stage)
+    stage->add(tmp, path);
+  else
+    commit(tmp, path);
 }
 
 }  // namespace
@@ -372,11 +386,12 @@ void write_image(const std::string& path, const Image& img, const Exposure* expo
     if (exposure->iso) spec.attribute("Exif:PhotographicSensitivity", int(*exposure->iso));
     if (exposure->focal_35mm_mm) spec.attribute("Exif:FocalLengthIn35mmFilm", int(*exposure->focal_35mm_mm));
   }
-  write_atomically(path, "", spec, [&](ImageOutput& out) { return out.write_image(TypeDesc::FLOAT, img.data.data()); }, stage);
+  write_atomically(
+      path, "", spec, [&](ImageOutput& out) { return out.write_image(TypeDesc::FLOAT, img.data.data()); }, stage);
 }
 
-void write_exr_channels(const std::string& path, int width, int height,
-                        const std::vector<ExrChannel>& channels, bool half_float, StagedWrites* stage) {
+void write_exr_channels(const std::string& path, int width, int height, const std::vector<ExrChannel>& channels,
+                        bool half_float, StagedWrites* stage) {
   const int nc = int(channels.size());
   ImageSpec spec(width, height, nc, half_float ? TypeDesc::HALF : TypeDesc::FLOAT);
   spec.channelnames.clear();
@@ -389,19 +404,24 @@ void write_exr_channels(const std::string& path, int width, int height,
   // by OpenEXR): the whole image interleaved at once was another copy of every channel.
   constexpr int kRows = 256;
   std::vector<float> block(std::size_t(width) * std::size_t(std::min(height, kRows)) * std::size_t(nc));
-  write_atomically(path, "openexr", spec, [&](ImageOutput& out) {
-    for (int y0 = 0; y0 < height; y0 += kRows) {
-      const int y1 = std::min(height, y0 + kRows);
-      const std::size_t first = std::size_t(y0) * std::size_t(width), count = std::size_t(y1 - y0) * std::size_t(width);
-      for (int i = 0; i < nc; ++i) {
-        const Image& src = *channels[i].image;
-        for (std::size_t k = 0; k < count; ++k)
-          block[k * std::size_t(nc) + std::size_t(i)] = src.data[(first + k) * std::size_t(src.channels) + std::size_t(channels[i].channel)];
-      }
-      if (!out.write_scanlines(y0, y1, 0, TypeDesc::FLOAT, block.data())) return false;
-    }
-    return true;
-  }, stage);
+  write_atomically(
+      path, "openexr", spec,
+      [&](ImageOutput& out) {
+        for (int y0 = 0; y0 < height; y0 += kRows) {
+          const int y1 = std::min(height, y0 + kRows);
+          const std::size_t first = std::size_t(y0) * std::size_t(width),
+                            count = std::size_t(y1 - y0) * std::size_t(width);
+          for (int i = 0; i < nc; ++i) {
+            const Image& src = *channels[i].image;
+            for (std::size_t k = 0; k < count; ++k)
+              block[k * std::size_t(nc) + std::size_t(i)] =
+                  src.data[(first + k) * std::size_t(src.channels) + std::size_t(channels[i].channel)];
+          }
+          if (!out.write_scanlines(y0, y1, 0, TypeDesc::FLOAT, block.data())) return false;
+        }
+        return true;
+      },
+      stage);
 }
 
 Image resize(const Image& img, int width, int height, const std::string& filter) {
@@ -421,8 +441,9 @@ Image rotated_clockwise(const Image& img, int deg) {
   ImageSpec spec(img.width, img.height, img.channels, TypeDesc::FLOAT);
   ImageBuf src(spec, const_cast<float*>(img.data.data()));
   ImageBuf dst;
-  const bool ok = deg == 90 ? ImageBufAlgo::rotate90(dst, src)
-                : deg == 180 ? ImageBufAlgo::rotate180(dst, src) : ImageBufAlgo::rotate270(dst, src);
+  const bool ok = deg == 90    ? ImageBufAlgo::rotate90(dst, src)
+                  : deg == 180 ? ImageBufAlgo::rotate180(dst, src)
+                               : ImageBufAlgo::rotate270(dst, src);
   if (!ok) throw std::runtime_error("rotate: " + dst.geterror());
   const bool swap = deg != 180;
   Image out(swap ? img.height : img.width, swap ? img.width : img.height, img.channels);

@@ -14,7 +14,6 @@ namespace insitu {
 
 class StagedWrites;  // core/staged_writes.h
 
-
 struct Image {
   int width = 0, height = 0, channels = 0;
   std::vector<float> data;  // row-major, row 0 at the top, channels interleaved
@@ -25,8 +24,16 @@ struct Image {
   bool empty() const { return data.empty(); }
   float* at(int x, int y) { return &data[(std::size_t(y) * width + x) * channels]; }
   const float* at(int x, int y) const { return &data[(std::size_t(y) * width + x) * channels]; }
-  Rgb rgb(int x, int y) const { const float* p = at(x, y); return {p[0], p[1], p[2]}; }
-  void set_rgb(int x, int y, const Rgb& c) { float* p = at(x, y); p[0] = c[0]; p[1] = c[1]; p[2] = c[2]; }
+  Rgb rgb(int x, int y) const {
+    const float* p = at(x, y);
+    return {p[0], p[1], p[2]};
+  }
+  void set_rgb(int x, int y, const Rgb& c) {
+    float* p = at(x, y);
+    p[0] = c[0];
+    p[1] = c[1];
+    p[2] = c[2];
+  }
 };
 
 // What a camera recorded about an exposure (EXIF, through OpenImageIO); absent values are empty.
@@ -99,8 +106,8 @@ struct ExrChannel {
   const Image* image;  // the source image
   int channel;         // which of its channels
 };
-void write_exr_channels(const std::string& path, int width, int height,
-                        const std::vector<ExrChannel>& channels, bool half_float = false, StagedWrites* stage = nullptr);
+void write_exr_channels(const std::string& path, int width, int height, const std::vector<ExrChannel>& channels,
+                        bool half_float = false, StagedWrites* stage = nullptr);
 
 // Resampling with a proper filter (OpenImageIO's ImageBufAlgo::resize); filter "" is OpenImageIO's
 // default (Blackman-Harris), "box" the area average (keeps a radiance map's integral).

@@ -13,7 +13,12 @@ namespace {
 std::string line_col(const std::string& text, std::size_t byte) {
   int line = 1, col = 1;
   for (std::size_t i = 0; i < std::min(byte, text.size()); ++i) {
-    if (text[i] == '\n') { ++line; col = 1; } else { ++col; }
+    if (text[i] == '\n') {
+      ++line;
+      col = 1;
+    } else {
+      ++col;
+    }
   }
   return fmt::format("{}:{}", line, col);
 }
@@ -26,12 +31,17 @@ class DuplicateKeyCheck {
   bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
     using E = json::parse_event_t;
     switch (event) {
-      case E::object_start: stack_.push_back({true, {}, "", 0}); break;
-      case E::array_start: stack_.push_back({false, {}, "", 0}); break;
+      case E::object_start:
+        stack_.push_back({true, {}, "", 0});
+        break;
+      case E::array_start:
+        stack_.push_back({false, {}, "", 0});
+        break;
       case E::key: {
         Level& top = stack_.back();
         top.key = parsed.get<std::string>();
-        if (!top.keys.insert(top.key).second) throw InputError(file_ + ":" + path(), "duplicate key (the JSON has it twice)");
+        if (!top.keys.insert(top.key).second)
+          throw InputError(file_ + ":" + path(), "duplicate key (the JSON has it twice)");
         break;
       }
       case E::object_end:
@@ -39,7 +49,9 @@ class DuplicateKeyCheck {
         stack_.pop_back();
         element_done();
         break;
-      case E::value: element_done(); break;
+      case E::value:
+        element_done();
+        break;
     }
     return true;
   }
@@ -70,7 +82,8 @@ json read_json_file(const std::string& path) {
   if (std::filesystem::is_directory(path, ec)) throw InputError(path, "is a directory, not a JSON file");
   const auto size = std::filesystem::file_size(path, ec);
   if (!ec && size > kMaxJsonBytes)
-    throw InputError(path, fmt::format("{} bytes: too large for a scene or points file (at most {} MiB)", size, kMaxJsonBytes >> 20));
+    throw InputError(path, fmt::format("{} bytes: too large for a scene or points file (at most {} MiB)", size,
+                                       kMaxJsonBytes >> 20));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, exists_quietly(path) ? "cannot read file" : "file not found");
   std::stringstream ss;
@@ -80,7 +93,8 @@ json read_json_file(const std::string& path) {
 
 json parse_json_text(const std::string& text, const std::string& name) {
   if (text.size() > kMaxJsonBytes)
-    throw InputError(name, fmt::format("{} bytes: too large for a scene or points text (at most {} MiB)", text.size(), kMaxJsonBytes >> 20));
+    throw InputError(name, fmt::format("{} bytes: too large for a scene or points text (at most {} MiB)", text.size(),
+                                       kMaxJsonBytes >> 20));
   if (const auto nul = text.find('\0'); nul != std::string::npos)
     throw InputError(fmt::format("{}:{}", name, line_col(text, nul)), "a NUL byte: this is not a JSON text");
   try {
@@ -182,10 +196,11 @@ void JsonObject::finish() const {
 Mat3d checked_rotation(const Mat3d& R, const JsonValue& where, Warnings* warnings) {
   const double orth = (R * R.transpose() - Mat3d::Identity()).norm(), det = R.determinant();
   if (!(orth <= kRotationTolerance) || !(det > 0))
-    where.fail(fmt::format("not a rotation (|R Rᵀ − I| = {:.2g}, det = {:.6g}; at most {:g} is accepted, and det > 0)", orth,
-                           det, kRotationTolerance));
+    where.fail(fmt::format("not a rotation (|R Rᵀ − I| = {:.2g}, det = {:.6g}; at most {:g} is accepted, and det > 0)",
+                           orth, det, kRotationTolerance));
   if (orth > 1e-6 && warnings)
-    warnings->add(where.where(), fmt::format("a rotation only to |R Rᵀ − I| = {:.2g}: the nearest rotation is used", orth));
+    warnings->add(where.where(),
+                  fmt::format("a rotation only to |R Rᵀ − I| = {:.2g}: the nearest rotation is used", orth));
   return nearest_rotation(R);
 }
 

@@ -33,7 +33,8 @@ inline std::string json_text(const json& j, int indent = -1) {
 
 class JsonValue {
  public:
-  JsonValue(const json& j, std::string file, std::string path) : j_(j), file_(std::move(file)), path_(std::move(path)) {}
+  JsonValue(const json& j, std::string file, std::string path)
+      : j_(j), file_(std::move(file)), path_(std::move(path)) {}
   const json& raw() const { return j_; }
   const std::string& path() const { return path_; }
   const std::string& file() const { return file_; }
@@ -44,9 +45,9 @@ class JsonValue {
   long integer(long lo, long hi) const;
   bool boolean() const;
   std::string string() const;
-  Vec3d vec3() const;         // [x, y, z], finite
-  Mat4d mat4() const;         // 4 rows of 4, finite
-  std::size_t size() const;   // of an array
+  Vec3d vec3() const;        // [x, y, z], finite
+  Mat4d mat4() const;        // 4 rows of 4, finite
+  std::size_t size() const;  // of an array
   JsonValue element(std::size_t i) const;
   bool is_string() const { return j_.is_string(); }
   bool is_number() const { return j_.is_number(); }

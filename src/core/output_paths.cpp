@@ -40,7 +40,8 @@ void check_writable(const NamedPath& out) {
   if (ec) throw InputError(out.role + " " + out.path, "cannot create its folder: " + ec.message());
   const fs::path probe = dir / fmt::format(".insitu-probe-{}", ::getpid());
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
-  if (fd < 0) throw InputError(out.role + " " + out.path, fmt::format("its folder is not writable: {}", std::strerror(errno)));
+  if (fd < 0)
+    throw InputError(out.role + " " + out.path, fmt::format("its folder is not writable: {}", std::strerror(errno)));
   ::close(fd);
   fs::remove(probe, ec);
 }
@@ -53,11 +54,13 @@ void check_outputs(const std::vector<NamedPath>& inputs, const std::vector<Named
     if (out.path.empty()) continue;
     for (const NamedPath& in : inputs)
       if (!in.path.empty() && same_file(out.path, in.path))
-        throw InputError(out.role + " " + out.path,
-                         fmt::format("is {} ({}): an output never replaces an input; choose another name", in.role, in.path));
+        throw InputError(
+            out.role + " " + out.path,
+            fmt::format("is {} ({}): an output never replaces an input; choose another name", in.role, in.path));
     for (std::size_t j = 0; j < i; ++j)
       if (!outputs[j].path.empty() && same_file(out.path, outputs[j].path))
-        throw InputError(out.role + " " + out.path, fmt::format("is also {}: give each output its own name", outputs[j].role));
+        throw InputError(out.role + " " + out.path,
+                         fmt::format("is also {}: give each output its own name", outputs[j].role));
   }
   for (const NamedPath& out : outputs)
     if (!out.path.empty()) check_writable(out);

@@ -47,7 +47,8 @@ json read_irradiance_params(IntegratorParams& params) {
 }
 
 std::unique_ptr<Integrator> make_irradiance_integrator(const RenderInputs& inputs, const json& params) {
-  return std::make_unique<IrradianceIntegrator>(inputs, *parse_irradiance_mode(params.at("irradiance").get<std::string>()));
+  return std::make_unique<IrradianceIntegrator>(inputs,
+                                                *parse_irradiance_mode(params.at("irradiance").get<std::string>()));
 }
 
 }  // namespace

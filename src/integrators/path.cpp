@@ -159,7 +159,8 @@ class PathIntegrator final : public Integrator {
   bool hit_wall(const Ray& ray, float t_max, CatcherHit* c) const {
     float t = 0;
     int axis = 0;
-    if (!in_.room || !room_.inside(ray.origin) || !room_.exit(ray.origin, ray.dir, &t, &axis) || !(t < t_max)) return false;
+    if (!in_.room || !room_.inside(ray.origin) || !room_.exit(ray.origin, ray.dir, &t, &axis) || !(t < t_max))
+      return false;
     const bool max_side = ray.dir[axis] > 0;
     Vec3f x = ray.origin + t * ray.dir, n = Vec3f::Zero();
     x[axis] = max_side ? in_.room->max[axis] : in_.room->min[axis];
@@ -186,7 +187,12 @@ class PathIntegrator final : public Integrator {
       if (h.valid()) {
         const SurfacePoint sp = in_.catcher_meshes->surface(ray, h);
         const CatcherMesh& info = in_.catcher_mesh_info[std::size_t(h.mesh)];
-        c = {true, h.t, sp.p_world, sp.ng_world, info.albedo_from_photo, info.albedo,
+        c = {true,
+             h.t,
+             sp.p_world,
+             sp.ng_world,
+             info.albedo_from_photo,
+             info.albedo,
              in_.catcher_irradiance->irradiance(sp.ng_world)};
       }
     }
@@ -236,7 +242,8 @@ class PathIntegrator final : public Integrator {
       const Vec3f wl = frame.to_local(rs.dir);
       if (rs.pdf > 0 && wl.z() > 0 && rs.dir.dot(sp.ng_world) > 0 && !blocked_by_catcher(origin, rs) &&
           !blocked_by_objects(origin, rs)) {
-        L += throughput * bsdf.eval(wo, wl) * rs.radiance * (wl.z() / rs.pdf * power_heuristic(rs.pdf, bsdf.pdf(wo, wl)));
+        L += throughput * bsdf.eval(wo, wl) * rs.radiance *
+             (wl.z() / rs.pdf * power_heuristic(rs.pdf, bsdf.pdf(wo, wl)));
       }
       // BSDF sample.
       BsdfSample bs;
@@ -252,8 +259,9 @@ class PathIntegrator final : public Integrator {
         // more): they see their own shadows and light on it. A wall is the room's emitter too:
         // its light is weighed against the room light's samples of it.
         const CatcherEstimate e = estimate_catcher(c, wi, sampler, depth);
-        const Rgb photo = c.wall ? Rgb(env_radiance(ray.origin, wi) * power_heuristic(bs.pdf, room_.pdf(ray.origin, wi)))
-                                 : room_radiance(c.x, wi);
+        const Rgb photo = c.wall
+                              ? Rgb(env_radiance(ray.origin, wi) * power_heuristic(bs.pdf, room_.pdf(ray.origin, wi)))
+                              : room_radiance(c.x, wi);
         L += throughput * (c.albedo_from_photo ? Rgb(photo + e.with - e.without) : e.with);
         break;
       }
@@ -279,7 +287,8 @@ class PathIntegrator final : public Integrator {
     if (!c.albedo_from_photo) return c.albedo / kPiF;
     const Rgb P = room_radiance(c.x, dir);
     Rgb rho_over_pi;
-    for (int k = 0; k < 3; ++k) rho_over_pi[k] = c.irradiance[k] > 0 ? std::min(P[k] / c.irradiance[k], 1.0f / kPiF) : 0.0f;
+    for (int k = 0; k < 3; ++k)
+      rho_over_pi[k] = c.irradiance[k] > 0 ? std::min(P[k] / c.irradiance[k], 1.0f / kPiF) : 0.0f;
     return rho_over_pi;
   }
 
@@ -311,9 +320,10 @@ class PathIntegrator final : public Integrator {
     const Vec3f wi = cosine_sample(n, sampler.next(), sampler.next());
     const float pdf_bsdf = n.dot(wi) / kPiF;
     const CatcherHit behind_hit = find_catcher({origin, wi}, kInfinity);
-    const Rgb behind = behind_hit.valid
-                           ? Rgb(kPiF * e.rho_over_pi * room_radiance(behind_hit.x, wi))
-                           : Rgb(kPiF * e.rho_over_pi * env_radiance(origin, wi) * power_heuristic(pdf_bsdf, room_.pdf(origin, wi)));
+    const Rgb behind =
+        behind_hit.valid
+            ? Rgb(kPiF * e.rho_over_pi * room_radiance(behind_hit.x, wi))
+            : Rgb(kPiF * e.rho_over_pi * env_radiance(origin, wi) * power_heuristic(pdf_bsdf, room_.pdf(origin, wi)));
     e.without += behind;
     const Hit hit = objects_->intersect({origin, wi});
     if (hit.valid() && (!behind_hit.valid || hit.t < behind_hit.t))
@@ -338,10 +348,9 @@ class PathIntegrator final : public Integrator {
   std::shared_ptr<const RoomLight> room_light_;
   const RoomLight& room_;
   int max_depth_;
-  std::vector<std::shared_ptr<const PlaneIrradiance>> plane_irradiance_;  // by plane, with a room box
+  std::vector<std::shared_ptr<const PlaneIrradiance>> plane_irradiance_;   // by plane, with a room box
   std::array<std::shared_ptr<const PlaneIrradiance>, 6> wall_irradiance_;  // by face of the room box
 };
-
 
 json read_path_params(IntegratorParams& params) {
   int max_depth = 5;

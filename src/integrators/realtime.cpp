@@ -31,7 +31,6 @@ class RealtimeIntegrator final : public Integrator {
   CubeMap blurred_;
 };
 
-
 json read_realtime_params(IntegratorParams&) { return json::object(); }
 
 std::unique_ptr<Integrator> make_realtime_integrator(const RenderInputs& inputs, const json&) {

@@ -73,8 +73,9 @@ void IntegratorParams::finish() const {
     if (!asked_.count(it.key())) {
       std::string known;
       for (const auto& k : asked_) known += (known.empty() ? "" : ", ") + k;
-      throw InputError(render_.file + ":" + render_.path + "." + integrator_ + "." + it.key(),
-                       fmt::format("unknown key (the {} integrator reads: {})", integrator_, known.empty() ? "nothing" : known));
+      throw InputError(
+          render_.file + ":" + render_.path + "." + integrator_ + "." + it.key(),
+          fmt::format("unknown key (the {} integrator reads: {})", integrator_, known.empty() ? "nothing" : known));
     }
 }
 
@@ -106,11 +107,12 @@ void check_render_keys(const std::string& name, const JsonBlock& render,
       for (const auto& [k, who] : readers) known.push_back(k);
       for (const auto& e : integrator_registry()) blocks.push_back(e.name);
       throw InputError(render.file + ":" + render.path + "." + key,
-                       "unknown key (expected one of: " + join(known) + "; or an integrator's object of parameters: " + join(blocks) + ")");
+                       "unknown key (expected one of: " + join(known) +
+                           "; or an integrator's object of parameters: " + join(blocks) + ")");
     }
     if (std::find(rd->second.begin(), rd->second.end(), name) == rd->second.end())
       warnings.add("render." + key, fmt::format("has no effect: the {} integrator does not read it (only {} {})", name,
-                                               join(rd->second), rd->second.size() == 1 ? "does" : "do"));
+                                                join(rd->second), rd->second.size() == 1 ? "does" : "do"));
   }
 }
 

@@ -37,8 +37,9 @@ std::string blender_camera_lines(const Camera& c, const std::string& photo_path)
   const double Lc = std::max(c.width * ax, c.height * ay);
   const double lens_mm = c.fx * ax * 36.0 / Lc;
   const double shift_x = (0.5 * c.width - c.cx) * ax / Lc, shift_y = (c.cy - 0.5 * c.height) * ay / Lc;
-  std::string s = fmt::format("scene.render.resolution_x = {}\nscene.render.resolution_y = {}\nscene.render.resolution_percentage = 100\n",
-                              c.width, c.height);
+  std::string s = fmt::format(
+      "scene.render.resolution_x = {}\nscene.render.resolution_y = {}\nscene.render.resolution_percentage = 100\n",
+      c.width, c.height);
   s += fmt::format("scene.render.pixel_aspect_x = {:.17g}\nscene.render.pixel_aspect_y = {:.17g}\n", ax, ay);
   s += "data = bpy.data.cameras.new('insitu camera')\n";
   s += "data.type = 'PERSP'\ndata.sensor_fit = 'AUTO'\ndata.sensor_width = 36.0\n";
@@ -47,8 +48,9 @@ std::string blender_camera_lines(const Camera& c, const std::string& photo_path)
   s += "camera.matrix_world = Matrix((\n" + matrix_rows(blender_camera_to_world(c)) + "))\nscene.camera = camera\n";
   if (!photo_path.empty()) {
     const std::string abs = std::filesystem::absolute(photo_path).lexically_normal().string();
-    s += fmt::format("background = data.background_images.new()\nbackground.image = bpy.data.images.load({}, check_existing=True)\n",
-                     nlohmann::json(abs).dump());
+    s += fmt::format(
+        "background = data.background_images.new()\nbackground.image = bpy.data.images.load({}, check_existing=True)\n",
+        nlohmann::json(abs).dump());
     s += "data.show_background_images = True\n";
   }
   return s;

@@ -34,7 +34,8 @@ void scene_extent(const LoadedScene& s, Vec3d& centre, double& size_m) {
       for (const Vec3f& p : m.positions) b.extend(p);
   const Vec3d eye = s.camera.eye_world();
   centre = (b.lo.array() <= b.hi.array()).all() ? Vec3d(0.5 * (b.lo + b.hi).cast<double>()) : eye;
-  size_m = std::max({1e-3, (eye - centre).norm(), (b.lo.array() <= b.hi.array()).all() ? double((b.hi - b.lo).norm()) : 0.0});
+  size_m = std::max(
+      {1e-3, (eye - centre).norm(), (b.lo.array() <= b.hi.array()).all() ? double((b.hi - b.lo).norm()) : 0.0});
 }
 
 // An infinite plane as a square of half-side 1000 × the scene's size about the point nearest the
@@ -52,7 +53,8 @@ Quad plane_square(const LoadedScene& s, const PlaneSpec& p) {
 }
 
 std::string albedo_comment(const CatcherAlbedo& a) {
-  if (a.from_photo) return fmt::format("# albedo: the photo's mean over {} pixels (scene/catcher_albedo.h)\n", a.pixels);
+  if (a.from_photo)
+    return fmt::format("# albedo: the photo's mean over {} pixels (scene/catcher_albedo.h)\n", a.pixels);
   return "# albedo: the scene's (or 0.5 where the photo does not show the surface)\n";
 }
 
@@ -65,8 +67,8 @@ std::string local_scene_lines(const LoadedScene& s, std::string& bytes) {
     const std::string name = fmt::format("local_scene[{}]", k);
     out += albedo_comment(albedo[k]);
     if (p.mesh) {
-      out += blender_mesh(s.catcher_meshes->meshes()[mesh_index++], name + " " + fs::path(p.mesh->mesh).filename().string(),
-                          albedo[k].albedo, bytes);
+      out += blender_mesh(s.catcher_meshes->meshes()[mesh_index++],
+                          name + " " + fs::path(p.mesh->mesh).filename().string(), albedo[k].albedo, bytes);
       continue;
     }
     out += fmt::format("catcher(quads_object(scene, {}, {}, surface_material({}, {})))\n", py_string(name + " (plane)"),
@@ -79,18 +81,20 @@ std::string objects_lines(const LoadedScene& s, std::string& bytes) {
   std::string out;
   if (!s.objects) return out;
   for (std::size_t i = 0; i < s.objects->meshes().size(); ++i)
-    out += blender_mesh(s.objects->meshes()[i], fmt::format("objects[{}] {}", i, fs::path(s.spec.objects[i].mesh).filename().string()),
+    out += blender_mesh(s.objects->meshes()[i],
+                        fmt::format("objects[{}] {}", i, fs::path(s.spec.objects[i].mesh).filename().string()),
                         std::nullopt, bytes);
   return out;
 }
 
 std::string header(const LoadedScene& s, const BlenderExportPaths& paths) {
   const std::string py = fs::path(paths.script).filename().string();
-  std::string h = fmt::format("# Written by insitu export-blender from {} (src/interop/blender_export.h).\n", s.spec.path);
+  std::string h =
+      fmt::format("# Written by insitu export-blender from {} (src/interop/blender_export.h).\n", s.spec.path);
   h += "#   blender --python " + py + "                         builds the scene in a new scene \"insitu\"\n";
   h += "#   blender -b --python " + py + " -- --render out.png [--samples N]   renders the composite over the photo\n";
-  h += "# It reads " + fs::path(paths.meshes).filename().string() + " and " + fs::path(paths.world).filename().string() +
-       " beside it.\n";
+  h += "# It reads " + fs::path(paths.meshes).filename().string() + " and " +
+       fs::path(paths.world).filename().string() + " beside it.\n";
   return h;
 }
 
@@ -112,10 +116,13 @@ BlenderExport make_blender_export(const LoadedScene& s, const BlenderExportPaths
   e.world = cube_to_equirect(s.environment);
   std::string& py = e.script;
   py = header(s, paths) + kBlenderExportPrelude + "\n";
-  py += fmt::format("MESHES = data_file({}, {})\n", py_string(fs::path(paths.meshes).filename().string()), py_string(abs_path(paths.meshes)));
-  py += fmt::format("WORLD = data_file({}, {})\n", py_string(fs::path(paths.world).filename().string()), py_string(abs_path(paths.world)));
+  py += fmt::format("MESHES = data_file({}, {})\n", py_string(fs::path(paths.meshes).filename().string()),
+                    py_string(abs_path(paths.meshes)));
+  py += fmt::format("WORLD = data_file({}, {})\n", py_string(fs::path(paths.world).filename().string()),
+                    py_string(abs_path(paths.world)));
   py += "scene = new_scene('insitu')\n";
-  py += fmt::format("render_settings(scene, {}, {}, {})\n", s.spec.render.spp, max_bounces(s), s.spec.render.seed % 2147483647);
+  py += fmt::format("render_settings(scene, {}, {}, {})\n", s.spec.render.spp, max_bounces(s),
+                    s.spec.render.seed % 2147483647);
   py += blender_camera_lines(s.camera, s.spec.photo);
   py += "set_world(scene, WORLD)\n";
   if (const auto& box = s.spec.environment.room_box)

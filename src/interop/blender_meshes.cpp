@@ -40,9 +40,10 @@ bool any_normals(const Mesh& m) {
 double blender_roughness(float ns) { return std::sqrt(std::sqrt(2.0 / (std::max(0.0f, ns) + 2.0))); }
 
 std::string material_line(const Material& m, const std::string& object_name) {
-  return fmt::format("surface_material({}, {}, {}, {}, {:.9g})", py_string(object_name + ": " + m.name), py_rgb(m.kd),
-                     py_string(m.map_kd_path.empty() ? "" : std::filesystem::absolute(m.map_kd_path).lexically_normal().string()),
-                     py_rgb(m.ks), blender_roughness(m.ns));
+  return fmt::format(
+      "surface_material({}, {}, {}, {}, {:.9g})", py_string(object_name + ": " + m.name), py_rgb(m.kd),
+      py_string(m.map_kd_path.empty() ? "" : std::filesystem::absolute(m.map_kd_path).lexically_normal().string()),
+      py_rgb(m.ks), blender_roughness(m.ns));
 }
 
 }  // namespace
@@ -62,7 +63,8 @@ std::string blender_mesh(const Mesh& m, const std::string& name, const std::opti
   if (normals)
     for (const Triangle& t : m.triangles)
       for (int k = 0; k < 3; ++k)
-        append_vec(bytes, to_blender(t.n[k] >= 0 ? m.normals[std::size_t(t.n[k])].cast<double>().normalized() : geometric_normal(m, t)));
+        append_vec(bytes, to_blender(t.n[k] >= 0 ? m.normals[std::size_t(t.n[k])].cast<double>().normalized()
+                                                 : geometric_normal(m, t)));
   if (uvs)
     for (const Triangle& t : m.triangles)
       for (int k = 0; k < 3; ++k) {
@@ -76,8 +78,8 @@ std::string blender_mesh(const Mesh& m, const std::string& name, const std::opti
     for (const Material& mat : m.materials) materials += (materials.empty() ? "" : ", ") + material_line(mat, name);
   }
   std::string s = fmt::format("obj = load_mesh(scene, {}, MESHES, {}, {}, {}, {}, {}, [{}])\n", py_string(name), offset,
-                              m.positions.size(), m.triangles.size(), normals ? "True" : "False", uvs ? "True" : "False",
-                              materials);
+                              m.positions.size(), m.triangles.size(), normals ? "True" : "False",
+                              uvs ? "True" : "False", materials);
   if (catcher_albedo) s += "catcher(obj)\n";
   return s;
 }

@@ -42,11 +42,13 @@ void add_wall(const EnvironmentSpec::RoomBox& box, int a, bool at_min, std::vect
   std::vector<const Opening*> openings;
   for (const Opening& o : box.openings)
     if (o.axis == a && std::abs(o.min[a] - w) <= 1e-9 * std::max(1.0, size_m)) openings.push_back(&o);
-  const std::vector<double> us = cuts(box.min[u], box.max[u], openings, u), vs = cuts(box.min[v], box.max[v], openings, v);
+  const std::vector<double> us = cuts(box.min[u], box.max[u], openings, u),
+                            vs = cuts(box.min[v], box.max[v], openings, v);
   for (std::size_t i = 0; i + 1 < us.size(); ++i)
     for (std::size_t j = 0; j + 1 < vs.size(); ++j) {
       const double cu = 0.5 * (us[i] + us[i + 1]), cv = 0.5 * (vs[j] + vs[j + 1]);
-      if (std::any_of(openings.begin(), openings.end(), [&](const Opening* o) { return inside(*o, u, v, cu, cv); })) continue;
+      if (std::any_of(openings.begin(), openings.end(), [&](const Opening* o) { return inside(*o, u, v, cu, cv); }))
+        continue;
       auto corner = [&](double pu, double pv) {
         Vec3d p;
         p[a] = w, p[u] = pu, p[v] = pv;

@@ -13,12 +13,36 @@ const char* face_name(int face) {
 FaceCoord project_to_face(int face, const Vec3f& r) {
   float sc, tc, ma;
   switch (face) {
-    case kPosX: ma = r.x();  sc = -r.z(); tc = -r.y(); break;
-    case kNegX: ma = -r.x(); sc = r.z();  tc = -r.y(); break;
-    case kPosY: ma = r.y();  sc = r.x();  tc = r.z();  break;
-    case kNegY: ma = -r.y(); sc = r.x();  tc = -r.z(); break;
-    case kPosZ: ma = r.z();  sc = r.x();  tc = -r.y(); break;
-    default:    ma = -r.z(); sc = -r.x(); tc = -r.y(); break;
+    case kPosX:
+      ma = r.x();
+      sc = -r.z();
+      tc = -r.y();
+      break;
+    case kNegX:
+      ma = -r.x();
+      sc = r.z();
+      tc = -r.y();
+      break;
+    case kPosY:
+      ma = r.y();
+      sc = r.x();
+      tc = r.z();
+      break;
+    case kNegY:
+      ma = -r.y();
+      sc = r.x();
+      tc = -r.z();
+      break;
+    case kPosZ:
+      ma = r.z();
+      sc = r.x();
+      tc = -r.y();
+      break;
+    default:
+      ma = -r.z();
+      sc = -r.x();
+      tc = -r.y();
+      break;
   }
   return {face, 0.5f * (sc / ma + 1.0f), 0.5f * (tc / ma + 1.0f)};
 }
@@ -26,27 +50,35 @@ FaceCoord project_to_face(int face, const Vec3f& r) {
 FaceCoord direction_to_face(const Vec3f& r) {
   const float ax = std::abs(r.x()), ay = std::abs(r.y()), az = std::abs(r.z());
   int face;
-  if (ax >= ay && ax >= az) face = r.x() > 0 ? kPosX : kNegX;
-  else if (ay >= az) face = r.y() > 0 ? kPosY : kNegY;
-  else face = r.z() > 0 ? kPosZ : kNegZ;
+  if (ax >= ay && ax >= az)
+    face = r.x() > 0 ? kPosX : kNegX;
+  else if (ay >= az)
+    face = r.y() > 0 ? kPosY : kNegY;
+  else
+    face = r.z() > 0 ? kPosZ : kNegZ;
   return project_to_face(face, r);
 }
 
 Vec3f face_to_direction(int face, float s, float t) {
   const float sc = 2.0f * s - 1.0f, tc = 2.0f * t - 1.0f;
   switch (face) {
-    case kPosX: return {1.0f, -tc, -sc};
-    case kNegX: return {-1.0f, -tc, sc};
-    case kPosY: return {sc, 1.0f, tc};
-    case kNegY: return {sc, -1.0f, -tc};
-    case kPosZ: return {sc, -tc, 1.0f};
-    default:    return {-sc, -tc, -1.0f};
+    case kPosX:
+      return {1.0f, -tc, -sc};
+    case kNegX:
+      return {-1.0f, -tc, sc};
+    case kPosY:
+      return {sc, 1.0f, tc};
+    case kNegY:
+      return {sc, -1.0f, -tc};
+    case kPosZ:
+      return {sc, -tc, 1.0f};
+    default:
+      return {-sc, -tc, -1.0f};
   }
 }
 
 Vec3f texel_direction(int face, int i, int j, int n) {
-  return face_to_direction(face, (float(i) + 0.5f) / float(n), (float(j) + 0.5f) / float(n))
-      .normalized();
+  return face_to_direction(face, (float(i) + 0.5f) / float(n), (float(j) + 0.5f) / float(n)).normalized();
 }
 
 CubeMap::CubeMap(int size) : size_(size), stride_(size + 2) {
@@ -61,7 +93,9 @@ Rgb CubeMap::texel(int face, int i, int j) const {
 
 void CubeMap::set_texel(int face, int i, int j, const Rgb& c) {
   float* p = ptr(face, i, j);
-  p[0] = c[0]; p[1] = c[1]; p[2] = c[2];
+  p[0] = c[0];
+  p[1] = c[1];
+  p[2] = c[2];
 }
 
 Rgb CubeMap::lookup_nearest(const Vec3f& dir) const {
@@ -109,8 +143,7 @@ Rgb CubeMap::lookup(const Vec3f& dir) const {
   const float* c = a + std::size_t(stride_) * 3;
   const float* d = c + 3;
   Rgb out;
-  for (int k = 0; k < 3; ++k)
-    out[k] = (1 - wy) * ((1 - wx) * a[k] + wx * b[k]) + wy * ((1 - wx) * c[k] + wx * d[k]);
+  for (int k = 0; k < 3; ++k) out[k] = (1 - wy) * ((1 - wx) * a[k] + wx * b[k]) + wy * ((1 - wx) * c[k] + wx * d[k]);
   return out;
 }
 

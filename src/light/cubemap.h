@@ -70,12 +70,10 @@ class CubeMap {
 
  private:
   int size_ = 0;
-  int stride_ = 0;  // size + 2
+  int stride_ = 0;                           // size + 2
   std::array<std::vector<float>, 6> faces_;  // (size+2)^2 RGB each
   float* ptr(int face, int i, int j) { return &faces_[face][(std::size_t(j + 1) * stride_ + (i + 1)) * 3]; }
-  const float* ptr(int face, int i, int j) const {
-    return &faces_[face][(std::size_t(j + 1) * stride_ + (i + 1)) * 3];
-  }
+  const float* ptr(int face, int i, int j) const { return &faces_[face][(std::size_t(j + 1) * stride_ + (i + 1)) * 3]; }
 };
 
 }  // namespace insitu

@@ -108,7 +108,10 @@ ShotFiles read_shot_files(const EnvironmentSpec& spec) {
 std::vector<double> bracket_exposures(const ShotSpec& s, const std::vector<ImageFile>& files) {
   std::vector<double> k;
   for (std::size_t b = 0; b < files.size(); ++b) {
-    if (!s.times_s.empty()) { k.push_back(s.times_s[b]); continue; }
+    if (!s.times_s.empty()) {
+      k.push_back(s.times_s[b]);
+      continue;
+    }
     const auto rel = files[b].exposure.relative();
     if (!rel) throw InputError(s.where, fmt::format("{}: no exposure time in its EXIF; give \"times\"", s.files[b]));
     k.push_back(*rel);
@@ -121,7 +124,8 @@ void recover_first_response(const EnvironmentSpec& spec, const ShotFiles& files,
   for (int f = 0; f < 6 && !info.response; ++f)
     if (files[std::size_t(f)].size() >= 2) {
       try {
-        info.response = recover_response(files[std::size_t(f)], bracket_exposures(spec.shots[std::size_t(f)], files[std::size_t(f)]));
+        info.response = recover_response(files[std::size_t(f)],
+                                         bracket_exposures(spec.shots[std::size_t(f)], files[std::size_t(f)]));
       } catch (const InputError& e) {
         throw e.with_context(spec.shots[std::size_t(f)].where);
       }
@@ -163,12 +167,15 @@ LinearShots linearize_shots(const EnvironmentSpec& spec, const ShotFiles& files,
                                             ? linearize_with_response(fl.front(), response)
                                             : linearize(fl.front(), &clamped);
         info.clamped_values += clamped;
-        if (clamped > 0) warnings.add(s.files.front(), fmt::format("{} negative or non-finite values clamped to 0", clamped));
+        if (clamped > 0)
+          warnings.add(s.files.front(), fmt::format("{} negative or non-finite values clamped to 0", clamped));
         info.clipped[std::size_t(f)] = clipped_fraction(fl.front());
         out.clipped.shots[std::size_t(f)] = clipped_mask(fl.front());
         const auto rel = s.times_s.empty() ? fl.front().exposure.relative() : std::optional<double>(s.times_s.front());
-        if (rel) out.k_shot[std::size_t(f)] = *rel;
-        else out.all_singles_have_k = false;
+        if (rel)
+          out.k_shot[std::size_t(f)] = *rel;
+        else
+          out.all_singles_have_k = false;
       }
     } catch (const InputError& e) {
       throw e.with_context(s.where);
@@ -182,7 +189,8 @@ LinearShots linearize_shots(const EnvironmentSpec& spec, const ShotFiles& files,
 
 // Into the photo's unit by EXIF, value × k_photo / k_shot, when the photo and every single shot
 // have it (returns true); the factor and exif modes are noted or checked here.
-bool apply_exif_exposure(const EnvironmentSpec& spec, const ImageFile* photo, LinearShots& shots, EnvironmentInfo& info) {
+bool apply_exif_exposure(const EnvironmentSpec& spec, const ImageFile* photo, LinearShots& shots,
+                         EnvironmentInfo& info) {
   const std::optional<double> k_photo = photo ? photo->exposure.relative() : std::nullopt;
   if (spec.exposure == EnvironmentSpec::Exposure::kFactor) {
     info.exposure_source = "factor";
@@ -199,7 +207,8 @@ bool apply_exif_exposure(const EnvironmentSpec& spec, const ImageFile* photo, Li
     if (photo && !k_photo) throw InputError(spec.where + ".exposure", photo->path + ": no exposure time in its EXIF");
     for (int f = 0; f < 6; ++f)
       if (!shots.k_shot[std::size_t(f)])
-        throw InputError(spec.where + ".exposure", spec.shots[std::size_t(f)].files.front() + ": no exposure time in its EXIF");
+        throw InputError(spec.where + ".exposure",
+                         spec.shots[std::size_t(f)].files.front() + ": no exposure time in its EXIF");
   }
   return false;
 }
@@ -214,10 +223,11 @@ void warn_if_one_shot_limits(const EnvironmentSpec& spec, const ShotSet& set, in
   for (int f = 0; f < 6; ++f)
     if (f != smallest) others = std::min(others, shot_face_size(set, f));
   if (2 * n > others) return;
-  warnings.add(spec.shots[std::size_t(smallest)].files.front(),
-               fmt::format("{} × {} pixels: it limits every cube face to {} × {} texels (the other shots give {}); "
-                           "give a larger shot, or environment.face_size", set.shots[std::size_t(smallest)].width,
-                           set.shots[std::size_t(smallest)].height, n, n, others));
+  warnings.add(
+      spec.shots[std::size_t(smallest)].files.front(),
+      fmt::format("{} × {} pixels: it limits every cube face to {} × {} texels (the other shots give {}); "
+                  "give a larger shot, or environment.face_size",
+                  set.shots[std::size_t(smallest)].width, set.shots[std::size_t(smallest)].height, n, n, others));
 }
 
 CubeMap assemble(const EnvironmentSpec& spec, const ShotSet& set, EnvironmentInfo& info, Warnings& warnings) {
@@ -240,8 +250,8 @@ CubeMap assemble(const EnvironmentSpec& spec, const ShotSet& set, EnvironmentInf
 }
 
 // Without EXIF, the estimate: one factor that matches the medians of the photo and of the cube.
-CubeMap scale_by_estimate(const CubeMap& cube, const ImageFile& photo, const EnvironmentSpec& spec, EnvironmentInfo& info,
-                          Warnings& warnings) {
+CubeMap scale_by_estimate(const CubeMap& cube, const ImageFile& photo, const EnvironmentSpec& spec,
+                          EnvironmentInfo& info, Warnings& warnings) {
   const Image photo_linear = linearize_photo(photo, info);
   std::vector<float> yp, yc;
   for (int y = 0; y < photo_linear.height; ++y)
@@ -259,7 +269,8 @@ CubeMap scale_by_estimate(const CubeMap& cube, const ImageFile& photo, const Env
   return scaled(cube, float(info.exposure_factor));
 }
 
-CubeMap load_shot_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo& info, const ImageFile* photo) {
+CubeMap load_shot_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo& info,
+                              const ImageFile* photo) {
   const ShotFiles files = read_shot_files(spec);
   recover_first_response(spec, files, info);
   const ResponseCurve response = info.response.value_or(srgb_response());
@@ -275,7 +286,8 @@ CubeMap load_shot_environment(const EnvironmentSpec& spec, Warnings& warnings, E
 
 }  // namespace
 
-CubeMap load_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo* info_out, const ImageFile* photo) {
+CubeMap load_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo* info_out,
+                         const ImageFile* photo) {
   EnvironmentInfo info;
   CubeMap cube = spec.from_shots() ? load_shot_environment(spec, warnings, info, photo)
                                    : load_image_environment(spec, warnings, info);

@@ -19,13 +19,13 @@
 namespace insitu {
 
 struct EnvironmentInfo {
-  std::size_t clamped_values = 0;                        // negative or non-finite inputs set to 0
-  std::array<double, 6> coverage = {1, 1, 1, 1, 1, 1};   // per face, from six shots
-  std::array<double, 6> clipped = {0, 0, 0, 0, 0, 0};    // fraction of clipped pixels per shot
+  std::size_t clamped_values = 0;                             // negative or non-finite inputs set to 0
+  std::array<double, 6> coverage = {1, 1, 1, 1, 1, 1};        // per face, from six shots
+  std::array<double, 6> clipped = {0, 0, 0, 0, 0, 0};         // fraction of clipped pixels per shot
   std::array<double, 6> hfov_deg = {90, 90, 90, 90, 90, 90};  // per shot, as used (after turning)
-  std::optional<ResponseCurve> response;                 // recovered from brackets
-  double exposure_factor = 1;                            // applied to shots without EXIF
-  std::string exposure_source = "none";                  // "exif", "factor", "estimate", "none"
+  std::optional<ResponseCurve> response;                      // recovered from brackets
+  double exposure_factor = 1;                                 // applied to shots without EXIF
+  std::string exposure_source = "none";                       // "exif", "factor", "estimate", "none"
   // With clipped shots: per texel of the cube, the fraction of it that was clipped (the shots'
   // masks assembled like the shots themselves; a merged bracket's clipping is its shortest's).
   std::optional<CubeMap> clipped_cube;

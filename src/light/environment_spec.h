@@ -15,27 +15,27 @@ namespace insitu {
 // One shot: a single file, or exposure brackets (aligned, 8-bit) with their exposure times.
 struct ShotSpec {
   std::vector<std::string> files;
-  std::vector<double> times_s;       // empty: from EXIF
-  std::optional<double> hfov_deg;    // across the width as displayed (EXIF orientation applied); empty: the set's, else EXIF
-                                     // 35 mm focal length, else 90°
-  int rotate_deg = 0;                // the files turned clockwise by 0, 90, 180 or 270 before use
-  std::string key;                   // its key in the scene file ("+x", "front", "up", ...)
+  std::vector<double> times_s;     // empty: from EXIF
+  std::optional<double> hfov_deg;  // across the width as displayed (EXIF orientation applied); empty: the set's, else
+                                   // EXIF 35 mm focal length, else 90°
+  int rotate_deg = 0;              // the files turned clockwise by 0, 90, 180 or 270 before use
+  std::string key;                 // its key in the scene file ("+x", "front", "up", ...)
   std::string where;
 };
 
 struct EnvironmentSpec {
   std::string where;
-  std::string image;                 // equirectangular (2:1) or cube strip (1:6) HDR image
-  std::array<ShotSpec, 6> shots;     // or six shots, by face (+X, −X, +Y, −Y, +Z, −Z)
+  std::string image;              // equirectangular (2:1) or cube strip (1:6) HDR image
+  std::array<ShotSpec, 6> shots;  // or six shots, by face (+X, −X, +Y, −Y, +Z, −Z)
   int faced_face = kNegZ;
-  std::optional<double> hfov_deg;    // for every shot that does not give its own
-  int face_size = 0;                 // 0: natural size of the input
+  std::optional<double> hfov_deg;  // for every shot that does not give its own
+  int face_size = 0;               // 0: natural size of the input
   // Optional parallax correction: the room as a box, and where the environment was captured.
   // Openings (windows, open doors): axis-aligned rectangles on the box's walls, through which the
   // light is distant (DESIGN.md "The room's light is not distant").
   struct Opening {
     Vec3d min = Vec3d::Zero(), max = Vec3d::Zero();  // equal on the wall's axis
-    int axis = 0;                                      // the wall's: 0 x, 1 y, 2 z
+    int axis = 0;                                    // the wall's: 0 x, 1 y, 2 z
   };
   struct RoomBox {
     Vec3d min = Vec3d::Zero(), max = Vec3d::Zero(), capture = Vec3d::Zero();

@@ -21,7 +21,8 @@ CubeMap gaussian_blur_faces(const CubeMap& input) {
   CubeMap reduced;
   if (input.size() > kLegacyMaxFace) {
     reduced = CubeMap(kLegacyMaxFace);
-    for (int f = 0; f < 6; ++f) reduced.set_face_image(f, resize(input.face_image(f), kLegacyMaxFace, kLegacyMaxFace, "box"));
+    for (int f = 0; f < 6; ++f)
+      reduced.set_face_image(f, resize(input.face_image(f), kLegacyMaxFace, kLegacyMaxFace, "box"));
     reduced.update_borders();
   }
   const CubeMap& radiance = input.size() > kLegacyMaxFace ? reduced : input;

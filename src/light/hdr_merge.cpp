@@ -21,7 +21,8 @@ cv::Mat to_8bit(const ImageFile& f) {
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x)
       for (int c = 0; c < 3; ++c)
-        m.at<cv::Vec3b>(y, x)[c] = static_cast<unsigned char>(std::lround(std::clamp(img.at(x, y)[c], 0.0f, 1.0f) * 255.0f));
+        m.at<cv::Vec3b>(y, x)[c] =
+            static_cast<unsigned char>(std::lround(std::clamp(img.at(x, y)[c], 0.0f, 1.0f) * 255.0f));
   return m;
 }
 
@@ -56,8 +57,10 @@ ResponseCurve srgb_response() {
 // non-finite curves.
 void check_brackets_determine_a_response(const std::vector<ImageFile>& brackets, const std::vector<cv::Mat>& mats) {
   if (mats[0].rows * mats[0].cols < kSamples)
-    throw InputError(brackets[0].path, fmt::format("brackets of {}x{} pixels are too small to recover the camera response "
-                                                   "(at least {} pixels)", mats[0].cols, mats[0].rows, kSamples));
+    throw InputError(brackets[0].path,
+                     fmt::format("brackets of {}x{} pixels are too small to recover the camera response "
+                                 "(at least {} pixels)",
+                                 mats[0].cols, mats[0].rows, kSamples));
   std::array<bool, 256> seen{};
   int levels = 0;
   for (const cv::Mat& m : mats)
@@ -67,8 +70,10 @@ void check_brackets_determine_a_response(const std::vector<ImageFile>& brackets,
         if (z > 0 && z < 255 && !seen[z]) seen[z] = true, ++levels;
       }
   if (levels < 16)
-    throw InputError(brackets[0].path, fmt::format("the brackets hold {} unclipped grey level(s): too few to recover the camera "
-                                                   "response (every pixel clipped or black?)", levels));
+    throw InputError(brackets[0].path,
+                     fmt::format("the brackets hold {} unclipped grey level(s): too few to recover the camera "
+                                 "response (every pixel clipped or black?)",
+                                 levels));
 }
 
 ResponseCurve recover_response(const std::vector<ImageFile>& brackets, const std::vector<double>& exposures) {
@@ -89,7 +94,8 @@ ResponseCurve recover_response(const std::vector<ImageFile>& brackets, const std
   return r;
 }
 
-Image merge_brackets(const std::vector<ImageFile>& brackets, const std::vector<double>& exposures, const ResponseCurve& r) {
+Image merge_brackets(const std::vector<ImageFile>& brackets, const std::vector<double>& exposures,
+                     const ResponseCurve& r) {
   const std::vector<cv::Mat> mats = to_mats(brackets);
   // OpenCV wants g in its own scale (any constant factor passes through to the result).
   cv::Mat response(256, 1, CV_32FC3);

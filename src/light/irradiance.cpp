@@ -30,8 +30,15 @@ Rgb irradiance_reference(const CubeMap& radiance, const Vec3d& n) {
 
 std::array<double, 9> sh9_basis(const Vec3d& d) {
   const double x = d.x(), y = d.y(), z = d.z();
-  return {0.282095, 0.488603 * y, 0.488603 * z, 0.488603 * x, 1.092548 * x * y, 1.092548 * y * z,
-          0.315392 * (3 * z * z - 1), 1.092548 * x * z, 0.546274 * (x * x - y * y)};
+  return {0.282095,
+          0.488603 * y,
+          0.488603 * z,
+          0.488603 * x,
+          1.092548 * x * y,
+          1.092548 * y * z,
+          0.315392 * (3 * z * z - 1),
+          1.092548 * x * z,
+          0.546274 * (x * x - y * y)};
 }
 
 Sh9 project_sh9(const CubeMap& radiance) {
@@ -117,7 +124,8 @@ Rgb exact_at(const CubeMap& L, const RowPrefix& P, const Vec3d& n) {
     const double* a = P.at(f, j, i0);
     const double* b = P.at(f, j, i1);
     for (int c = 0; c < 3; ++c)
-      sum[c] += (b[c * 3] - a[c * 3]) * n.x() + (b[c * 3 + 1] - a[c * 3 + 1]) * n.y() + (b[c * 3 + 2] - a[c * 3 + 2]) * n.z();
+      sum[c] +=
+          (b[c * 3] - a[c * 3]) * n.x() + (b[c * 3 + 1] - a[c * 3 + 1]) * n.y() + (b[c * 3 + 2] - a[c * 3 + 2]) * n.z();
   };
   for (int f = 0; f < 6; ++f) {
     const FaceLinear g = face_linear(f, n);
@@ -151,7 +159,10 @@ Rgb exact_at(const CubeMap& L, const RowPrefix& P, const Vec3d& n) {
       add_run(f, j, full0, full1);
       // Partly visible texels: in [any0, any1) but outside [full0, full1).
       for (int i = any0; i < any1; ++i) {
-        if (i >= full0 && i < full1) { i = full1 - 1; continue; }
+        if (i >= full0 && i < full1) {
+          i = full1 - 1;
+          continue;
+        }
         const double w = texel_clamped_cosine_integral(f, i, j, N, n);
         if (w > 0) sum += L.texel(f, i, j).cast<double>() * w;
       }
@@ -180,7 +191,8 @@ class Sh9Field final : public IrradianceField {
 
 class ExactField final : public IrradianceField {
  public:
-  ExactField(const CubeMap& L, int size, const std::atomic<bool>* stop) : cube_(exact_irradiance_cube(L, size, 512, stop)) {}
+  ExactField(const CubeMap& L, int size, const std::atomic<bool>* stop)
+      : cube_(exact_irradiance_cube(L, size, 512, stop)) {}
   Rgb irradiance(const Vec3f& n) const override { return cube_.lookup(n); }
 
  private:
@@ -201,7 +213,8 @@ CubeMap exact_irradiance_cube(const CubeMap& radiance, int size, int max_face, c
   tbb::parallel_for(0, 6 * size, [&](int fj) {
     throw_if_stopped(stop);
     const int f = fj / size, j = fj % size;
-    for (int i = 0; i < size; ++i) out.set_texel(f, i, j, exact_at(*L, P, texel_direction(f, i, j, size).cast<double>()));
+    for (int i = 0; i < size; ++i)
+      out.set_texel(f, i, j, exact_at(*L, P, texel_direction(f, i, j, size).cast<double>()));
   });
   out.update_borders();
   return out;
@@ -219,10 +232,14 @@ CubeMap irradiance_cube(const IrradianceField& field, int n, float scale) {
 std::unique_ptr<IrradianceField> make_irradiance(IrradianceMode mode, const CubeMap& radiance, int exact_size,
                                                  const std::atomic<bool>* stop) {
   switch (mode) {
-    case IrradianceMode::kGaussian: return std::make_unique<GaussianField>(radiance);
-    case IrradianceMode::kSh9: return std::make_unique<Sh9Field>(radiance);
-    case IrradianceMode::kExact: return std::make_unique<ExactField>(radiance, exact_size, stop);
-    case IrradianceMode::kVolume: break;
+    case IrradianceMode::kGaussian:
+      return std::make_unique<GaussianField>(radiance);
+    case IrradianceMode::kSh9:
+      return std::make_unique<Sh9Field>(radiance);
+    case IrradianceMode::kExact:
+      return std::make_unique<ExactField>(radiance, exact_size, stop);
+    case IrradianceMode::kVolume:
+      break;
   }
   throw std::logic_error("make_irradiance takes the directional modes; every mode's factory is render/irradiance_at.h");
 }

@@ -31,9 +31,9 @@ namespace insitu {
 // the cube-based reports take the three directional modes.
 enum class IrradianceMode { kGaussian, kSh9, kExact, kVolume };
 inline constexpr Named<IrradianceMode> kIrradianceModes[] = {{IrradianceMode::kGaussian, "gaussian"},
-                                                            {IrradianceMode::kSh9, "sh9"},
-                                                            {IrradianceMode::kExact, "exact"},
-                                                            {IrradianceMode::kVolume, "volume"}};
+                                                             {IrradianceMode::kSh9, "sh9"},
+                                                             {IrradianceMode::kExact, "exact"},
+                                                             {IrradianceMode::kVolume, "volume"}};
 inline bool is_directional(IrradianceMode mode) { return mode != IrradianceMode::kVolume; }
 // One line on what the mode computes, for `insitu modes` and docs/cli.md (a mode without one is a
 // -Wswitch warning).
@@ -42,7 +42,8 @@ inline const char* irradiance_mode_summary(IrradianceMode mode) {
     case IrradianceMode::kGaussian:
       return "the legacy method: the cube blurred face by face with a "
              "Gaussian as wide as the face, looked up along the normal";
-    case IrradianceMode::kSh9: return "the cube projected on nine spherical harmonics (Ramamoorthi & Hanrahan 2001)";
+    case IrradianceMode::kSh9:
+      return "the cube projected on nine spherical harmonics (Ramamoorthi & Hanrahan 2001)";
     case IrradianceMode::kExact:
       return "the integral over every texel of the cube, "
              "tabulated on a 32² cube and looked up bilinearly";

@@ -38,8 +38,10 @@ IrradianceReport irradiance_report(const CubeMap& radiance, int count, int exact
 
   const auto t0 = clock::now();
   std::vector<float> ref(normals.size());
-  tbb::parallel_for(std::size_t(0), normals.size(), [&](std::size_t k) { ref[k] = luminance(irradiance_reference(radiance, normals[k])); });
-  rep.reference_ms_per_normal = std::chrono::duration<double, std::milli>(clock::now() - t0).count() / double(normals.size());
+  tbb::parallel_for(std::size_t(0), normals.size(),
+                    [&](std::size_t k) { ref[k] = luminance(irradiance_reference(radiance, normals[k])); });
+  rep.reference_ms_per_normal =
+      std::chrono::duration<double, std::milli>(clock::now() - t0).count() / double(normals.size());
   double mean_E = 0;
   for (std::size_t k = 0; k + 1 < normals.size(); ++k) mean_E += ref[k] / double(normals.size() - 1);
 
@@ -64,7 +66,8 @@ IrradianceReport irradiance_report(const CubeMap& radiance, int count, int exact
     for (std::size_t k = 0; k < normals.size(); ++k) {
       const double e = luminance(field->irradiance(normals[k].cast<float>()));
       const double rel = std::abs(e - ref[k]) / std::max(double(ref[k]), 1e-3 * mean_E);
-      if (k + 1 == normals.size()) m.brightest_rel_error = rel;
+      if (k + 1 == normals.size())
+        m.brightest_rel_error = rel;
       else {
         m.mean_rel_error += rel / double(normals.size() - 1);
         m.max_rel_error = std::max(m.max_rel_error, rel);

@@ -19,9 +19,12 @@ ShotBasis shot_basis(int face, int faced_face) {
   assert(faced_face == kPosX || faced_face == kNegX || faced_face == kPosZ || faced_face == kNegZ);
   ShotBasis b;
   b.forward = face_axis(face);
-  if (face == kPosY) b.up = -face_axis(faced_face);
-  else if (face == kNegY) b.up = face_axis(faced_face);
-  else b.up = Vec3d(0, 1, 0);
+  if (face == kPosY)
+    b.up = -face_axis(faced_face);
+  else if (face == kNegY)
+    b.up = face_axis(faced_face);
+  else
+    b.up = Vec3d(0, 1, 0);
   b.right = b.forward.cross(b.up);
   return b;
 }
@@ -75,8 +78,8 @@ CubeMap assemble_cube(const ShotSet& set, int n, AssemblyInfo* info) {
       }
     local.coverage[std::size_t(f)] = double(covered) / (double(n) * n);
     if (covered == 0)
-      throw InputError(set.names[std::size_t(f)], fmt::format("the shot covers none of face {} (field of view {}°)", face_name(f),
-                                                              set.hfov_deg[std::size_t(f)]));
+      throw InputError(set.names[std::size_t(f)], fmt::format("the shot covers none of face {} (field of view {}°)",
+                                                              face_name(f), set.hfov_deg[std::size_t(f)]));
     holes |= covered < long(n) * n;
   }
   cube.update_borders();
@@ -125,7 +128,8 @@ void relax(CubeMap& v, const CubeMap& w, int iterations) {
       for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
           if (w.texel(f, i, j)[0] >= 1.0f) continue;
-          const Rgb mean = 0.25f * (v.texel(f, i - 1, j) + v.texel(f, i + 1, j) + v.texel(f, i, j - 1) + v.texel(f, i, j + 1));
+          const Rgb mean =
+              0.25f * (v.texel(f, i - 1, j) + v.texel(f, i + 1, j) + v.texel(f, i, j - 1) + v.texel(f, i, j + 1));
           const float known = w.texel(f, i, j)[0];
           next.set_texel(f, i, j, known * v.texel(f, i, j) + (1 - known) * mean);
         }

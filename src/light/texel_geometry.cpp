@@ -13,12 +13,18 @@ Vec3d face_point(int face, double s, double t) {
   // face_to_direction in double precision: the same table (cubemap.h), not normalized.
   const double sc = 2 * s - 1, tc = 2 * t - 1;
   switch (face) {
-    case kPosX: return {1, -tc, -sc};
-    case kNegX: return {-1, -tc, sc};
-    case kPosY: return {sc, 1, tc};
-    case kNegY: return {sc, -1, -tc};
-    case kPosZ: return {sc, -tc, 1};
-    default:    return {-sc, -tc, -1};
+    case kPosX:
+      return {1, -tc, -sc};
+    case kNegX:
+      return {-1, -tc, sc};
+    case kPosY:
+      return {sc, 1, tc};
+    case kNegY:
+      return {sc, -1, -tc};
+    case kPosZ:
+      return {sc, -tc, 1};
+    default:
+      return {-sc, -tc, -1};
   }
 }
 }  // namespace
@@ -32,11 +38,13 @@ double texel_solid_angle(int i, int j, int n) {
 std::vector<double> face_solid_angles(int n) {
   std::vector<double> corner(std::size_t(n + 1) * std::size_t(n + 1));
   for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) corner[std::size_t(j) * std::size_t(n + 1) + std::size_t(i)] = area_element(2.0 * i / n - 1, 2.0 * j / n - 1);
+    for (int i = 0; i <= n; ++i)
+      corner[std::size_t(j) * std::size_t(n + 1) + std::size_t(i)] = area_element(2.0 * i / n - 1, 2.0 * j / n - 1);
   auto a = [&](int i, int j) { return corner[std::size_t(j) * std::size_t(n + 1) + std::size_t(i)]; };
   std::vector<double> omega(std::size_t(n) * std::size_t(n));
   for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) omega[std::size_t(j) * std::size_t(n) + std::size_t(i)] = a(i, j) - a(i, j + 1) - a(i + 1, j) + a(i + 1, j + 1);
+    for (int i = 0; i < n; ++i)
+      omega[std::size_t(j) * std::size_t(n) + std::size_t(i)] = a(i, j) - a(i, j + 1) - a(i + 1, j) + a(i + 1, j + 1);
   return omega;
 }
 

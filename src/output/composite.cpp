@@ -32,9 +32,9 @@ Image composite(const Image& photo, const RenderLayers& l, CompositeMode mode) {
     for (int x = 0; x < photo.width; ++x) {
       const float a = *l.alpha.at(x, y);
       const bool additive = mode == CompositeMode::kAdditive || !ratio_is_reliable(photo, l, x, y);
-      const Rgb background = additive
-                                 ? Rgb((1.0f - a) * photo.rgb(x, y) + l.with_objects.rgb(x, y) - l.without_objects.rgb(x, y))
-                                 : Rgb((1.0f - a) * photo.rgb(x, y) * ratio.rgb(x, y));
+      const Rgb background =
+          additive ? Rgb((1.0f - a) * photo.rgb(x, y) + l.with_objects.rgb(x, y) - l.without_objects.rgb(x, y))
+                   : Rgb((1.0f - a) * photo.rgb(x, y) * ratio.rgb(x, y));
       out.set_rgb(x, y, (l.objects.rgb(x, y) + background).max(0.0f));
     }
   return out;
@@ -98,8 +98,11 @@ Image encode_composite(const Image& c, const Image& touched, const ImageFile& ph
     for (int x = 0; x < c.width; ++x) {
       const bool untouched = *touched.at(x, y) == 0.0f;
       for (int k = 0; k < 3; ++k) {
-        if (untouched && photo.display_referred) out.at(x, y)[k] = photo.stored.at(x, y)[k];
-        else out.at(x, y)[k] = use_response ? inverse_response(*response, k, c.at(x, y)[k]) : linear_to_srgb(c.at(x, y)[k]);
+        if (untouched && photo.display_referred)
+          out.at(x, y)[k] = photo.stored.at(x, y)[k];
+        else
+          out.at(x, y)[k] =
+              use_response ? inverse_response(*response, k, c.at(x, y)[k]) : linear_to_srgb(c.at(x, y)[k]);
       }
     }
   return out;

@@ -38,7 +38,8 @@ Image touched_mask(const RenderLayers& layers);
 // photo's by more than `threshold` of it (averaged over 3 × 3 pixels: the noise of a converged
 // render stays below it), as tools/validate/metrics.py measures "objects + changed". With walls
 // that catch, nearly every pixel is touched by a little; this is where the change shows.
-Image changed_mask(const Image& photo_linear, const Image& composite_linear, const RenderLayers& layers, double threshold = 0.03);
+Image changed_mask(const Image& photo_linear, const Image& composite_linear, const RenderLayers& layers,
+                   double threshold = 0.03);
 // W/N per channel (1 where N = 0): the shadow ratio layer.
 Image shadow_ratio(const RenderLayers& layers);
 // Whether the ratio form is the less noisy estimator at (x, y) (see above).

@@ -74,7 +74,8 @@ CompareResult compare_images(const Image& a, const Image& b, const Image* mask) 
   if (mask) r.masked = numbers(a, b, ssim, mask);
   r.error_luminance = Image(a.width, a.height, 1);
   for (int y = 0; y < a.height; ++y)
-    for (int x = 0; x < a.width; ++x) *r.error_luminance.at(x, y) = std::abs(luminance(a.rgb(x, y)) - luminance(b.rgb(x, y)));
+    for (int x = 0; x < a.width; ++x)
+      *r.error_luminance.at(x, y) = std::abs(luminance(a.rgb(x, y)) - luminance(b.rgb(x, y)));
   return r;
 }
 
@@ -99,19 +100,22 @@ Image comparison_picture(const Image& a, const Image& b, const CompareResult& r,
   cv::Mat e8(h, w, CV_8U);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
-      e8.at<unsigned char>(y, x) = static_cast<unsigned char>(emax > 0 ? std::lround(255 * *r.error_luminance.at(x, y) / emax) : 0);
+      e8.at<unsigned char>(y, x) =
+          static_cast<unsigned char>(emax > 0 ? std::lround(255 * *r.error_luminance.at(x, y) / emax) : 0);
   cv::Mat heat;
   cv::applyColorMap(e8, heat, cv::COLORMAP_INFERNO);
   heat.copyTo(canvas(cv::Rect(2 * (w + gap), 0, w, h)));
   // The colour bar: max at the top, 0 at the bottom, labelled.
   const int bx = 3 * w + 3 * gap;
   cv::Mat ramp(h, 1, CV_8U);
-  for (int y = 0; y < h; ++y) ramp.at<unsigned char>(y, 0) = static_cast<unsigned char>(std::lround(255.0 * (h - 1 - y) / std::max(1, h - 1)));
+  for (int y = 0; y < h; ++y)
+    ramp.at<unsigned char>(y, 0) = static_cast<unsigned char>(std::lround(255.0 * (h - 1 - y) / std::max(1, h - 1)));
   cv::Mat ramp_colour;
   cv::applyColorMap(ramp, ramp_colour, cv::COLORMAP_INFERNO);
   cv::resize(ramp_colour, ramp_colour, cv::Size(bar, h), 0, 0, cv::INTER_NEAREST);
   ramp_colour.copyTo(canvas(cv::Rect(bx, 0, bar, h)));
-  cv::putText(canvas, fmt::format("{:.3g}", emax), cv::Point(bx + bar + 4, 14), cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(0, 0, 0), 1);
+  cv::putText(canvas, fmt::format("{:.3g}", emax), cv::Point(bx + bar + 4, 14), cv::FONT_HERSHEY_SIMPLEX, 0.4,
+              cv::Scalar(0, 0, 0), 1);
   cv::putText(canvas, "0", cv::Point(bx + bar + 4, h - 4), cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(0, 0, 0), 1);
   cv::putText(canvas, "|dY|", cv::Point(bx + bar + 4, h / 2), cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(0, 0, 0), 1);
   Image out(canvas.cols, canvas.rows, 3);

@@ -30,7 +30,7 @@ CompareResult compare_images(const Image& a, const Image& b, const Image* mask =
 // A | B | heatmap of the luminance error (OpenCV's inferno map, 0 … max) with a colour bar and
 // its scale, as an encoded image. A and B are shown as `a_display` and `b_display` (encoded values
 // in [0, 1], e.g. the files as stored) when given, else encoded with the sRGB curve.
-Image comparison_picture(const Image& a, const Image& b, const CompareResult& result,
-                         const Image* a_display = nullptr, const Image* b_display = nullptr);
+Image comparison_picture(const Image& a, const Image& b, const CompareResult& result, const Image* a_display = nullptr,
+                         const Image* b_display = nullptr);
 
 }  // namespace insitu

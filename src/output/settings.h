@@ -9,8 +9,10 @@
 namespace insitu {
 
 enum class ToneMap { kPhoto, kAdaptiveLog, kReinhard, kLinear };
-inline constexpr Named<ToneMap> kToneMaps[] = {
-    {ToneMap::kPhoto, "photo"}, {ToneMap::kAdaptiveLog, "adaptive_log"}, {ToneMap::kReinhard, "reinhard"}, {ToneMap::kLinear, "linear"}};
+inline constexpr Named<ToneMap> kToneMaps[] = {{ToneMap::kPhoto, "photo"},
+                                               {ToneMap::kAdaptiveLog, "adaptive_log"},
+                                               {ToneMap::kReinhard, "reinhard"},
+                                               {ToneMap::kLinear, "linear"}};
 inline const char* tonemap_name(ToneMap t) { return name_of(kToneMaps, t); }
 inline std::optional<ToneMap> parse_tonemap(const std::string& name) { return parse_name(kToneMaps, name); }
 
@@ -36,14 +38,17 @@ inline const char* tonemap_summary(ToneMap op) {
     case ToneMap::kAdaptiveLog:
       return "the legacy renderer's operator: Drago et al. 2003's "
              "adaptive logarithmic mapping after a log-average key";
-    case ToneMap::kReinhard: return "Reinhard et al. 2002, global";
-    case ToneMap::kLinear: return "scaled by the key and clipped";
+    case ToneMap::kReinhard:
+      return "Reinhard et al. 2002, global";
+    case ToneMap::kLinear:
+      return "scaled by the key and clipped";
   }
   return "";
 }
 
 // How the catcher's change is applied to the photo (composite.h).
 enum class CompositeMode { kRatio, kAdditive };
-inline constexpr Named<CompositeMode> kCompositeModes[] = {{CompositeMode::kRatio, "ratio"}, {CompositeMode::kAdditive, "additive"}};
+inline constexpr Named<CompositeMode> kCompositeModes[] = {{CompositeMode::kRatio, "ratio"},
+                                                           {CompositeMode::kAdditive, "additive"}};
 
 }  // namespace insitu

@@ -51,8 +51,10 @@ Image tonemap(const Image& img, const ToneMapSettings& s, const Image* clipped_p
       } else if (lw > 0) {
         const double l = key * lw / lavg;
         double ld;
-        if (s.op == ToneMap::kReinhard) ld = l / (1 + l);
-        else ld = drago_scale * std::log(l + 1) / std::log(2 + 8 * std::pow(l / lmax, exponent));
+        if (s.op == ToneMap::kReinhard)
+          ld = l / (1 + l);
+        else
+          ld = drago_scale * std::log(l + 1) / std::log(2 + 8 * std::pow(l / lmax, exponent));
         d = c * float(ld / lw);
       }
       for (int k = 0; k < 3; ++k) out.at(x, y)[k] = linear_to_srgb(d[k]);

@@ -17,7 +17,8 @@ namespace {
 std::array<int, 3> neighbour(int f, int i, int j, int di, int dj, int n) {
   const int ni = i + di, nj = j + dj;
   if (ni >= 0 && ni < n && nj >= 0 && nj < n) return {f, ni, nj};
-  const FaceCoord c = direction_to_face(face_to_direction(f, (float(ni) + 0.5f) / float(n), (float(nj) + 0.5f) / float(n)));
+  const FaceCoord c =
+      direction_to_face(face_to_direction(f, (float(ni) + 0.5f) / float(n), (float(nj) + 0.5f) / float(n)));
   return {c.face, std::clamp(int(c.s * float(n)), 0, n - 1), std::clamp(int(c.t * float(n)), 0, n - 1)};
 }
 
@@ -146,7 +147,8 @@ double cube_power(const CubeMap& radiance) {
   double sum = 0;
   for (int f = 0; f < 6; ++f)
     for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) sum += luminance(radiance.texel(f, i, j)) * omega[std::size_t(j) * std::size_t(n) + std::size_t(i)];
+      for (int i = 0; i < n; ++i)
+        sum += luminance(radiance.texel(f, i, j)) * omega[std::size_t(j) * std::size_t(n) + std::size_t(i)];
   return sum;
 }
 

@@ -15,7 +15,7 @@ struct ClippedSource {
   std::vector<std::array<int, 3>> texels;  // (face, i, j)
   Vec3f dir_world = Vec3f::Zero();         // the luminance-weighted mean direction, unit
   double solid_angle_sr = 0;
-  double power = 0;                        // Σ Y(L0) ΔΩ: its share of c's irradiance-like power
+  double power = 0;  // Σ Y(L0) ΔΩ: its share of c's irradiance-like power
 };
 
 // Largest power (at the lower bound) first. Every region is its own source, up to `max_sources`;

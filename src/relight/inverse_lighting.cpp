@@ -19,12 +19,12 @@ namespace insitu {
 
 namespace {
 
-using inverse_lighting_detail::estimate_irradiance;
-using inverse_lighting_detail::FitPixel;
-using inverse_lighting_detail::gather_pixels;
 using inverse_lighting_detail::Albedos;
 using inverse_lighting_detail::Columns;
+using inverse_lighting_detail::estimate_irradiance;
 using inverse_lighting_detail::Fit;
+using inverse_lighting_detail::FitPixel;
+using inverse_lighting_detail::gather_pixels;
 using inverse_lighting_detail::solve;
 
 // The unknown ρ start at π · median(P/E0) of their surface; known ones at their value.
@@ -43,7 +43,8 @@ Albedos initial_albedos(const std::vector<FitPixel>& pixels, const InverseLighti
     a.log_rho[s] = ratio[s][ratio[s].size() / 2];
     std::optional<float> known;
     if (s < in.planes.size()) known = in.planes[s].albedo;
-    if (s >= in.planes.size() + 6 && s < in.planes.size() + 6 + in.references.size()) known = in.references[s - in.planes.size() - 6].albedo, a.reference[s] = true;
+    if (s >= in.planes.size() + 6 && s < in.planes.size() + 6 + in.references.size())
+      known = in.references[s - in.planes.size() - 6].albedo, a.reference[s] = true;
     if (known) {
       a.known[s] = true;
       a.log_rho[s] = std::log(std::max(1e-6f, *known));
@@ -62,8 +63,8 @@ enum class Mode { kFree, kWhole, kTied, kDropped };
 // The tied sources' column holds the parts of the one among them that delivers the most
 // irradiance to the photo's pixels per unit of power (`efficiency`): the least added light that
 // explains what the photo shows (a minimum-power solution; the others stay at the lower bound).
-Columns make_columns(const InverseLightingResult& res, const std::vector<Mode>& mode, const std::vector<double>& efficiency,
-                     const std::vector<bool>& held) {
+Columns make_columns(const InverseLightingResult& res, const std::vector<Mode>& mode,
+                     const std::vector<double>& efficiency, const std::vector<bool>& held) {
   Columns columns;
   int best = -1;
   for (std::size_t k = 0; k < mode.size(); ++k)
@@ -102,7 +103,8 @@ std::vector<int> unpinned(const Fit& fit) {
   std::vector<int> free;
   const double info_max = fit.jtj.diagonal().maxCoeff();
   for (int c = 0; c < int(fit.jtj.rows()); ++c) {
-    const bool pinned = fit.referenced && c < int(fit.a.size()) && fit.a[std::size_t(c)] <= 0 && fit.jtj(c, c) > 1e-10 * info_max;
+    const bool pinned =
+        fit.referenced && c < int(fit.a.size()) && fit.a[std::size_t(c)] <= 0 && fit.jtj(c, c) > 1e-10 * info_max;
     if (!pinned) free.push_back(c);
   }
   return free;
@@ -304,27 +306,31 @@ void describe(InverseLightingResult& res) {
   double solid_angle = 0;
   for (const SourceFit& s : res.sources) solid_angle += s.determined ? 0 : s.source.solid_angle_sr;
   if (determined == n) {
-    res.message = fmt::format("{} clipped source(s) recovered against {} photo pixels on {} surface(s){}", n, res.pixels,
-                              res.surfaces, res.reference_surfaces > 0 ? " with a reference albedo" : "");
+    res.message = fmt::format("{} clipped source(s) recovered against {} photo pixels on {} surface(s){}", n,
+                              res.pixels, res.surfaces, res.reference_surfaces > 0 ? " with a reference albedo" : "");
     return;
   }
   double share = 0;
   for (const SourceFit& s : res.sources) share += s.determined ? 0 : s.source.power;
   share /= std::max(1e-300, res.cube_power);
   const std::string what = fmt::format(
-      "{} of {} clipped source(s) ({:.3g} sr, {:.2g}% of the shots' light at their lower bound) not determined by the photo "
+      "{} of {} clipped source(s) ({:.3g} sr, {:.2g}% of the shots' light at their lower bound) not determined by the "
+      "photo "
       "({} pixels on {} surface(s)) stay at the lower bound",
       n - determined, n, solid_angle, 100 * share, res.pixels, res.surfaces);
   const std::string advice =
-      "give a local-scene plane's mean_albedo (a white sheet about 0.8, the floor's mean), or brackets short enough that "
+      "give a local-scene plane's mean_albedo (a white sheet about 0.8, the floor's mean), or brackets short enough "
+      "that "
       "nothing clips";
   if (res.missing_irradiance)
-    res.message = fmt::format("{}; the photo shows its surfaces get {:.0f}% more light than that, but not from which "
-                              "direction, so the objects may be too dark (by up to about that much); {}",
-                              what, 100 * *res.missing_irradiance,
-                              res.reference_surfaces > 0 ? "brackets short enough that nothing clips" : advice);
+    res.message = fmt::format(
+        "{}; the photo shows its surfaces get {:.0f}% more light than that, but not from which "
+        "direction, so the objects may be too dark (by up to about that much); {}",
+        what, 100 * *res.missing_irradiance,
+        res.reference_surfaces > 0 ? "brackets short enough that nothing clips" : advice);
   else
-    res.message = fmt::format("{}; if one is a key light (the sun, a lamp) the objects and their shadows are too dark; {}", what, advice);
+    res.message = fmt::format(
+        "{}; if one is a key light (the sun, a lamp) the objects and their shadows are too dark; {}", what, advice);
 }
 
 // The clipped texels less, under distant light, those that look into a plane of the local scene
@@ -366,7 +372,8 @@ std::vector<PartFit> make_parts(const std::vector<ClippedSource>& sources, const
   const int block = std::max(base_block, int(std::ceil(std::sqrt(double(clipped_texels) / 48.0))));
   std::vector<PartFit> parts;
   for (std::size_t k = 0; k < sources.size(); ++k)
-    for (ClippedSource& part : split_into_parts(sources[k], radiance, block)) parts.push_back({std::move(part), int(k)});
+    for (ClippedSource& part : split_into_parts(sources[k], radiance, block))
+      parts.push_back({std::move(part), int(k)});
   return parts;
 }
 
@@ -420,9 +427,8 @@ std::pair<std::vector<int>, std::vector<PartFit>> concentrated_parts(const Inver
 // lower bound, 34 %), where the coarse fit stands.
 bool refine_concentrated_parts(std::vector<FitPixel>& pixels, const Albedos& albedos, const InverseLightingInput& in,
                                InverseLightingResult& res) {
-  if (std::any_of(pixels.begin(), pixels.end(), [&](const FitPixel& p) {
-        return p.shadow_ball >= 0 || albedos.reference[std::size_t(p.surface)];
-      }))
+  if (std::any_of(pixels.begin(), pixels.end(),
+                  [&](const FitPixel& p) { return p.shadow_ball >= 0 || albedos.reference[std::size_t(p.surface)]; }))
     return false;
   auto cut = concentrated_parts(res, *in.radiance);  // not a structured binding: the lambda below takes it
   const std::vector<int>& replaced = cut.first;
@@ -458,7 +464,8 @@ InverseLightingResult recover_clipped_sources(const InverseLightingInput& in) {
   // ringing, texture at the clip level) would otherwise be a source of its own, free to take what
   // the fit leaves (raised grey ball: a one-texel speck ×2769, docs/validation.md).
   const int base_block = std::max(2, in.radiance->size() / 16);
-  if (in.clipped) sources = find_clipped_sources(light_texels(*in.clipped, in), *in.radiance, kMaxClippedSources, base_block);
+  if (in.clipped)
+    sources = find_clipped_sources(light_texels(*in.clipped, in), *in.radiance, kMaxClippedSources, base_block);
   const double total = cube_power(*in.radiance);
   for (const ClippedSource& s : sources) {
     res.sources.push_back({s});

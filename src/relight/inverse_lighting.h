@@ -126,26 +126,26 @@ struct ReferenceUse {
 };
 
 struct InverseLightingInput {
-  const CubeMap* radiance = nullptr;          // as assembled
-  const CubeMap* clipped = nullptr;           // EnvironmentInfo::clipped_cube
+  const CubeMap* radiance = nullptr;  // as assembled
+  const CubeMap* clipped = nullptr;   // EnvironmentInfo::clipped_cube
   std::optional<RoomBox> room;
   const Camera* camera = nullptr;
   const Image* photo_linear = nullptr;
-  const Image* photo_clipped = nullptr;       // clipped_mask of the photo (may be null)
+  const Image* photo_clipped = nullptr;  // clipped_mask of the photo (may be null)
   std::vector<FitPlane> planes;
   std::vector<FitReference> references;
-  int max_pixels = 2000;                      // photo pixels used, on a regular grid
-  int reference_pixels = 256;                 // per reference, on its own finer grid
-  int samples = 128;                          // per estimate of E0
-  int part_samples = 64;                      // per estimate of a part's E (drawn on its few texels)
-  const std::atomic<bool>* stop = nullptr;    // core/stop.h: throws Stopped once set
+  int max_pixels = 2000;                    // photo pixels used, on a regular grid
+  int reference_pixels = 256;               // per reference, on its own finer grid
+  int samples = 128;                        // per estimate of E0
+  int part_samples = 64;                    // per estimate of a part's E (drawn on its few texels)
+  const std::atomic<bool>* stop = nullptr;  // core/stop.h: throws Stopped once set
 };
 
 struct SourceFit {
   ClippedSource source;
   double scale = 1, sigma = 0;  // s_k and its standard deviation; 1 and 0 when undetermined
   bool determined = false;
-  double added_power = 0;       // (s_k − 1) · power
+  double added_power = 0;  // (s_k − 1) · power
   // The colour of the added light relative to the clipped value's, luminance 1, and the fit's σ
   // per channel (0: not fitted). Determined where each σ ≤ 0.1; applied where it also departs
   // from 1 by more than max(3σ, 0.1) in a channel (fit_colours); otherwise the added light keeps
@@ -164,17 +164,17 @@ struct PartFit {
 struct InverseLightingResult {
   std::vector<SourceFit> sources;
   std::vector<PartFit> parts;
-  int pixels = 0;               // photo pixels in the fit
+  int pixels = 0;  // photo pixels in the fit
   int surfaces = 0, reference_surfaces = 0;
   std::vector<ReferenceUse> references;  // per FitReference, in order
-  double clipped_power_share = 0;  // of the cube's power, at the lower bound
-  double cube_power = 0;           // Σ Y ΔΩ of the cube as assembled
+  double clipped_power_share = 0;        // of the cube's power, at the lower bound
+  double cube_power = 0;                 // Σ Y ΔΩ of the cube as assembled
   // The light the undetermined sources add to the photo's surfaces, as a share of what they get
   // at the lower bound, when the photo determines that much (empty otherwise).
   std::optional<double> missing_irradiance;
-  double residual_rms = 0;         // of the log residuals (robust fit's final)
-  std::string status;           // "none" (nothing clipped), "fitted", "partly", "undetermined"
-  std::string message;          // one sentence for the user
+  double residual_rms = 0;  // of the log residuals (robust fit's final)
+  std::string status;       // "none" (nothing clipped), "fitted", "partly", "undetermined"
+  std::string message;      // one sentence for the user
   bool any_determined() const;
   CubeMap apply(const CubeMap& radiance) const;  // parts multiplied by their scales, in their colour
 };

@@ -26,7 +26,8 @@ T model_irradiance(double e0, const std::vector<double>& coef, const T* a) {
 ceres::CostFunction* log_residual_cost(double log_p, double e0, std::vector<double> coef, bool autodiff = false);
 
 // r = 1 − E / T (a pixel of known albedo, T = π P / ρ); parameter block a. ∂r/∂a_c = −coef_c / T.
-ceres::CostFunction* relative_irradiance_cost(double target, double e0, std::vector<double> coef, bool autodiff = false);
+ceres::CostFunction* relative_irradiance_cost(double target, double e0, std::vector<double> coef,
+                                              bool autodiff = false);
 
 // r = w (log(1 + a_c) − 1/|S| Σ_{k ∈ S} log(1 + a_k)), S ∋ c; parameter block a (n columns).
 // ∂r/∂a_k = w ([k = c] / (1 + a_c) − [k ∈ S] / (|S| (1 + a_k))).

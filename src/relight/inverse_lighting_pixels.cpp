@@ -39,7 +39,8 @@ bool hit_surface(const Ray& ray, const InverseLightingInput& in, const RoomLight
   }
   float t_box = 0;
   int axis = 0;
-  if (in.room && room.inside(ray.origin) && room.exit(ray.origin, ray.dir, &t_box, &axis) && t_box < best * (1 - 1e-4f)) {
+  if (in.room && room.inside(ray.origin) && room.exit(ray.origin, ray.dir, &t_box, &axis) &&
+      t_box < best * (1 - 1e-4f)) {
     const Vec3f q = ray.origin + t_box * ray.dir;
     if (room.openings_at(q, axis) > 0) return false;
     best = t_box;
@@ -91,8 +92,10 @@ void ball_bounds(const FitBall& ball, const Camera& camera, ReferenceMask& m) {
     const Vec3f corner = ball.center + ball.radius * Vec3f(c & 1 ? 1 : -1, c & 2 ? 1 : -1, c & 4 ? 1 : -1);
     double depth = 0;
     const Vec2d uv = camera.project(corner.cast<double>(), &depth);
-    if (!(depth > 0)) lo = Vec2d::Zero(), hi = Vec2d(camera.width, camera.height), c = 8;
-    else lo = lo.cwiseMin(uv), hi = hi.cwiseMax(uv);
+    if (!(depth > 0))
+      lo = Vec2d::Zero(), hi = Vec2d(camera.width, camera.height), c = 8;
+    else
+      lo = lo.cwiseMin(uv), hi = hi.cwiseMax(uv);
   }
   lo = lo.cwiseMax(-1.0), hi = hi.cwiseMin(Vec2d(camera.width, camera.height) + Vec2d::Ones());
   const int x0 = int(std::floor(lo.x())), y0 = int(std::floor(lo.y()));
@@ -224,8 +227,9 @@ void gather_plate_shadows(const InverseLightingInput& in, const RoomLight& room,
 
 // Each reference's pixels, on a grid of about in.reference_pixels inside it: surface planes + 6 + r,
 // whatever real surface they lie on.
-void gather_reference_pixels(const InverseLightingInput& in, const RoomLight& room, const std::vector<ReferenceMask>& masks,
-                             std::vector<FitPixel>& out, std::vector<ReferenceUse>& uses) {
+void gather_reference_pixels(const InverseLightingInput& in, const RoomLight& room,
+                             const std::vector<ReferenceMask>& masks, std::vector<FitPixel>& out,
+                             std::vector<ReferenceUse>& uses) {
   for (std::size_t r = 0; r < masks.size(); ++r) {
     const ReferenceMask& m = masks[r];
     const int step = std::max(1, int(std::sqrt(m.area_px / std::max(1, in.reference_pixels))));
@@ -250,8 +254,9 @@ void gather_reference_pixels(const InverseLightingInput& in, const RoomLight& ro
 // own estimates in both, so that where the clipped light is all there is (everything clipped)
 // E = E_rest + Σ (1 + a_k) Ek trades against ρ exactly, as it does in truth, instead of through
 // two independent noises that the fit would take for information.
-void estimate_at(FitPixel& p, const Vec3f& x, const RoomLight& room0, const std::vector<std::unique_ptr<RoomLight>>& parts,
-                 const InverseLightingInput& in, int scale, std::uint64_t key) {
+void estimate_at(FitPixel& p, const Vec3f& x, const RoomLight& room0,
+                 const std::vector<std::unique_ptr<RoomLight>>& parts, const InverseLightingInput& in, int scale,
+                 std::uint64_t key) {
   p.e0_rgb = PlaneIrradiance::estimate(room0, x, p.n, scale * in.samples, 2 * key);
   p.ek_rgb.clear();
   for (std::size_t k = 0; k < parts.size(); ++k) {
@@ -267,7 +272,8 @@ void estimate_at(FitPixel& p, const Vec3f& x, const RoomLight& room0, const std:
 
 // Photo pixels on a regular grid that see a real surface and are neither clipped nor dark
 // (outside the references and the balls' reach), and the references' own.
-std::vector<FitPixel> gather_pixels(const InverseLightingInput& in, const RoomLight& room, std::vector<ReferenceUse>& uses) {
+std::vector<FitPixel> gather_pixels(const InverseLightingInput& in, const RoomLight& room,
+                                    std::vector<ReferenceUse>& uses) {
   const Image& photo = *in.photo_linear;
   std::vector<ReferenceMask> masks;
   for (const FitReference& r : in.references) masks.push_back(reference_mask(r, *in.camera, photo.width, photo.height));
@@ -278,7 +284,8 @@ std::vector<FitPixel> gather_pixels(const InverseLightingInput& in, const RoomLi
     throw_if_stopped(in.stop);
     for (int x = step / 2; x < photo.width; x += step) {
       FitPixel px;
-      if (std::any_of(masks.begin(), masks.end(), [&](const ReferenceMask& m) { return !m.on_plate && m.contains(x, y); }))
+      if (std::any_of(masks.begin(), masks.end(),
+                      [&](const ReferenceMask& m) { return !m.on_plate && m.contains(x, y); }))
         continue;
       if (sample_pixel(in, room, x, y, px) == PixelUse::kUsed &&
           ball_effect(in, in.camera->ray(Vec2d(x + 0.5, y + 0.5)), px) != BallEffect::kHidden)
@@ -309,8 +316,10 @@ void estimate_irradiance(std::vector<FitPixel>& pixels, const RoomLight& room0,
   std::map<int, FitPixel> by_surface;
   std::vector<FitPixel*> todo;
   for (FitPixel& p : pixels)
-    if (p.on_ball || in.room) todo.push_back(&p);
-    else by_surface.emplace(p.surface, p);
+    if (p.on_ball || in.room)
+      todo.push_back(&p);
+    else
+      by_surface.emplace(p.surface, p);
   for (auto& [surface, p] : by_surface) todo.push_back(&p);
   tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {
     throw_if_stopped(in.stop);
@@ -324,7 +333,8 @@ void estimate_irradiance(std::vector<FitPixel>& pixels, const RoomLight& room0,
     const FitPixel& e = by_surface.at(p.surface);
     p.e0 = e.e0, p.ek = e.ek, p.e0_rgb = e.e0_rgb, p.ek_rgb = e.ek_rgb;
   }
-  pixels.erase(std::remove_if(pixels.begin(), pixels.end(), [](const FitPixel& p) { return !(p.e0 > 0); }), pixels.end());
+  pixels.erase(std::remove_if(pixels.begin(), pixels.end(), [](const FitPixel& p) { return !(p.e0 > 0); }),
+               pixels.end());
 }
 
 void replace_part_estimates(std::vector<FitPixel>& pixels, const std::vector<int>& replaced,
@@ -336,7 +346,8 @@ void replace_part_estimates(std::vector<FitPixel>& pixels, const std::vector<int
     const int scale = p.on_ball ? 4 : in.room ? 1 : 16;
     std::vector<Rgb> e;
     for (std::size_t l = 0; l < lights.size(); ++l)
-      e.push_back(PlaneIrradiance::estimate(*lights[l], p.x + lift * p.n, p.n, scale * in.part_samples, 2 * k + 1 + ((l + key) << 40)));
+      e.push_back(PlaneIrradiance::estimate(*lights[l], p.x + lift * p.n, p.n, scale * in.part_samples,
+                                            2 * k + 1 + ((l + key) << 40)));
     return e;
   };
   std::vector<std::vector<Rgb>> fresh(pixels.size());
@@ -347,7 +358,8 @@ void replace_part_estimates(std::vector<FitPixel>& pixels, const std::vector<int
   tbb::parallel_for(std::size_t(0), surfaces.size(), [&](std::size_t i) {
     throw_if_stopped(in.stop);
     const int s = surfaces[i];
-    const auto p = std::find_if(pixels.begin(), pixels.end(), [&](const FitPixel& q) { return !q.on_ball && q.surface == s; });
+    const auto p =
+        std::find_if(pixels.begin(), pixels.end(), [&](const FitPixel& q) { return !q.on_ball && q.surface == s; });
     by_surface.at(s) = estimate(*p, std::uint64_t(s));
   });
   tbb::parallel_for(std::size_t(0), pixels.size(), [&](std::size_t i) {
@@ -424,7 +436,8 @@ void leave_out_other_materials(std::vector<FitPixel>& pixels) {
     median[zone] = v[v.size() / 2];
   }
   const auto other = [&](const FitPixel& p) {
-    return !(p.e0 > 0) || (p.shadow_ball >= 0 && std::abs(p.log_p - std::log(p.e0) - median[p.shadow_ball]) > std::log(3.0));
+    return !(p.e0 > 0) ||
+           (p.shadow_ball >= 0 && std::abs(p.log_p - std::log(p.e0) - median[p.shadow_ball]) > std::log(3.0));
   };
   pixels.erase(std::remove_if(pixels.begin(), pixels.end(), other), pixels.end());
 }
@@ -434,7 +447,8 @@ void leave_out_other_materials(std::vector<FitPixel>& pixels) {
 bool floor_radiance(const InverseLightingInput& in, const FitReference& ball_ref, const Vec3f& y, Rgb& out) {
   double depth = 0;
   const Vec2d uv = in.camera->project(y.cast<double>(), &depth);
-  if (!(depth > 0) || !(uv.x() >= 0 && uv.y() >= 0 && uv.x() < in.camera->width && uv.y() < in.camera->height)) return false;
+  if (!(depth > 0) || !(uv.x() >= 0 && uv.y() >= 0 && uv.x() < in.camera->width && uv.y() < in.camera->height))
+    return false;
   const int x = int(uv.x()), yy = int(uv.y());
   const Image* img = ball_ref.plate_linear ? ball_ref.plate_linear : in.photo_linear;
   const Image* clipped = ball_ref.plate_linear ? ball_ref.plate_clipped : in.photo_clipped;
@@ -510,7 +524,8 @@ void light_balls_from_the_floor(std::vector<FitPixel>& pixels, const CubeMap& re
 // A pixel is in one ball's zone (the first's it lies near) and shaded by that ball alone.
 void shade_by_balls(std::vector<FitPixel>& pixels, const CubeMap& rest, const CubeMap& radiance,
                     const std::vector<const ClippedSource*>& parts, const InverseLightingInput& in) {
-  if (in.room || std::none_of(pixels.begin(), pixels.end(), [](const FitPixel& p) { return p.shadow_ball >= 0; })) return;
+  if (in.room || std::none_of(pixels.begin(), pixels.end(), [](const FitPixel& p) { return p.shadow_ball >= 0; }))
+    return;
   const std::vector<TexelLight> rest_light = texel_lights(rest);
   std::vector<std::vector<TexelLight>> part_light;
   for (const ClippedSource* p : parts) part_light.push_back(texel_lights(radiance, &p->texels));

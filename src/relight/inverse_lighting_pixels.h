@@ -29,7 +29,8 @@ struct FitPixel {
 // Photo pixels on a regular grid that see a real surface and are neither clipped nor dark
 // (outside the references and the balls' reach), and the references' own; `uses` counts each
 // reference's pixels.
-std::vector<FitPixel> gather_pixels(const InverseLightingInput& in, const RoomLight& room, std::vector<ReferenceUse>& uses);
+std::vector<FitPixel> gather_pixels(const InverseLightingInput& in, const RoomLight& room,
+                                    std::vector<ReferenceUse>& uses);
 
 // E0 and every Ek at each pixel (`parts`: each part's texels alone); pixels whose E0 is 0 dropped.
 void estimate_irradiance(std::vector<FitPixel>& pixels, const RoomLight& room0,

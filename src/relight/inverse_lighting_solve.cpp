@@ -39,13 +39,12 @@ struct MeanAlbedoResidual {
   template <typename T>
   bool operator()(T const* const* params, T* r) const {
     T sum = T(0);
-    for (const PixelModel& p : pixels) sum += exp(T(p.log_p) + T(std::log(kPi)) - log(model_irradiance(p.e0, p.coef, params[0])));
+    for (const PixelModel& p : pixels)
+      sum += exp(T(p.log_p) + T(std::log(kPi)) - log(model_irradiance(p.e0, p.coef, params[0])));
     r[0] = (log(sum / T(double(pixels.size()))) - T(log_ref)) / T(0.01);
     return true;
   }
 };
-
-
 
 // Robust scale of the residuals: 1.4826 · median |r|.
 double robust_sigma(std::vector<double> r) {
@@ -92,8 +91,8 @@ void add_smoothing(ceres::Problem& problem, const std::vector<int>& column_sourc
     for (std::size_t d = 0; d < column_source.size(); ++d)
       if (column_source[d] == column_source[c]) same.push_back(d);
     if (same.size() < 2) continue;
-    problem.AddResidualBlock(smoothing_cost(c, std::move(same), std::sqrt(lambda * double(n)), int(column_source.size())),
-                             nullptr, a);
+    problem.AddResidualBlock(
+        smoothing_cost(c, std::move(same), std::sqrt(lambda * double(n)), int(column_source.size())), nullptr, a);
   }
 }
 
@@ -107,7 +106,8 @@ void add_residuals(ceres::Problem& problem, const std::vector<FitPixel>& pixels,
     if (albedos.mean[s]) refs[s].pixels.push_back(model);
     ceres::CostFunction* cost = log_residual_cost(model.log_p, model.e0, std::move(model.coef));
     ceres::LossFunction* loss = new ceres::CauchyLoss(w.cauchy);
-    if (!w.surface.empty() && w.surface[s] != 1) loss = new ceres::ScaledLoss(loss, w.surface[s], ceres::TAKE_OWNERSHIP);
+    if (!w.surface.empty() && w.surface[s] != 1)
+      loss = new ceres::ScaledLoss(loss, w.surface[s], ceres::TAKE_OWNERSHIP);
     problem.AddResidualBlock(cost, loss, &log_rho[s], a);
   }
   for (std::size_t s = 0; s < refs.size(); ++s) {
@@ -159,12 +159,15 @@ Fit solve_pass(const std::vector<FitPixel>& pixels, const Columns& columns, cons
   add_residuals(problem, pixels, columns, fit.log_rho, albedos, w, fit.a.data());
   std::vector<ceres::ResidualBlockId> data;
   problem.GetResidualBlocks(&data);
-  if (w.smoothing > 0 && column_source) add_smoothing(problem, *column_source, w.smoothing, pixels.size(), fit.a.data());
+  if (w.smoothing > 0 && column_source)
+    add_smoothing(problem, *column_source, w.smoothing, pixels.size(), fit.a.data());
   std::vector<double*> free_blocks{fit.a.data()};
   for (std::size_t s = 0; s < fit.log_rho.size(); ++s) {
     if (!problem.HasParameterBlock(&fit.log_rho[s])) continue;
-    if (albedos.known[s]) problem.SetParameterBlockConstant(&fit.log_rho[s]);
-    else free_blocks.push_back(&fit.log_rho[s]);
+    if (albedos.known[s])
+      problem.SetParameterBlockConstant(&fit.log_rho[s]);
+    else
+      free_blocks.push_back(&fit.log_rho[s]);
   }
   solve_with_a_nonnegative(problem, fit.a, stop);
   ceres::Problem::EvaluateOptions eval;
@@ -183,7 +186,8 @@ Weights reference_weights(const std::vector<FitPixel>& pixels, const Fit& fit, c
   for (std::size_t i = 0; i < pixels.size(); ++i) r[std::size_t(pixels[i].surface)].push_back(fit.residuals[i]);
   Weights w{0.1, std::vector<double>(r.size(), 1.0)};
   for (std::size_t s = 0; s < r.size(); ++s)
-    if (albedos.reference[s] && r[s].size() >= 8) w.surface[s] = std::pow(fit.sigma_r / std::max(0.01, robust_sigma(r[s])), 2);
+    if (albedos.reference[s] && r[s].size() >= 8)
+      w.surface[s] = std::pow(fit.sigma_r / std::max(0.01, robust_sigma(r[s])), 2);
   return w;
 }
 
@@ -203,9 +207,9 @@ Fit convex_start(const std::vector<FitPixel>& pixels, const Columns& columns, co
     if (!albedos.known[s]) continue;
     // r = 1 − (E0 + Σ_c a_c coef_c) / T, T = π P / ρ the irradiance a pixel of known albedo shows:
     // linear in a.
-    problem.AddResidualBlock(relative_irradiance_cost(kPi * std::exp(p.log_p - albedos.log_rho[s]), p.e0,
-                                                      column_coefficients(p, columns)),
-                             nullptr, start.a.data());
+    problem.AddResidualBlock(
+        relative_irradiance_cost(kPi * std::exp(p.log_p - albedos.log_rho[s]), p.e0, column_coefficients(p, columns)),
+        nullptr, start.a.data());
   }
   if (problem.NumResidualBlocks() == 0) return start;
   solve_with_a_nonnegative(problem, start.a, stop);
@@ -238,7 +242,8 @@ std::vector<FitPixel> informative(const std::vector<FitPixel>& pixels, const Alb
 
 Fit solve(const std::vector<FitPixel>& all_pixels, const Columns& columns, const Albedos& albedos,
           const std::atomic<bool>* stop, const std::vector<double>* a_start, const std::vector<int>* column_source) {
-  if (std::none_of(all_pixels.begin(), all_pixels.end(), [&](const FitPixel& p) { return albedos.reference[std::size_t(p.surface)]; })) {
+  if (std::none_of(all_pixels.begin(), all_pixels.end(),
+                   [&](const FitPixel& p) { return albedos.reference[std::size_t(p.surface)]; })) {
     Fit start;
     if (a_start) start.a = *a_start, start.log_rho = albedos.log_rho;
     return solve_pass(all_pixels, columns, albedos, {0.1, {}}, a_start ? &start : nullptr, stop);

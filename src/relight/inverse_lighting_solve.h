@@ -20,8 +20,8 @@ using Columns = std::vector<std::vector<int>>;
 
 // What the fit knows of each surface's albedo.
 struct Albedos {
-  std::vector<double> log_rho;          // start values; fixed where known
-  std::vector<bool> known;              // uniform and given (a plane's albedo)
+  std::vector<double> log_rho;              // start values; fixed where known
+  std::vector<bool> known;                  // uniform and given (a plane's albedo)
   std::vector<std::optional<double>> mean;  // a reference mean albedo
   std::vector<bool> reference;              // a reference in the photo (a sheet, a ball)
   int surfaces = 0, references = 0;
@@ -30,8 +30,8 @@ struct Albedos {
 struct Fit {
   std::vector<double> a;  // per column
   std::vector<double> log_rho;
-  Eigen::MatrixXd jtj;    // JᵀJ (robust weights) over the columns' a, then the free ρ
-  double sigma_r = 0;     // robust scale of the log residuals
+  Eigen::MatrixXd jtj;            // JᵀJ (robust weights) over the columns' a, then the free ρ
+  double sigma_r = 0;             // robust scale of the log residuals
   std::vector<double> residuals;  // per pixel, unweighted
   bool referenced = false;        // a reference of known albedo was in the fit
 };

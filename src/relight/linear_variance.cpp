@@ -11,8 +11,10 @@ namespace insitu {
 double variance_along(const Eigen::MatrixXd& jtj, const Eigen::VectorXd& g, double sigma_r) {
   std::vector<Eigen::Index> kept;
   for (Eigen::Index i = 0; i < jtj.rows(); ++i) {
-    if (jtj(i, i) > 0 && std::isfinite(jtj(i, i))) kept.push_back(i);  // else null: no information (or not a number)
-    else if (g[i] != 0) return INFINITY;
+    if (jtj(i, i) > 0 && std::isfinite(jtj(i, i)))
+      kept.push_back(i);  // else null: no information (or not a number)
+    else if (g[i] != 0)
+      return INFINITY;
   }
   if (kept.empty()) return 0;  // no parameter has information, and g has no part in any: g = 0
   Eigen::VectorXd d(Eigen::Index(kept.size())), dg(Eigen::Index(kept.size()));

@@ -40,13 +40,16 @@ double honest_relative_error(const std::vector<PixelSums>& sums, int w, int h, s
   return value > 0 ? std::sqrt(variance / p.samples) / value : INFINITY;
 }
 
-void stop_converged(const std::vector<PixelSums>& sums, int w, int h, double target, std::vector<std::uint8_t>& stopped) {
+void stop_converged(const std::vector<PixelSums>& sums, int w, int h, double target,
+                    std::vector<std::uint8_t>& stopped) {
   std::vector<std::uint8_t> next = stopped;
   for (std::size_t i = 0; i < sums.size(); ++i) {
     const PixelSums& p = sums[i];
     if (stopped[i] || p.samples < kMinAdaptiveSamples) continue;
-    if (!changed_pixel(p) && p.catcher == 0) next[i] = 1;
-    else if (honest_relative_error(sums, w, h, i) <= target) next[i] = 1;
+    if (!changed_pixel(p) && p.catcher == 0)
+      next[i] = 1;
+    else if (honest_relative_error(sums, w, h, i) <= target)
+      next[i] = 1;
   }
   stopped = std::move(next);
 }

@@ -53,6 +53,7 @@ double honest_relative_error(const std::vector<PixelSums>& sums, int w, int h, s
 
 // Marks in `stopped` the pixels not yet stopped that are done: unchanged as above, or of honest
 // relative error at most `target`. `sums` are every pixel's sums after a pass.
-void stop_converged(const std::vector<PixelSums>& sums, int w, int h, double target, std::vector<std::uint8_t>& stopped);
+void stop_converged(const std::vector<PixelSums>& sums, int w, int h, double target,
+                    std::vector<std::uint8_t>& stopped);
 
 }  // namespace insitu

@@ -31,7 +31,10 @@ float ggx_g1(float cos_v, float alpha) {
 }  // namespace
 
 Bsdf::Bsdf(const Rgb& diffuse, const Rgb& f0, float alpha)
-    : diffuse_(diffuse), f0_(f0.max(0.0f).min(1.0f)), alpha_(std::clamp(alpha, 1e-3f, 1.0f)), glossy_(f0.maxCoeff() > 0) {}
+    : diffuse_(diffuse),
+      f0_(f0.max(0.0f).min(1.0f)),
+      alpha_(std::clamp(alpha, 1e-3f, 1.0f)),
+      glossy_(f0.maxCoeff() > 0) {}
 
 Bsdf Bsdf::from_material(const Material& m, const Rgb& base_colour) {
   // Walter et al. 2007: α = √(2/(Ns + 2)).

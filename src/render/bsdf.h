@@ -21,8 +21,8 @@ namespace insitu {
 struct Material;
 
 struct BsdfSample {
-  Vec3f wi;        // local
-  Rgb weight;      // f·cos θ_i / pdf
+  Vec3f wi;    // local
+  Rgb weight;  // f·cos θ_i / pdf
   float pdf = 0;
 };
 

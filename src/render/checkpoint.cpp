@@ -77,23 +77,24 @@ void check_pixels(const RenderState& st, const std::string& path) {
   for (std::size_t i = 0; i < st.pixels.size(); ++i) {
     const int n = block_samples(st.pixels[i]);
     const bool stopped = !st.stopped.empty() && st.stopped[i];
-    if ((stopped ? !stopped_at_pass_end(st, n) : n != done && n != next) ||
-        !canonical_blocks(st.pixels[i], begin))
+    if ((stopped ? !stopped_at_pass_end(st, n) : n != done && n != next) || !canonical_blocks(st.pixels[i], begin))
       throw InputError(path, fmt::format("inconsistent checkpoint (pixel {})", i));
   }
 }
 
 // The header's plan: a size, a sample range within spp, passes and tiles within it.
 void check_plan(const RenderState& st, const std::string& path) {
-  const bool ok = st.width > 0 && st.height > 0 && st.spp > 0 && st.sample_begin >= 0 && st.sample_begin < st.sample_end &&
-                  st.sample_end <= st.spp && st.passes_done >= 0 && st.passes_done <= plan_passes(st) &&
-                  st.tiles_done >= 0 && st.tiles_done < long(tiles_across(st.width)) * long(tiles_across(st.height));
+  const bool ok = st.width > 0 && st.height > 0 && st.spp > 0 && st.sample_begin >= 0 &&
+                  st.sample_begin < st.sample_end && st.sample_end <= st.spp && st.passes_done >= 0 &&
+                  st.passes_done <= plan_passes(st) && st.tiles_done >= 0 &&
+                  st.tiles_done < long(tiles_across(st.width)) * long(tiles_across(st.height));
   if (!ok) throw InputError(path, "inconsistent checkpoint (size, samples or passes)");
 }
 
 RenderState read_header(const std::string& in, std::size_t& at, const std::string& path) {
   RenderState st;
-  for (int* v : {&st.width, &st.height, &st.spp, &st.sample_begin, &st.sample_end, &st.passes_done, &st.tiles_done, &st.spp_done})
+  for (int* v : {&st.width, &st.height, &st.spp, &st.sample_begin, &st.sample_end, &st.passes_done, &st.tiles_done,
+                 &st.spp_done})
     *v = get<std::int32_t>(in, at, path);
   st.nonfinite = std::size_t(get<std::uint64_t>(in, at, path));
   st.noise_target = get<double>(in, at, path);
@@ -142,10 +143,12 @@ std::string checkpoint_path(const std::string& image_path) { return image_path +
 
 void write_checkpoint(const std::string& path, const RenderState& st, std::uint64_t fingerprint,
                       const std::string& settings) {
-  if (!st.resumable) throw std::invalid_argument("write_checkpoint: the state was stopped within its tiles and cannot be resumed");
+  if (!st.resumable)
+    throw std::invalid_argument("write_checkpoint: the state was stopped within its tiles and cannot be resumed");
   std::string out(kMagic, sizeof(kMagic));
   put(out, kVersion), put(out, kPixelBytes), put(out, fingerprint);
-  for (int v : {st.width, st.height, st.spp, st.sample_begin, st.sample_end, st.passes_done, st.tiles_done, st.spp_done})
+  for (int v :
+       {st.width, st.height, st.spp, st.sample_begin, st.sample_end, st.passes_done, st.tiles_done, st.spp_done})
     put(out, std::int32_t(v));
   put(out, std::uint64_t(st.nonfinite));
   put(out, st.noise_target);
@@ -187,8 +190,9 @@ StateFile read_state_file(const std::string& path) {
   Fnv1a sum;
   sum.bytes(in.data(), in.size() - sizeof(std::uint64_t));
   if (sum.digest() != stored)
-    throw InputError(path, "damaged: its checksum does not match its contents (it is kept as it is; render without "
-                           "--resume to start again)");
+    throw InputError(path,
+                     "damaged: its checksum does not match its contents (it is kept as it is; render without "
+                     "--resume to start again)");
   in.resize(in.size() - sizeof(std::uint64_t));
   return parse_state_bytes(in, path);
 }
@@ -211,8 +215,9 @@ RenderState read_checkpoint(const std::string& path, std::uint64_t fingerprint) 
   if (!exists_quietly(path)) throw InputError(path, "no checkpoint to resume from (render without --resume)");
   StateFile file = read_state_file(path);
   if (file.fingerprint != fingerprint)
-    throw InputError(path, "a checkpoint of another scene, other inputs or other settings (spp, seed, integrator): "
-                           "render without --resume to start again");
+    throw InputError(path,
+                     "a checkpoint of another scene, other inputs or other settings (spp, seed, integrator): "
+                     "render without --resume to start again");
   return std::move(file.state);
 }
 

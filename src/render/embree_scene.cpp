@@ -62,7 +62,8 @@ RTCSceneTy* EmbreeScene::rtc_scene() const { return impl_->scene; }
 
 namespace {
 LoggedRay logged(const Ray& ray, float t_near, float t_far, bool shadow) {
-  return {{ray.origin.x(), ray.origin.y(), ray.origin.z()}, {ray.dir.x(), ray.dir.y(), ray.dir.z()}, t_near, t_far, shadow};
+  return {
+      {ray.origin.x(), ray.origin.y(), ray.origin.z()}, {ray.dir.x(), ray.dir.y(), ray.dir.z()}, t_near, t_far, shadow};
 }
 }  // namespace
 
@@ -70,8 +71,12 @@ Hit EmbreeScene::intersect(const Ray& ray, float t_near, float t_far) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
-  rh.ray.org_x = ray.origin.x(); rh.ray.org_y = ray.origin.y(); rh.ray.org_z = ray.origin.z();
-  rh.ray.dir_x = ray.dir.x(); rh.ray.dir_y = ray.dir.y(); rh.ray.dir_z = ray.dir.z();
+  rh.ray.org_x = ray.origin.x();
+  rh.ray.org_y = ray.origin.y();
+  rh.ray.org_z = ray.origin.z();
+  rh.ray.dir_x = ray.dir.x();
+  rh.ray.dir_y = ray.dir.y();
+  rh.ray.dir_z = ray.dir.z();
   rh.ray.tnear = t_near;
   rh.ray.tfar = t_far;
   rh.ray.time = 0.0f;
@@ -96,8 +101,12 @@ bool EmbreeScene::occluded(const Ray& ray, float t_near, float t_far) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay r;
-  r.org_x = ray.origin.x(); r.org_y = ray.origin.y(); r.org_z = ray.origin.z();
-  r.dir_x = ray.dir.x(); r.dir_y = ray.dir.y(); r.dir_z = ray.dir.z();
+  r.org_x = ray.origin.x();
+  r.org_y = ray.origin.y();
+  r.org_z = ray.origin.z();
+  r.dir_x = ray.dir.x();
+  r.dir_y = ray.dir.y();
+  r.dir_z = ray.dir.z();
   r.tnear = t_near;
   r.tfar = t_far;
   r.time = 0.0f;

@@ -36,8 +36,7 @@ class EmbreeScene {
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-  Hit intersect(const Ray& ray, float t_near = 0.0f,
-                float t_far = std::numeric_limits<float>::infinity()) const;
+  Hit intersect(const Ray& ray, float t_near = 0.0f, float t_far = std::numeric_limits<float>::infinity()) const;
   // Any hit in (t_near, t_far): a shadow ray.
   bool occluded(const Ray& ray, float t_near, float t_far) const;
   SurfacePoint surface(const Ray& ray, const Hit& hit) const;

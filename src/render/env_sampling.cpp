@@ -7,8 +7,7 @@
 
 namespace insitu {
 
-EnvSampler::EnvSampler(const CubeMap& radiance, const TexelShare& share, bool mis_compensation)
-    : n_(radiance.size()) {
+EnvSampler::EnvSampler(const CubeMap& radiance, const TexelShare& share, bool mis_compensation) : n_(radiance.size()) {
   const std::size_t count = std::size_t(6) * n_ * n_;
   const std::size_t face_count = std::size_t(n_) * std::size_t(n_);
   const std::vector<double> omega = face_solid_angles(n_);  // by j·n + i, the same on every face
@@ -27,7 +26,8 @@ EnvSampler::EnvSampler(const CubeMap& radiance, const TexelShare& share, bool mi
   for (std::size_t k = 0; k < count; ++k) {
     const int f = int(k / face_count), j = int((k / std::size_t(n_)) % std::size_t(n_)), i = int(k % std::size_t(n_));
     const double y = texels_[k].prob;
-    cdf_[k + 1] = std::max(0.0, y - (mis_compensation ? mean_y : 0.0)) * omega[k % face_count] * (share ? share(f, i, j) : 1.0);
+    cdf_[k + 1] =
+        std::max(0.0, y - (mis_compensation ? mean_y : 0.0)) * omega[k % face_count] * (share ? share(f, i, j) : 1.0);
     total += cdf_[k + 1];
   }
   // A floor so that every texel can be drawn (also keeps a black environment well defined).
@@ -58,7 +58,8 @@ std::size_t EnvSampler::texel_of(int face, float s, float t) const {
 
 // A point drawn uniformly on texel k's face square, and its density in solid angle.
 EnvSample EnvSampler::sample_in(std::size_t k, float u_s, float u_t) const {
-  const int i = int(k % std::size_t(n_)), j = int((k / std::size_t(n_)) % std::size_t(n_)), f = int(k / (std::size_t(n_) * n_));
+  const int i = int(k % std::size_t(n_)), j = int((k / std::size_t(n_)) % std::size_t(n_)),
+            f = int(k / (std::size_t(n_) * n_));
   const Vec3f p = face_to_direction(f, (float(i) + u_s) / float(n_), (float(j) + u_t) / float(n_));
   const float r = p.norm();
   const float area = 4.0f / float(n_ * n_);

@@ -13,8 +13,8 @@
 // the walls, or through the openings): w_i is multiplied by the share of texel i in that part
 // (`share`, 0…1; a texel across a window's edge is in both), which leaves the floor. Without
 // the compensation (`mis_compensation` false) w_i = Y(L_i)·ΔΩ_i: for light that BSDF samples
-// rarely reach, such as the sky through a window. For the face plane at distance 1, dω = dA / r³ (r = |point|), so the density in solid
-// angle is
+// rarely reach, such as the sky through a window. For the face plane at distance 1, dω = dA / r³ (r = |point|), so the
+// density in solid angle is
 //   pdf(ω) = P_i · r³ / A_texel,   A_texel = (2/n)².
 //
 // Memory, not arithmetic, is what these cost (perf, docs/performance.md: the loads of the cube's
@@ -35,8 +35,8 @@
 namespace insitu {
 
 struct EnvSample {
-  Vec3f dir;        // unit
-  float pdf;        // per steradian
+  Vec3f dir;  // unit
+  float pdf;  // per steradian
 };
 
 class EnvSampler {
@@ -60,8 +60,8 @@ class EnvSampler {
   EnvSample sample_in(std::size_t k, float u_s, float u_t) const;
 
   int n_;
-  std::vector<Texel> texels_;           // by (face·n + j)·n + i
-  std::vector<double> cdf_;             // 6n² + 1 entries, cdf_[0] = 0, cdf_.back() = 1
+  std::vector<Texel> texels_;  // by (face·n + j)·n + i
+  std::vector<double> cdf_;    // 6n² + 1 entries, cdf_[0] = 0, cdf_.back() = 1
   // G = 6n²/8 + 1 entries (small enough to stay in cache): guide_[g] is the first m with
   // cdf_[m] > g/G. The scan from there reads 8 entries of cdf_ on average, one cache line.
   static constexpr std::size_t kGuideSpan = 8;

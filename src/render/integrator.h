@@ -20,10 +20,10 @@ namespace insitu {
 // What an integrator may use: the objects, and the room's light as a radiance cube.
 // A plane of the local scene (the real floor): catches the objects' shadows and bounce light.
 struct CatcherPlane {
-  Vec3f point, normal;               // unit normal, on the side the camera sees
+  Vec3f point, normal;  // unit normal, on the side the camera sees
   bool albedo_from_photo = true;
   Rgb albedo = Rgb::Zero();
-  Rgb irradiance = Rgb::Zero();      // E(normal) of the environment without objects (exact)
+  Rgb irradiance = Rgb::Zero();  // E(normal) of the environment without objects (exact)
 };
 
 struct CatcherMesh {
@@ -34,11 +34,11 @@ struct CatcherMesh {
 struct RenderInputs {
   const EmbreeScene* objects = nullptr;
   const CubeMap* environment = nullptr;
-  std::vector<CatcherPlane> planes;     // the local scene: planes
-  const EmbreeScene* catcher_meshes = nullptr;           // and meshes
-  std::vector<CatcherMesh> catcher_mesh_info;            // by mesh index
-  const IrradianceField* catcher_irradiance = nullptr;   // E(n) without objects, for the meshes
-  const Image* photo_linear = nullptr;  // the real room as the camera saw it
+  std::vector<CatcherPlane> planes;                     // the local scene: planes
+  const EmbreeScene* catcher_meshes = nullptr;          // and meshes
+  std::vector<CatcherMesh> catcher_mesh_info;           // by mesh index
+  const IrradianceField* catcher_irradiance = nullptr;  // E(n) without objects, for the meshes
+  const Image* photo_linear = nullptr;                  // the real room as the camera saw it
   // The room as an emitting box with openings (path; room_light.h): its walls, where the shots
   // were taken, and its windows.
   std::optional<RoomBox> room;

@@ -38,7 +38,7 @@ namespace {
 // ---- The validating pass -------------------------------------------------------------------
 
 struct ObjScan {
-  std::vector<int> face_lines;  // line of every `f` statement, in file order
+  std::vector<int> face_lines;       // line of every `f` statement, in file order
   std::vector<std::string> mtllibs;  // the MTL files it names
 };
 
@@ -54,8 +54,8 @@ std::vector<std::string> split_ws(const std::string& s) {
   throw InputError(fmt::format("{}:{}", path, line), what);
 }
 
-void check_numbers(const std::string& path, int line, const std::vector<std::string>& tok,
-                   std::size_t min_count, std::size_t max_count, const char* what) {
+void check_numbers(const std::string& path, int line, const std::vector<std::string>& tok, std::size_t min_count,
+                   std::size_t max_count, const char* what) {
   if (tok.size() - 1 < min_count)
     fail(path, line, fmt::format("{} needs {} numbers, has {}", what, min_count, tok.size() - 1));
   for (std::size_t k = 1; k < tok.size() && k <= max_count; ++k) {
@@ -71,8 +71,7 @@ void check_numbers(const std::string& path, int line, const std::vector<std::str
 
 // One index of a face corner: 1-based, negative counts back from the latest; must name an
 // element defined before this line.
-void check_index(const std::string& path, int line, const std::string& text, long count,
-                 const char* kind) {
+void check_index(const std::string& path, int line, const std::string& text, long count, const char* kind) {
   char* end = nullptr;
   const long idx = std::strtol(text.c_str(), &end, 10);
   if (end == text.c_str() || *end != '\0')
@@ -101,11 +100,18 @@ ObjScan scan_obj(const std::string& path) {
   long nv = 0, nvt = 0, nvn = 0;
   for_each_statement(in, [&](int lineno, const std::vector<std::string>& tok) {
     const std::string& kw = tok[0];
-    if (kw == "v") { check_numbers(path, lineno, tok, 3, 6, "vertex"); ++nv; }
-    else if (kw == "vn") { check_numbers(path, lineno, tok, 3, 3, "normal"); ++nvn; }
-    else if (kw == "vt") { check_numbers(path, lineno, tok, 1, 3, "texture coordinate"); ++nvt; }
-    else if (kw == "mtllib") { for (std::size_t k = 1; k < tok.size(); ++k) scan.mtllibs.push_back(tok[k]); }
-    else if (kw == "f") {
+    if (kw == "v") {
+      check_numbers(path, lineno, tok, 3, 6, "vertex");
+      ++nv;
+    } else if (kw == "vn") {
+      check_numbers(path, lineno, tok, 3, 3, "normal");
+      ++nvn;
+    } else if (kw == "vt") {
+      check_numbers(path, lineno, tok, 1, 3, "texture coordinate");
+      ++nvt;
+    } else if (kw == "mtllib") {
+      for (std::size_t k = 1; k < tok.size(); ++k) scan.mtllibs.push_back(tok[k]);
+    } else if (kw == "f") {
       if (tok.size() < 4) fail(path, lineno, fmt::format("face has {} vertices, needs at least 3", tok.size() - 1));
       for (std::size_t k = 1; k < tok.size(); ++k) {
         const std::string& c = tok[k];
@@ -138,8 +144,10 @@ void scan_mtl(const std::string& path) {
     for (std::size_t k = 1; k < tok.size() && k <= 3; ++k) {
       const double v = std::strtod(tok[k].c_str(), nullptr);
       if ((kw == "Kd" || kw == "Ks" || kw == "d") && (v < 0 || v > 1))
-        fail(path, lineno, fmt::format("{} {} is outside [0, 1] ({})", kw, tok[k], kw == "d" ? "an opacity" : "a reflectance"));
-      if ((kw == "Ka" || kw == "Ke" || kw == "Ns") && v < 0) fail(path, lineno, fmt::format("{} {} is negative", kw, tok[k]));
+        fail(path, lineno,
+             fmt::format("{} {} is outside [0, 1] ({})", kw, tok[k], kw == "d" ? "an opacity" : "a reflectance"));
+      if ((kw == "Ka" || kw == "Ke" || kw == "Ns") && v < 0)
+        fail(path, lineno, fmt::format("{} {} is negative", kw, tok[k]));
     }
   });
 }
@@ -158,8 +166,7 @@ std::vector<std::string> material_files(const tinyobj::material_t& m, const fs::
   return files;
 }
 
-Material convert_material(const tinyobj::material_t& m, const fs::path& base_dir,
-                          const std::string& obj_path) {
+Material convert_material(const tinyobj::material_t& m, const fs::path& base_dir, const std::string& obj_path) {
   Material out;
   out.name = m.name;
   out.kd = Rgb(float(m.diffuse[0]), float(m.diffuse[1]), float(m.diffuse[2]));
@@ -167,8 +174,7 @@ Material convert_material(const tinyobj::material_t& m, const fs::path& base_dir
   out.ns = float(m.shininess);
   out.d = float(m.dissolve);
   const std::string where = fmt::format("{}: material '{}'", obj_path, m.name);
-  if (!out.kd.allFinite() || (out.kd < 0).any())
-    throw InputError(where, "Kd must be finite and non-negative");
+  if (!out.kd.allFinite() || (out.kd < 0).any()) throw InputError(where, "Kd must be finite and non-negative");
   if (!m.diffuse_texname.empty()) {
     const std::string tex = beside_obj(base_dir, m.diffuse_texname);
     try {
@@ -188,7 +194,8 @@ bool degenerate_triangle(const Mesh& mesh, const Triangle& tri) {
   const Vec3d p0 = mesh.positions[tri.v[0]].cast<double>();
   const Vec3d e1 = mesh.positions[tri.v[1]].cast<double>() - p0;
   const Vec3d e2 = mesh.positions[tri.v[2]].cast<double>() - p0;
-  return e1.cross(e2).norm() <= 1e-12 * (e1.squaredNorm() + e2.squaredNorm()) || (e1.squaredNorm() + e2.squaredNorm()) == 0.0;
+  return e1.cross(e2).norm() <= 1e-12 * (e1.squaredNorm() + e2.squaredNorm()) ||
+         (e1.squaredNorm() + e2.squaredNorm()) == 0.0;
 }
 
 namespace {
@@ -251,7 +258,8 @@ void add_triangles(const std::vector<tinyobj::shape_t>& shapes, const ObjScan& s
           if (!index_in_range(corner[c].vertex_index, mesh.positions.size(), false) ||
               !index_in_range(corner[c].normal_index, mesh.normals.size(), true) ||
               !index_in_range(corner[c].texcoord_index, mesh.uvs.size(), true))
-            throw InputError(fmt::format("{}:{}", path, line), "face index out of range of the vertices tinyobjloader read");
+            throw InputError(fmt::format("{}:{}", path, line),
+                             "face index out of range of the vertices tinyobjloader read");
           tri.v[c] = std::uint32_t(corner[c].vertex_index);
           tri.n[c] = corner[c].normal_index;
           tri.t[c] = corner[c].texcoord_index;
@@ -271,11 +279,13 @@ void add_triangles(const std::vector<tinyobj::shape_t>& shapes, const ObjScan& s
     }
   }
   if (degenerate > 0)
-    warnings.add(path, fmt::format("{} degenerate triangle(s) dropped (first at line {})", degenerate,
-                                   first_degenerate_line));
+    warnings.add(
+        path, fmt::format("{} degenerate triangle(s) dropped (first at line {})", degenerate, first_degenerate_line));
   if (copies > 0)
-    warnings.add(path, fmt::format("{} triangle(s) dropped that repeat another's three corners exactly (first at line {}): a "
-                                   "copy adds no surface and slows every ray through it", copies, first_copy_line));
+    warnings.add(path,
+                 fmt::format("{} triangle(s) dropped that repeat another's three corners exactly (first at line {}): a "
+                             "copy adds no surface and slows every ray through it",
+                             copies, first_copy_line));
 }
 
 }  // namespace
@@ -358,12 +368,15 @@ void transform_mesh(Mesh& mesh, const Mat4d& M) {
   // Rays and positions are float: a transform (scale 1e300, translate 1e300) that takes a vertex
   // beyond float range, or one whose inverse transpose overflows (scale 1e-300), is refused.
   if (!M.allFinite() || !N.allFinite())
-    throw InputError("", "the transform is not finite, or not invertible in double precision (scale too small or too large)");
+    throw InputError(
+        "", "the transform is not finite, or not invertible in double precision (scale too small or too large)");
   for (Vec3f& p : mesh.positions) {
     const Vec3d q = A * p.cast<double>() + t;
     if (!(q.cwiseAbs().maxCoeff() < 1e30))
-      throw InputError("", fmt::format("the transform takes vertex ({}, {}, {}) to ({:.3g}, {:.3g}, {:.3g}): beyond the range "
-                                       "insitu renders (1e30 m)", p.x(), p.y(), p.z(), q.x(), q.y(), q.z()));
+      throw InputError(
+          "", fmt::format("the transform takes vertex ({}, {}, {}) to ({:.3g}, {:.3g}, {:.3g}): beyond the range "
+                          "insitu renders (1e30 m)",
+                          p.x(), p.y(), p.z(), q.x(), q.y(), q.z()));
     p = q.cast<float>();
   }
   for (Vec3f& n : mesh.normals) {

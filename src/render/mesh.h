@@ -21,24 +21,24 @@ namespace insitu {
 
 struct Material {
   std::string name = "default";
-  Rgb kd = Rgb(0.8f, 0.8f, 0.8f);  // diffuse reflectance (linear)
-  Rgb ks = Rgb::Zero();            // specular reflectance, kept for the glossy lobe
-  float ns = 0.0f;                 // Phong exponent
-  float d = 1.0f;                  // dissolve (opacity)
-  std::shared_ptr<const Image> map_kd;  // linear RGB, multiplies kd; sampled by the UVs
-  std::string map_kd_path;              // the file it was read from (for exporters), or ""
+  Rgb kd = Rgb(0.8f, 0.8f, 0.8f);          // diffuse reflectance (linear)
+  Rgb ks = Rgb::Zero();                    // specular reflectance, kept for the glossy lobe
+  float ns = 0.0f;                         // Phong exponent
+  float d = 1.0f;                          // dissolve (opacity)
+  std::shared_ptr<const Image> map_kd;     // linear RGB, multiplies kd; sampled by the UVs
+  std::string map_kd_path;                 // the file it was read from (for exporters), or ""
   Rgb base_colour(const Vec2f& uv) const;  // kd × texture(uv), texture repeating
 };
 
 struct Triangle {
-  std::array<std::uint32_t, 3> v;    // into positions
-  std::array<std::int32_t, 3> n;     // into normals, -1: use the geometric normal
-  std::array<std::int32_t, 3> t;     // into uvs, -1: none
-  std::int32_t material;             // into materials
+  std::array<std::uint32_t, 3> v;  // into positions
+  std::array<std::int32_t, 3> n;   // into normals, -1: use the geometric normal
+  std::array<std::int32_t, 3> t;   // into uvs, -1: none
+  std::int32_t material;           // into materials
 };
 
 struct Mesh {
-  std::string source;  // the OBJ path, for messages
+  std::string source;              // the OBJ path, for messages
   std::vector<std::string> files;  // every file it was read from: the OBJ, its MTL files, textures
   std::vector<Vec3f> positions;
   std::vector<Vec3f> normals;
@@ -65,7 +65,10 @@ void transform_mesh(Mesh& mesh, const Mat4d& M_world_from_object);
 struct Bounds {
   Vec3f lo = Vec3f::Constant(std::numeric_limits<float>::infinity());
   Vec3f hi = Vec3f::Constant(-std::numeric_limits<float>::infinity());
-  void extend(const Vec3f& p) { lo = lo.cwiseMin(p); hi = hi.cwiseMax(p); }
+  void extend(const Vec3f& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
 };
 Bounds mesh_bounds(const Mesh& mesh);
 

@@ -19,7 +19,8 @@ Material material_of(const MeshArrays& a, const std::string& name) {
   m.name = name;
   for (auto [c, label] : {std::pair{a.kd, "kd"}, std::pair{a.ks, "ks"}})
     if (!c.allFinite() || (c.array() < 0).any())
-      throw InputError(name + ": " + label, fmt::format("reflectance ({}, {}, {}) must be finite and ≥ 0", c.x(), c.y(), c.z()));
+      throw InputError(name + ": " + label,
+                       fmt::format("reflectance ({}, {}, {}) must be finite and ≥ 0", c.x(), c.y(), c.z()));
   if (!std::isfinite(a.ns) || a.ns < 0) throw InputError(name + ": ns", "the Phong exponent must be finite and ≥ 0");
   m.kd = a.kd;
   m.ks = a.ks;
@@ -71,8 +72,10 @@ Mesh mesh_from_arrays(const MeshArrays& a, const std::string& name, Warnings& wa
       tri.t[std::size_t(c)] = a.uvs ? std::int32_t(v) : -1;
     }
     tri.material = 0;
-    if (degenerate_triangle(mesh, tri)) ++degenerate;
-    else mesh.triangles.push_back(tri);
+    if (degenerate_triangle(mesh, tri))
+      ++degenerate;
+    else
+      mesh.triangles.push_back(tri);
   }
   if (degenerate > 0) warnings.add(name, fmt::format("{} degenerate triangle(s) dropped", degenerate));
   if (mesh.triangles.empty()) throw InputError(name, "no triangles (every triangle is degenerate)");

@@ -12,8 +12,8 @@ namespace insitu {
 struct MeshArrays {
   const float* positions = nullptr;  // 3 per vertex, object frame, metres
   std::size_t vertex_count = 0;
-  const float* normals = nullptr;    // 3 per vertex, or null: the geometric normal
-  const float* uvs = nullptr;        // 2 per vertex, or null
+  const float* normals = nullptr;          // 3 per vertex, or null: the geometric normal
+  const float* uvs = nullptr;              // 2 per vertex, or null
   const std::uint32_t* indices = nullptr;  // 3 per triangle, into the vertices
   std::size_t triangle_count = 0;
   // One material for the whole mesh (mesh.h Material): linear Kd, Ks, Phong Ns, and an optional

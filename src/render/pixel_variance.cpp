@@ -16,8 +16,6 @@ SampleVariance sample_variance(const PixelSums& p) {
   return {std::max(0.0, (p.y2 - p.y * p.y / n) / double(n - 1)), n - 1};
 }
 
-double variance_of_mean(const PixelSums& p) {
-  return p.samples > 1 ? sample_variance(p).per_sample / p.samples : 0.0;
-}
+double variance_of_mean(const PixelSums& p) { return p.samples > 1 ? sample_variance(p).per_sample / p.samples : 0.0; }
 
 }  // namespace insitu

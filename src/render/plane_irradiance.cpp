@@ -34,7 +34,8 @@ PlaneIrradiance::PlaneIrradiance(const RoomLight& room, const RoomBox& box, cons
   // The box's corners projected onto the plane bound the grid.
   Vec2f lo = Vec2f::Constant(INFINITY), hi = Vec2f::Constant(-INFINITY);
   for (int c = 0; c < 8; ++c) {
-    const Vec3f corner((c & 1 ? box.max : box.min).x(), (c & 2 ? box.max : box.min).y(), (c & 4 ? box.max : box.min).z());
+    const Vec3f corner((c & 1 ? box.max : box.min).x(), (c & 2 ? box.max : box.min).y(),
+                       (c & 4 ? box.max : box.min).z());
     const Vec2f st((corner - point).dot(u_), (corner - point).dot(v_));
     lo = lo.cwiseMin(st), hi = hi.cwiseMax(st);
   }
@@ -49,7 +50,8 @@ PlaneIrradiance::PlaneIrradiance(const RoomLight& room, const RoomBox& box, cons
   tbb::parallel_for(0, nv_, [&](int j) {
     throw_if_stopped(stop);
     for (int i = 0; i < nu_; ++i) {
-      const Vec3f x = (origin_ + float(i) * u_ + float(j) * v_ + lift).cwiseMax(box.min + slack).cwiseMin(box.max - slack);
+      const Vec3f x =
+          (origin_ + float(i) * u_ + float(j) * v_ + lift).cwiseMax(box.min + slack).cwiseMin(box.max - slack);
       nodes_[std::size_t(j) * nu_ + i] = estimate(room, x, normal_, samples, std::uint64_t(j) * nu_ + i);
     }
   });
@@ -62,7 +64,8 @@ Rgb PlaneIrradiance::at(const Vec3f& x) const {
   const int i = std::min(int(s), nu_ - 2 < 0 ? 0 : nu_ - 2), j = std::min(int(t), nv_ - 2 < 0 ? 0 : nv_ - 2);
   const float a = std::min(1.0f, s - float(i)), b = std::min(1.0f, t - float(j));
   auto node = [&](int ii, int jj) { return nodes_[std::size_t(std::min(jj, nv_ - 1)) * nu_ + std::min(ii, nu_ - 1)]; };
-  return (1 - b) * ((1 - a) * node(i, j) + a * node(i + 1, j)) + b * ((1 - a) * node(i, j + 1) + a * node(i + 1, j + 1));
+  return (1 - b) * ((1 - a) * node(i, j) + a * node(i + 1, j)) +
+         b * ((1 - a) * node(i, j + 1) + a * node(i + 1, j + 1));
 }
 
 }  // namespace insitu

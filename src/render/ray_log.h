@@ -20,9 +20,7 @@ class RayLog {
  public:
   void record(const LoggedRay& ray) { per_thread_.local().push_back(ray); }
   // The lists, one per thread that traced.
-  std::vector<std::vector<LoggedRay>> lists() const {
-    return {per_thread_.begin(), per_thread_.end()};
-  }
+  std::vector<std::vector<LoggedRay>> lists() const { return {per_thread_.begin(), per_thread_.end()}; }
   std::size_t size() const {
     std::size_t n = 0;
     for (const auto& list : per_thread_) n += list.size();

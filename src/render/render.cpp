@@ -166,7 +166,9 @@ struct PassContext {
 };
 
 // Whether a stop at once (RenderSettings::stop_at_once) has come.
-bool stopped_at_once(const RenderSettings& s) { return s.stop_at_once && s.stop && s.stop->load(std::memory_order_relaxed); }
+bool stopped_at_once(const RenderSettings& s) {
+  return s.stop_at_once && s.stop && s.stop->load(std::memory_order_relaxed);
+}
 
 // Samples [s0, s1) of the pixels of one tile; false when a stop at once left it unfinished.
 bool render_tile(const PassContext& c, int tile, int s0, int s1) {
@@ -240,16 +242,28 @@ bool run_pass(const PassContext& c, int s0, int s1, int& tiles_done, bool& resum
 // that pass anyway, taken once rather than reallocated pass after pass.
 void reserve_blocks(RenderState& st) {
   int most = 1;
-  for (int k = 1; k <= plan_passes(st); ++k) most = std::max(most, canonical_count(st.sample_begin, plan_pass_start(st, k)));
+  for (int k = 1; k <= plan_passes(st); ++k)
+    most = std::max(most, canonical_count(st.sample_begin, plan_pass_start(st, k)));
   tbb::parallel_for(std::size_t(0), st.pixels.size(), [&](std::size_t i) { st.pixels[i].reserve(std::size_t(most)); });
 }
 
 // The state to start from: a fresh one, or the caller's (checked against the plan).
 void start_state(RenderState& st, int w, int h, int spp, int begin, int end, double noise_target) {
   const std::size_t n = std::size_t(w) * std::size_t(h);
-  if (!st.resumable) throw std::invalid_argument("render: the state was stopped within its tiles and cannot be resumed");
+  if (!st.resumable)
+    throw std::invalid_argument("render: the state was stopped within its tiles and cannot be resumed");
   if (st.passes_done == 0 && st.pixels.empty()) {
-    st = RenderState{w, h, spp, begin, end, 0, 0, 0, 0, std::vector<PixelBlocks>(n), noise_target,
+    st = RenderState{w,
+                     h,
+                     spp,
+                     begin,
+                     end,
+                     0,
+                     0,
+                     0,
+                     0,
+                     std::vector<PixelBlocks>(n),
+                     noise_target,
                      std::vector<std::uint8_t>(noise_target > 0 ? n : 0, 0)};
     reserve_blocks(st);
     return;
@@ -315,7 +329,8 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
   const auto start = std::chrono::steady_clock::now();
   const int w = camera.width, h = camera.height, spp = std::max(1, settings.spp);
   const int begin = settings.sample_begin, end = settings.sample_end < 0 ? spp : settings.sample_end;
-  if (begin < 0 || end <= begin || end > spp) throw std::invalid_argument("render: the sample range is not within [0, spp)");
+  if (begin < 0 || end <= begin || end > spp)
+    throw std::invalid_argument("render: the sample range is not within [0, spp)");
   if (!(settings.noise_target >= 0) || (settings.noise_target > 0 && (begin != 0 || end != spp)))
     throw std::invalid_argument("render: adaptive sampling renders whole images, with a noise target >= 0");
   RenderState local;
@@ -328,9 +343,19 @@ RenderLayers render(const Camera& camera, const Integrator& integrator, const Re
   // shorter, render_state.h), area-weighted progress within.
   const int done = plan_pass_start(st, st.passes_done) - begin;
   std::atomic<long> area_done{long(w) * h * done};  // (a cancelled pass's tiles aside)
-  const PassContext c{camera, integrator, settings, progress, spp, begin,
+  const PassContext c{camera,
+                      integrator,
+                      settings,
+                      progress,
+                      spp,
+                      begin,
                       camera.R_cam_from_world.row(2).transpose().cast<float>(),  // the optical axis
-                      st.pixels, st.stopped, nonfinite, area_done, progress_mutex, double(w) * h * (end - begin)};
+                      st.pixels,
+                      st.stopped,
+                      nonfinite,
+                      area_done,
+                      progress_mutex,
+                      double(w) * h * (end - begin)};
   if (progress) progress({double(done) / (end - begin), done, -1.0});
   run_passes(c, st);
   st.nonfinite = nonfinite;

@@ -44,25 +44,25 @@ struct RenderSettings {
 };
 
 struct RenderLayers {
-  Image objects;  // RGB, premultiplied by coverage: mean over samples of radiance × coverage
-  Image alpha;    // 1 channel: mean coverage
+  Image objects;                        // RGB, premultiplied by coverage: mean over samples of radiance × coverage
+  Image alpha;                          // 1 channel: mean coverage
   Image with_objects, without_objects;  // RGB: mean over samples of the catcher's radiance (0 off it)
-  Image normal, albedo;  // RGB: mean over the samples that met an object or a catcher
-  Image depth;           // 1 channel: camera-space z (metres along the optical axis, as Cycles's and
-                         // Nuke's Z) of what the samples met, averaged over those that met
-                         // something; kNoHitDepth where none did
-  Image samples;         // 1 channel: samples taken in the pixel (fewer where adaptive sampling stopped it)
-  Image variance;        // 1 channel: variance of the pixel's mean, luminance of O + W − N, estimated
-                         // as if the samples were independent (an upper bound: they are
-                         // scrambled Sobol points)
+  Image normal, albedo;                 // RGB: mean over the samples that met an object or a catcher
+  Image depth;                          // 1 channel: camera-space z (metres along the optical axis, as Cycles's and
+                                        // Nuke's Z) of what the samples met, averaged over those that met
+                                        // something; kNoHitDepth where none did
+  Image samples;   // 1 channel: samples taken in the pixel (fewer where adaptive sampling stopped it)
+  Image variance;  // 1 channel: variance of the pixel's mean, luminance of O + W − N, estimated
+                   // as if the samples were independent (an upper bound: they are
+                   // scrambled Sobol points)
   // For the composite's choice between the ratio and the additive form (composite.h): variance
   // of the ratio of means W̄/N̄ and of the difference W̄ − N̄ (luminance), and the number of samples
   // that saw the catcher.
   Image ratio_variance, difference_variance, catcher_samples;
-  int spp_done = 0;           // samples per pixel taken (spp unless stopped; the most any pixel took)
-  int sample_begin = 0;       // the first of them (a part of a split render, or parts merged)
-  bool interrupted = false;   // stopped before spp
-  double mean_relative_noise = 0;  // mean over changed pixels of √variance / value
+  int spp_done = 0;                   // samples per pixel taken (spp unless stopped; the most any pixel took)
+  int sample_begin = 0;               // the first of them (a part of a split render, or parts merged)
+  bool interrupted = false;           // stopped before spp
+  double mean_relative_noise = 0;     // mean over changed pixels of √variance / value
   std::size_t nonfinite_samples = 0;  // zeroed and counted, never propagated
   double seconds = 0;
 };

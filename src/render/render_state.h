@@ -39,9 +39,9 @@ using PixelBlocks = std::vector<PixelSums>;
 struct RenderState {
   int width = 0, height = 0, spp = 0;  // the plan (a part of a split render checks it is the same)
   int sample_begin = 0, sample_end = 0;
-  int passes_done = 0;                 // of render_passes(sample_end − sample_begin)
-  int tiles_done = 0;                  // of pass passes_done, in tile order (a cancelled pass)
-  int spp_done = 0;                    // samples every pixel still sampled has
+  int passes_done = 0;  // of render_passes(sample_end − sample_begin)
+  int tiles_done = 0;   // of pass passes_done, in tile order (a cancelled pass)
+  int spp_done = 0;     // samples every pixel still sampled has
   std::size_t nonfinite = 0;
   std::vector<PixelBlocks> pixels;
   // Adaptive sampling (render/adaptive.h): the relative standard error a pixel stops at (0: off),
@@ -98,7 +98,8 @@ inline int plan_passes(const RenderState& st) {
 }
 inline int plan_pass_start(const RenderState& st, int pass) {
   const int n = st.sample_end - st.sample_begin;
-  return st.noise_target > 0 ? st.sample_begin + adaptive_pass_start(n, pass) : pass_start(st.sample_begin, st.sample_end, pass);
+  return st.noise_target > 0 ? st.sample_begin + adaptive_pass_start(n, pass)
+                             : pass_start(st.sample_begin, st.sample_end, pass);
 }
 
 }  // namespace insitu

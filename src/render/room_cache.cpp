@@ -9,9 +9,11 @@ RoomCache::RoomCache(const CubeMap& cube, std::optional<RoomBox> box)
 
 namespace {
 bool same_box(const RoomBox& a, const RoomBox& b) {
-  if (a.min != b.min || a.max != b.max || a.capture != b.capture || a.openings.size() != b.openings.size()) return false;
+  if (a.min != b.min || a.max != b.max || a.capture != b.capture || a.openings.size() != b.openings.size())
+    return false;
   for (std::size_t k = 0; k < a.openings.size(); ++k)
-    if (a.openings[k].axis != b.openings[k].axis || a.openings[k].min != b.openings[k].min || a.openings[k].max != b.openings[k].max)
+    if (a.openings[k].axis != b.openings[k].axis || a.openings[k].min != b.openings[k].min ||
+        a.openings[k].max != b.openings[k].max)
       return false;
   return true;
 }

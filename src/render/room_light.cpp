@@ -16,7 +16,8 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 int other_axis(int axis, int k) { return (axis + 1 + k) % 3; }
 
 float rect_area(const RoomOpening& o) {
-  return (o.max[other_axis(o.axis, 0)] - o.min[other_axis(o.axis, 0)]) * (o.max[other_axis(o.axis, 1)] - o.min[other_axis(o.axis, 1)]);
+  return (o.max[other_axis(o.axis, 0)] - o.min[other_axis(o.axis, 0)]) *
+         (o.max[other_axis(o.axis, 1)] - o.min[other_axis(o.axis, 1)]);
 }
 
 }  // namespace
@@ -36,7 +37,8 @@ std::vector<float> RoomLight::outside_shares(int n) const {
         int through = 0;
         for (int b = 0; b < m; ++b)
           for (int a = 0; a < m; ++a) {
-            const float s = (float(i) + (float(a) + 0.5f) / m) / float(n), t = (float(j) + (float(b) + 0.5f) / m) / float(n);
+            const float s = (float(i) + (float(a) + 0.5f) / m) / float(n),
+                        t = (float(j) + (float(b) + 0.5f) / m) / float(n);
             const Vec3f d = face_to_direction(f, s, t).normalized();
             float t_exit = 0;
             int axis = 0;
@@ -208,7 +210,8 @@ RoomSample RoomLight::sample_outside(const Vec3f& x, float u, float u_s, float u
 }
 
 RoomSample RoomLight::sample_portal(const Vec3f& x, float u, float u_s, float u_t) const {
-  const std::size_t k = std::size_t(std::lower_bound(opening_cdf_.begin(), opening_cdf_.end(), u) - opening_cdf_.begin());
+  const std::size_t k =
+      std::size_t(std::lower_bound(opening_cdf_.begin(), opening_cdf_.end(), u) - opening_cdf_.begin());
   const RoomOpening& o = box_->openings[std::min(k, box_->openings.size() - 1)];
   Vec3f q = o.min;
   const int a = other_axis(o.axis, 0), b = other_axis(o.axis, 1);

@@ -70,8 +70,8 @@ class RoomLight {
   RoomLight(const RoomLight&) = delete;  // its samplers refer to its own cubes
   RoomLight& operator=(const RoomLight&) = delete;
   RoomSample sample(const Vec3f& x, float u_pick, float u_s, float u_t) const;
-  float pdf(const Vec3f& x, const Vec3f& dir) const;       // of sample() producing dir at x
-  Rgb radiance(const Vec3f& x, const Vec3f& dir) const;     // arriving at x along dir
+  float pdf(const Vec3f& x, const Vec3f& dir) const;     // of sample() producing dir at x
+  Rgb radiance(const Vec3f& x, const Vec3f& dir) const;  // arriving at x along dir
   // The distance from p to the box along dir, and the axis of the face it leaves through (p inside).
   bool exit(const Vec3f& p, const Vec3f& dir, float* t, int* axis) const;
   // How many openings hold the point q of the box's face across `axis` (0: a wall).
@@ -99,12 +99,12 @@ class RoomLight {
   Rgb wall_neighbours(const CubeMap& cube, const std::vector<float>& share, int f, int i, int j) const;
 
   std::optional<RoomBox> box_;
-  EnvSampler env_;                     // the whole cube: distant light, and the walls without openings
-  CubeMap wall_cube_, outside_cube_;   // with openings: what c saw on the walls, and outside
-  std::optional<EnvSampler> walls_;    // sampling them (they refer to the cubes above)
+  EnvSampler env_;                    // the whole cube: distant light, and the walls without openings
+  CubeMap wall_cube_, outside_cube_;  // with openings: what c saw on the walls, and outside
+  std::optional<EnvSampler> walls_;   // sampling them (they refer to the cubes above)
   std::optional<EnvSampler> outside_;
   float p_wall_ = 1, p_dir_ = 0, p_area_ = 0;
-  std::vector<float> opening_cdf_;     // by area; opening_cdf_.back() = 1
+  std::vector<float> opening_cdf_;  // by area; opening_cdf_.back() = 1
   float opening_area_ = 0;
 };
 

@@ -53,8 +53,10 @@ std::vector<CatcherAlbedo> catcher_albedos(const LoadedScene& s) {
   bool estimate = false;
   for (std::size_t k = 0; k < planes.size(); ++k) {
     if (planes[k].mesh) mesh_surface.push_back(int(k));
-    if (planes[k].albedo_from_photo) estimate = true;
-    else out[k].albedo = planes[k].albedo;
+    if (planes[k].albedo_from_photo)
+      estimate = true;
+    else
+      out[k].albedo = planes[k].albedo;
   }
   if (!estimate) return out;
   const auto field = make_irradiance(IrradianceMode::kExact, s.environment);

@@ -29,9 +29,10 @@ Plates read_plates(LoadedScene& s) {
       throw e.with_context(r.where + ".photo");
     }
     if (plate.stored.width != s.photo.stored.width || plate.stored.height != s.photo.stored.height)
-      throw InputError(r.where + ".photo", fmt::format("{}: {} x {} pixels, the photo {} x {}: a plate is the photo's view",
-                                                       r.photo, plate.stored.width, plate.stored.height,
-                                                       s.photo.stored.width, s.photo.stored.height));
+      throw InputError(
+          r.where + ".photo",
+          fmt::format("{}: {} x {} pixels, the photo {} x {}: a plate is the photo's view", r.photo, plate.stored.width,
+                      plate.stored.height, s.photo.stored.width, s.photo.stored.height));
     std::size_t clamped = 0;
     p.linear.back() = linearize_photo(plate, s.environment_info, &clamped);
     p.clipped.back() = clipped_mask(plate);
@@ -70,17 +71,19 @@ void warn_of_references(LoadedScene& s) {
   if (s.spec.references.empty()) return;
   if (!s.environment_info.clipped_cube || !s.spec.environment.inverse_lighting) {
     s.warnings.add(s.spec.path + ":$.references",
-                   s.spec.environment.inverse_lighting ? "nothing clipped in the environment: the references are not needed"
-                                                       : "environment.inverse_lighting is false: the references are not used");
+                   s.spec.environment.inverse_lighting
+                       ? "nothing clipped in the environment: the references are not needed"
+                       : "environment.inverse_lighting is false: the references are not used");
     return;
   }
   const auto& uses = s.inverse_lighting->references;
   for (std::size_t r = 0; r < uses.size() && r < s.spec.references.size(); ++r)
     if (uses[r].used == 0)
-      s.warnings.add(s.spec.references[r].where,
-                     fmt::format("no pixel of the reference was used ({} sampled: {} clipped in the photo, {} on no real surface "
-                                 "of the local scene or the room box, the rest too dark)",
-                                 uses[r].sampled, uses[r].clipped, uses[r].off_surface));
+      s.warnings.add(
+          s.spec.references[r].where,
+          fmt::format("no pixel of the reference was used ({} sampled: {} clipped in the photo, {} on no real surface "
+                      "of the local scene or the room box, the rest too dark)",
+                      uses[r].sampled, uses[r].clipped, uses[r].off_surface));
 }
 
 }  // namespace
@@ -133,24 +136,34 @@ nlohmann::json light_report(const LoadedScene& s) {
   json parts = json::array();
   for (const PartFit& p : il->parts) {
     const Vec3f& d = p.texels.dir_world;
-    parts.push_back({{"source", p.source}, {"direction_world", {d.x(), d.y(), d.z()}}, {"texels", p.texels.texels.size()},
+    parts.push_back({{"source", p.source},
+                     {"direction_world", {d.x(), d.y(), d.z()}},
+                     {"texels", p.texels.texels.size()},
                      {"scale", p.scale}});
   }
   json references = json::array();
   for (std::size_t r = 0; r < il->references.size() && r < s.spec.references.size(); ++r) {
     const ReferenceUse& u = il->references[r];
     references.push_back({{"kind", s.spec.references[r].ball ? "ball" : "polygon"},
-                          {"albedo", s.spec.references[r].albedo}, {"pixels_sampled", u.sampled},
-                          {"pixels_clipped", u.clipped}, {"pixels_off_surface", u.off_surface}, {"pixels_used", u.used},
+                          {"albedo", s.spec.references[r].albedo},
+                          {"pixels_sampled", u.sampled},
+                          {"pixels_clipped", u.clipped},
+                          {"pixels_off_surface", u.off_surface},
+                          {"pixels_used", u.used},
                           {"pixels_in_its_shadow", u.shadow}});
   }
-  out["inverse_lighting"] = {{"status", il->status},       {"message", il->message}, {"parts", parts},
-                             {"references", references},
-                             {"missing_irradiance", il->missing_irradiance ? json(*il->missing_irradiance) : json(nullptr)},
-                             {"pixels", il->pixels},       {"surfaces", il->surfaces},
-                             {"reference_surfaces", il->reference_surfaces},
-                             {"clipped_power_share", il->clipped_power_share},
-                             {"residual_sigma_log", il->residual_rms}, {"sources", sources}};
+  out["inverse_lighting"] = {
+      {"status", il->status},
+      {"message", il->message},
+      {"parts", parts},
+      {"references", references},
+      {"missing_irradiance", il->missing_irradiance ? json(*il->missing_irradiance) : json(nullptr)},
+      {"pixels", il->pixels},
+      {"surfaces", il->surfaces},
+      {"reference_surfaces", il->reference_surfaces},
+      {"clipped_power_share", il->clipped_power_share},
+      {"residual_sigma_log", il->residual_rms},
+      {"sources", sources}};
   return out;
 }
 

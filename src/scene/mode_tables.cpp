@@ -18,15 +18,17 @@ std::string defaults_of(const IntegratorEntry& e) {
   const json read = e.read_params(params);
   std::string out;
   for (const auto& [key, value] : read.items())
-    out += fmt::format("{}`{}` {}", out.empty() ? "" : ", ", key, value.is_string() ? value.get<std::string>() : value.dump());
+    out += fmt::format("{}`{}` {}", out.empty() ? "" : ", ", key,
+                       value.is_string() ? value.get<std::string>() : value.dump());
   return out.empty() ? "—" : out;
 }
 
 }  // namespace
 
 std::string integrator_table() {
-  std::string t = "| integrator | what it does | catches shadows (local_scene) | room box | noise falls as 1/√spp | "
-                  "parameters (defaults) |\n|---|---|---|---|---|---|\n";
+  std::string t =
+      "| integrator | what it does | catches shadows (local_scene) | room box | noise falls as 1/√spp | "
+      "parameters (defaults) |\n|---|---|---|---|---|---|\n";
   for (const IntegratorEntry& e : integrator_registry())
     t += fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", e.name, e.summary, yes_no(e.uses.local_scene),
                      yes_no(e.uses.room_box), yes_no(e.uses.monte_carlo), defaults_of(e));
@@ -35,7 +37,8 @@ std::string integrator_table() {
 
 std::string irradiance_mode_table() {
   std::string t = "| mode | what it computes |\n|---|---|\n";
-  for (const auto& [mode, name] : kIrradianceModes) t += fmt::format("| `{}` | {} |\n", name, irradiance_mode_summary(mode));
+  for (const auto& [mode, name] : kIrradianceModes)
+    t += fmt::format("| `{}` | {} |\n", name, irradiance_mode_summary(mode));
   return t;
 }
 
@@ -45,8 +48,8 @@ std::string tonemap_table() {
     std::string params;
     if (reads_key(op)) params = fmt::format("`key` {:g}", default_key(op));
     if (reads_bias(op)) params += fmt::format(", `bias` {:g}", ToneMapSettings{}.bias);
-    t += fmt::format("| `{}`{} | {} | {} |\n", name, op == ToneMapSettings{}.op ? " (default)" : "", tonemap_summary(op),
-                     params.empty() ? "—" : params);
+    t += fmt::format("| `{}`{} | {} | {} |\n", name, op == ToneMapSettings{}.op ? " (default)" : "",
+                     tonemap_summary(op), params.empty() ? "—" : params);
   }
   return t;
 }

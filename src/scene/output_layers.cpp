@@ -100,7 +100,8 @@ void write_outputs(const LoadedScene& scene, const RenderResult& r, const Output
     std::vector<ExrChannel> channels;
     for (const OutputLayer& layer : layers)
       if (layer.in_exr)
-        for (std::size_t c = 0; c < layer.channels.size(); ++c) channels.push_back({layer.exr_channel(c), &layer.image, int(c)});
+        for (std::size_t c = 0; c < layer.channels.size(); ++c)
+          channels.push_back({layer.exr_channel(c), &layer.image, int(c)});
     write_exr_channels(out.layers, r.composite_linear.width, r.composite_linear.height, channels, false, &stage);
     write_image(out.image, layers.back().image, nullptr, &stage);
   }

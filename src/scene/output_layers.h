@@ -26,6 +26,7 @@ std::vector<NamedPath> loaded_scene_inputs(const LoadedScene& scene);
 // Every file its meshes (objects and local scene) were read from: OBJ, MTL files, textures.
 std::vector<NamedPath> loaded_mesh_files(const LoadedScene& scene);
 
-std::vector<OutputLayer> output_layers(const LoadedScene& scene, const RenderResult& result, const OutputSpec* output = nullptr);
+std::vector<OutputLayer> output_layers(const LoadedScene& scene, const RenderResult& result,
+                                       const OutputSpec* output = nullptr);
 
 }  // namespace insitu

@@ -34,18 +34,21 @@ void warn_ineffective_settings(const SceneSpec& spec, const ResolvedIntegrator& 
   if (!spec.local_scene.empty() && !e.uses.local_scene)
     w.add("local_scene", "has no effect: " + by + " draws no shadows on it (only path does)");
   if (spec.environment.room_box && !e.uses.room_box && !volume)
-    w.add("environment.room_box", "has no effect: " + by + " looks the cube up by direction only (path and irradiance's volume mode use it)");
+    w.add("environment.room_box",
+          "has no effect: " + by + " looks the cube up by direction only (path and irradiance's volume mode use it)");
   const ToneMap op = spec.output.tonemap.op;
   if (is_linear_output(spec.output.image)) {
     for (const char* key : {"output.tonemap", "output.tonemap.key", "output.tonemap.bias"})
       if (given(key))
-        w.add(key, "has no effect: " + spec.output.image + " is a linear, scene-referred image; tone mapping applies to PNG and JPEG");
+        w.add(key, "has no effect: " + spec.output.image +
+                       " is a linear, scene-referred image; tone mapping applies to PNG and JPEG");
     return;
   }
   if (given("output.tonemap.key") && !reads_key(op))
     w.add("output.tonemap.key", "has no effect with the photo tone map (it re-encodes through the photo's own curve)");
   if (given("output.tonemap.bias") && !reads_bias(op))
-    w.add("output.tonemap.bias", std::string("has no effect with the ") + tonemap_name(op) + " tone map (only adaptive_log has a bias)");
+    w.add("output.tonemap.bias",
+          std::string("has no effect with the ") + tonemap_name(op) + " tone map (only adaptive_log has a bias)");
 }
 
 // A transform that shrinks a mesh below float resolution (scale 1e-30) leaves nothing to render.
@@ -66,8 +69,7 @@ bool outside_view(const Camera& cam, const Bounds& b) {
     c[std::size_t(k)] = cam.R_cam_from_world * p_world + cam.t_cam_from_world;
   }
   const std::array<std::function<double(const Vec3d&)>, 5> inside = {
-      [](const Vec3d& p) { return p.z(); },
-      [&](const Vec3d& p) { return cam.fx * p.x() + cam.cx * p.z(); },
+      [](const Vec3d& p) { return p.z(); }, [&](const Vec3d& p) { return cam.fx * p.x() + cam.cx * p.z(); },
       [&](const Vec3d& p) { return -(cam.fx * p.x() + (cam.cx - cam.width) * p.z()); },
       [&](const Vec3d& p) { return cam.fy * p.y() + cam.cy * p.z(); },
       [&](const Vec3d& p) { return -(cam.fy * p.y() + (cam.cy - cam.height) * p.z()); }};
@@ -84,7 +86,8 @@ std::vector<NamedPath> scene_input_files(const SceneSpec& spec) {
     for (const auto& file : e.shots[std::size_t(f)].files) in.push_back({file, std::string("shot ") + face_name(f)});
   if (!spec.camera.points.empty()) in.push_back({spec.camera.points, "the control points"});
   if (!spec.camera.file.empty())
-    in.push_back({spec.camera.file, spec.camera.kind == CameraSpec::Kind::Fspy ? "the fSpy camera" : "the camera file"});
+    in.push_back(
+        {spec.camera.file, spec.camera.kind == CameraSpec::Kind::Fspy ? "the fSpy camera" : "the camera file"});
   for (const auto& o : spec.objects) in.push_back({o.mesh, "a mesh (" + o.where + ")"});
   for (const auto& p : spec.local_scene)
     if (p.mesh) in.push_back({p.mesh->mesh, "a local-scene mesh (" + p.mesh->where + ")"});
@@ -123,7 +126,8 @@ void load_camera(const SceneSpec& spec, int width, int height, LoadedScene& s) {
   if (spec.camera.model) options.model = parse_model(*spec.camera.model);
   if (!spec.objects.empty()) {
     Vec3d mean = Vec3d::Zero();
-    for (const auto& o : spec.objects) mean += o.M_world_from_object.topRightCorner<3, 1>() / double(spec.objects.size());
+    for (const auto& o : spec.objects)
+      mean += o.M_world_from_object.topRightCorner<3, 1>() / double(spec.objects.size());
     options.insertion_world = mean;
   }
   try {
@@ -147,10 +151,12 @@ void objects_uncertainty(const SceneSpec& spec, const std::vector<Mesh>& meshes,
   for (std::size_t i = 0; i < meshes.size(); ++i) {
     const Bounds b = mesh_bounds(meshes[i]);
     if (!b.lo.allFinite() || !b.hi.allFinite()) continue;
-    const std::string name = i < spec.objects.size()
-                                 ? fmt::format("objects[{}] ({})", i, std::filesystem::path(spec.objects[i].mesh).filename().string())
-                                 : meshes[i].source;
-    s.object_uncertainty.push_back(object_uncertainty(*s.calibration, name, box_corners(b.lo.cast<double>(), b.hi.cast<double>())));
+    const std::string name =
+        i < spec.objects.size()
+            ? fmt::format("objects[{}] ({})", i, std::filesystem::path(spec.objects[i].mesh).filename().string())
+            : meshes[i].source;
+    s.object_uncertainty.push_back(
+        object_uncertainty(*s.calibration, name, box_corners(b.lo.cast<double>(), b.hi.cast<double>())));
   }
   s.click_hint = suggest_next_click(*s.calibration, s.object_uncertainty);
   const std::string warning = outside_clicks_warning(s.object_uncertainty, s.click_hint);
@@ -233,19 +239,24 @@ void copy_room(const LoadedScene& from, LoadedScene& s) {
 }
 
 // The objects (from the spec, then from memory) and the local scene's meshes.
-void load_objects(const SceneSpec& spec, std::vector<Mesh> memory_objects, LoadedScene& s, const std::atomic<bool>* stop) {
+void load_objects(const SceneSpec& spec, std::vector<Mesh> memory_objects, LoadedScene& s,
+                  const std::atomic<bool>* stop) {
   std::vector<Mesh> meshes;
   for (const ObjectSpec& obj : spec.objects) {
     throw_if_stopped(stop);
     meshes.push_back(load_placed_mesh(obj, s.warnings));
     if (outside_view(s.camera, mesh_bounds(meshes.back())))
-      s.warnings.add(obj.where, "the object lies entirely outside the camera's view (it covers no pixel): check translate and the camera");
+      s.warnings.add(
+          obj.where,
+          "the object lies entirely outside the camera's view (it covers no pixel): check translate and the camera");
   }
   check_mesh_files(meshes, spec);
   for (Mesh& m : memory_objects) {
     warn_if_collapsed(m, m.source, s.warnings);
     if (outside_view(s.camera, mesh_bounds(m)))
-      s.warnings.add(m.source, "the object lies entirely outside the camera's view (it covers no pixel): check its transform and the camera");
+      s.warnings.add(m.source,
+                     "the object lies entirely outside the camera's view (it covers no pixel): check its transform and "
+                     "the camera");
     meshes.push_back(std::move(m));
   }
   throw_if_stopped(stop);
@@ -275,7 +286,8 @@ LoadedScene load_scene(const SceneSpec& spec, std::vector<Mesh> memory_objects, 
   s.integrator = resolve_integrator(spec.render.integrator, spec.render.block, s.warnings);
   warn_ineffective_settings(spec, s.integrator, s.warnings);
   if (s.integrator.params.value("irradiance", "") == "volume" && !spec.environment.room_box)
-    throw InputError(spec.render.block.file + ":" + spec.render.block.path, "the volume irradiance mode needs environment.room_box");
+    throw InputError(spec.render.block.file + ":" + spec.render.block.path,
+                     "the volume irradiance mode needs environment.room_box");
   if (room) {
     copy_room(*room, s);
   } else {
@@ -325,8 +337,9 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress, 
   }
   auto integrator = scene.integrator.entry->create(inputs, scene.integrator.params);
   const double prepare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const RenderSettings settings{scene.spec.render.spp, scene.spec.render.seed, control.stop, control.sample_begin,
-                                control.sample_end, scene.spec.render.noise_target, control.stop_at_once};
+  const RenderSettings settings{scene.spec.render.spp, scene.spec.render.seed, control.stop,
+                                control.sample_begin,  control.sample_end,     scene.spec.render.noise_target,
+                                control.stop_at_once};
   return finish_render(scene, render(scene.camera, *integrator, settings, progress, control.state), prepare_seconds);
 }
 
@@ -355,7 +368,6 @@ nlohmann::json adaptive_report(double noise_target, const RenderLayers& layers) 
 }  // namespace
 
 std::string report_path(const std::string& image_path) { return image_path + ".report.json"; }
-
 
 nlohmann::json render_report(const LoadedScene& s, const RenderResult& r, const OutputSpec* output) {
   using nlohmann::json;

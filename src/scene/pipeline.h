@@ -26,17 +26,17 @@ struct LoadedScene {
   ImageFile photo;
   Image photo_linear;
   Camera camera;
-  std::optional<CalibrationResult> calibration;  // when the camera came from control points
+  std::optional<CalibrationResult> calibration;       // when the camera came from control points
   std::vector<ObjectUncertainty> object_uncertainty;  // the calibration's, at each object's corners
   std::optional<ClickHint> click_hint;                // where one more click would help them most
   CubeMap environment;
   EnvironmentInfo environment_info;
-  std::optional<RoomBox> room;                              // environment.room_box, for the renderer
-  std::optional<InverseLightingResult> inverse_lighting;    // when shots clipped (light_recovery.h)
-  std::shared_ptr<RoomCache> room_cache;  // the room's prepared light and grids (room_cache.h), shared
+  std::optional<RoomBox> room;                            // environment.room_box, for the renderer
+  std::optional<InverseLightingResult> inverse_lighting;  // when shots clipped (light_recovery.h)
+  std::shared_ptr<RoomCache> room_cache;                  // the room's prepared light and grids (room_cache.h), shared
   std::unique_ptr<EmbreeScene> objects;
   std::unique_ptr<EmbreeScene> catcher_meshes;  // meshes of the local scene
-  ResolvedIntegrator integrator;  // the entry and its parameters, read from the render object
+  ResolvedIntegrator integrator;                // the entry and its parameters, read from the render object
   Warnings warnings;
   Warnings room_warnings;  // those of loading the room (what a scene sharing it repeats)
   double load_seconds = 0;

@@ -183,9 +183,11 @@ EnvironmentSpec::Opening parse_opening(const JsonValue& v, const EnvironmentSpec
   for (int k = 0; k < 3; ++k) {
     if (std::abs(op.max[k] - op.min[k]) > tol) continue;
     for (const double plane : {box.min[k], box.max[k]})
-      if (std::abs(op.min[k] - plane) <= tol && std::abs(op.max[k] - plane) <= tol) wall_axis = k, op.min[k] = op.max[k] = plane;
+      if (std::abs(op.min[k] - plane) <= tol && std::abs(op.max[k] - plane) <= tol)
+        wall_axis = k, op.min[k] = op.max[k] = plane;
   }
-  if (wall_axis < 0) v.fail("an opening lies on a wall of the box: one coordinate of min and max must equal the box's min or max");
+  if (wall_axis < 0)
+    v.fail("an opening lies on a wall of the box: one coordinate of min and max must equal the box's min or max");
   op.axis = wall_axis;
   for (int k = 0; k < 3; ++k) {
     if (k == wall_axis) continue;
@@ -221,9 +223,10 @@ EnvironmentSpec::RoomBox parse_room_box(const JsonValue& v) {
 // says what it is (the key's name alone did not).
 JsonValue faced_wall(JsonObject& shots) {
   if (!shots.has("faced"))
-    shots.fail("missing required key 'faced': the wall you faced when you shot the ceiling and the floor (\"-z\", "
-               "\"+x\", ..., or \"front\", ...): the ceiling shot's bottom edge and the floor shot's top edge point "
-               "toward it");
+    shots.fail(
+        "missing required key 'faced': the wall you faced when you shot the ceiling and the floor (\"-z\", "
+        "\"+x\", ..., or \"front\", ...): the ceiling shot's bottom edge and the floor shot's top edge point "
+        "toward it");
   return shots.get("faced");
 }
 
@@ -262,8 +265,10 @@ EnvironmentSpec parse_environment(const JsonValue& v, const fs::path& dir) {
       e.exposure_factor = x->number(1e-12, 1e12);
     } else {
       const std::string s = x->string();
-      if (s == "exif") e.exposure = EnvironmentSpec::Exposure::kExif;
-      else if (s != "auto") x->fail("expected \"auto\", \"exif\" or a factor");
+      if (s == "exif")
+        e.exposure = EnvironmentSpec::Exposure::kExif;
+      else if (s != "auto")
+        x->fail("expected \"auto\", \"exif\" or a factor");
     }
   }
   if (auto n = o.find("face_size")) e.face_size = int(n->integer(1, 4096));
@@ -272,7 +277,8 @@ EnvironmentSpec parse_environment(const JsonValue& v, const fs::path& dir) {
   if (auto img = o.find("image")) {
     if (o.has("shots")) o.fail("give 'image' or 'shots', not both");
     e.image = existing_file(*img, dir);
-    if (e.exposure == EnvironmentSpec::Exposure::kExif) o.get("exposure").fail("an HDR image has no exposure to read: give a factor");
+    if (e.exposure == EnvironmentSpec::Exposure::kExif)
+      o.get("exposure").fail("an HDR image has no exposure to read: give a factor");
     o.finish();
     return e;
   }
@@ -320,8 +326,10 @@ ObjectSpec parse_object(JsonObject o, const fs::path& dir) {
     double angle_deg = 0;
     if (auto t = o.find("translate")) translate = t->vec3();
     if (auto r = o.find("rotate")) {
-      if (r->is_number()) angle_deg = r->number();
-      else if (!r->is_object()) r->fail("expected degrees about +Y (\"rotate\": 30) or {\"angle_deg\": 30, \"axis\": [x, y, z]}");
+      if (r->is_number())
+        angle_deg = r->number();
+      else if (!r->is_object())
+        r->fail("expected degrees about +Y (\"rotate\": 30) or {\"angle_deg\": 30, \"axis\": [x, y, z]}");
       else {
         JsonObject ro(*r);
         angle_deg = ro.get("angle_deg").number();
@@ -432,7 +440,8 @@ ReferenceSpec parse_reference(JsonObject item, const fs::path& dir) {
   ref.where = item.where();
   auto poly = item.find("polygon_px");
   auto sphere = item.find("sphere");
-  if (poly && sphere) sphere->fail("give 'polygon_px' (a patch in the photo) or 'sphere' (a ball in the room), not both");
+  if (poly && sphere)
+    sphere->fail("give 'polygon_px' (a patch in the photo) or 'sphere' (a ball in the room), not both");
   if (!poly && !sphere) item.fail("expected 'polygon_px' (a patch in the photo) or 'sphere' (a ball in the room)");
   if (poly) ref.polygon_px = parse_polygon(*poly);
   if (sphere) ref.ball = parse_ball(JsonObject(*sphere));
@@ -464,7 +473,8 @@ void parse_tonemap_settings(const JsonValue& tm, SceneSpec& scene) {
   JsonObject t(tm);
   parse_op(t.get("op"));
   if (auto k = t.find("key")) scene.output.tonemap.key = k->number(1e-6, 1e6), scene.given.insert("output.tonemap.key");
-  if (auto b = t.find("bias")) scene.output.tonemap.bias = b->number(0.01, 0.99), scene.given.insert("output.tonemap.bias");
+  if (auto b = t.find("bias"))
+    scene.output.tonemap.bias = b->number(0.01, 0.99), scene.given.insert("output.tonemap.bias");
   t.finish();
 }
 
@@ -509,11 +519,14 @@ SceneSpec parse_scene_json(const json& doc, const std::string& path, const std::
   scene.camera = parse_camera(JsonObject(root.get("camera")), dir, scene.warnings);
   scene.environment = parse_environment(root.get("environment"), dir);
   if (auto ls = root.find("local_scene"))
-    for (std::size_t i = 0; i < ls->size(); ++i) scene.local_scene.push_back(parse_local_scene_item(JsonObject(ls->element(i)), dir));
+    for (std::size_t i = 0; i < ls->size(); ++i)
+      scene.local_scene.push_back(parse_local_scene_item(JsonObject(ls->element(i)), dir));
   if (auto refs = root.find("references"))
-    for (std::size_t i = 0; i < refs->size(); ++i) scene.references.push_back(parse_reference(JsonObject(refs->element(i)), dir));
+    for (std::size_t i = 0; i < refs->size(); ++i)
+      scene.references.push_back(parse_reference(JsonObject(refs->element(i)), dir));
   if (auto objs = root.find("objects"))
-    for (std::size_t i = 0; i < objs->size(); ++i) scene.objects.push_back(parse_object(JsonObject(objs->element(i)), dir));
+    for (std::size_t i = 0; i < objs->size(); ++i)
+      scene.objects.push_back(parse_object(JsonObject(objs->element(i)), dir));
   if (auto r = root.find("render")) parse_render(*r, scene.render);
   if (auto c = root.find("composite")) {
     const auto mode = parse_name(kCompositeModes, c->string());
@@ -532,8 +545,8 @@ bool is_linear_output(const std::string& image_path) {
 
 Camera build_camera(const CameraSpec& c, int width, int height, Warnings* warnings) {
   if (c.kind == CameraSpec::Kind::LookAt) {
-    const double hfov = c.hfov_deg ? *c.hfov_deg
-                                   : rad_to_deg(2 * std::atan(std::tan(0.5 * deg_to_rad(*c.vfov_deg)) * width / height));
+    const double hfov =
+        c.hfov_deg ? *c.hfov_deg : rad_to_deg(2 * std::atan(std::tan(0.5 * deg_to_rad(*c.vfov_deg)) * width / height));
     return Camera::look_at(c.eye, c.look, c.up, hfov, width, height);
   }
   if (c.kind == CameraSpec::Kind::Fspy) return camera_from_fspy(c.file, width, height, warnings);
@@ -545,7 +558,8 @@ Camera build_camera(const CameraSpec& c, int width, int height, Warnings* warnin
     JsonObject o(JsonValue(doc, c.file, "$"));
     const long w = o.get("width").integer(1, 1 << 20), h = o.get("height").integer(1, 1 << 20);
     if (w != width || h != height)
-      throw InputError(c.file + ":$.width", fmt::format("camera is for {}x{} images, the photo is {}x{}", w, h, width, height));
+      throw InputError(c.file + ":$.width",
+                       fmt::format("camera is for {}x{} images, the photo is {}x{}", w, h, width, height));
     // camera.json: intrinsics and pose define the camera; eye/look/up and the fields of view
     // are there for people and are recomputed from them.
     JsonObject in(o.get("intrinsics"));
@@ -558,7 +572,8 @@ Camera build_camera(const CameraSpec& c, int width, int height, Warnings* warnin
     cam.R_cam_from_world = read_rotation(pose.get("R"), warnings);
     cam.t_cam_from_world = pose.get("t").vec3();
     pose.finish();
-    for (const char* informational : {"eye", "look", "up", "hfov_deg", "vfov_deg", "calibration"}) o.find(informational);
+    for (const char* informational : {"eye", "look", "up", "hfov_deg", "vfov_deg", "calibration"})
+      o.find(informational);
     o.finish();
     return cam;
   }
@@ -576,8 +591,10 @@ Camera build_camera(const CameraSpec& c, int width, int height, Warnings* warnin
   cam.t_cam_from_world = c.t_cam_from_world;
   // Finite, but almost surely not meant: a focal length that opens the view to nearly 180°.
   if (warnings && cam.hfov_deg() > 170.0)
-    warnings->add(c.where + ".intrinsics", fmt::format("fx = {:g} px gives a horizontal field of view of {:.1f}°: is fx in "
-                                                       "pixels (not millimetres)?", cam.fx, cam.hfov_deg()));
+    warnings->add(c.where + ".intrinsics",
+                  fmt::format("fx = {:g} px gives a horizontal field of view of {:.1f}°: is fx in "
+                              "pixels (not millimetres)?",
+                              cam.fx, cam.hfov_deg()));
   return cam;
 }
 
@@ -594,6 +611,5 @@ EnvironmentSpec environment_from_argument(const std::string& path, std::string* 
   spec.image = path;
   return spec;
 }
-
 
 }  // namespace insitu

@@ -35,7 +35,7 @@ struct CameraSpec {
   // Points: calibrate from control points (calibration.h).
   std::string points;
   std::vector<PointSpec> point_list;  // given in memory (the C API): used in place of the file
-  std::optional<std::string> model;  // "f", "f+c", "f+c+a"; nullopt: auto
+  std::optional<std::string> model;   // "f", "f+c", "f+c+a"; nullopt: auto
   bool bottom_left_origin = false;
 };
 
@@ -67,7 +67,7 @@ struct BallSpec {
 // a white sheet (≈ 0.8) or a grey card (0.18) lying on a real surface, drawn as a polygon in photo
 // pixels (top-left origin); or a grey ball, which sees the light from many directions.
 struct ReferenceSpec {
-  std::string where;  // JSON location, for messages
+  std::string where;              // JSON location, for messages
   std::vector<Vec2d> polygon_px;  // empty for a ball
   std::optional<BallSpec> ball;
   double albedo = 0;  // luminance
@@ -77,8 +77,8 @@ struct ReferenceSpec {
 };
 
 struct OutputSpec {
-  std::string image;   // composite (PNG, JPEG, EXR, TIFF)
-  std::string layers;  // multi-layer EXR; empty: none
+  std::string image;        // composite (PNG, JPEG, EXR, TIFF)
+  std::string layers;       // multi-layer EXR; empty: none
   ToneMapSettings tonemap;  // for PNG/JPEG; EXR and TIFF stay linear
 };
 

@@ -14,13 +14,15 @@ namespace {
 std::vector<NamedBox> object_origins(const SceneSpec& scene) {
   std::vector<NamedBox> boxes;
   for (const ObjectSpec& o : scene.objects)
-    boxes.emplace_back(std::filesystem::path(o.mesh).filename().string(), std::vector<NamedPoint>{{"origin", o.M_world_from_object.block<3, 1>(0, 3)}});
+    boxes.emplace_back(std::filesystem::path(o.mesh).filename().string(),
+                       std::vector<NamedPoint>{{"origin", o.M_world_from_object.block<3, 1>(0, 3)}});
   return boxes;
 }
 
 // The grid of each local-scene plane, and the room box: the box spans the grid when there is one,
 // else the control points do.
-std::vector<std::pair<std::string, Segment3>> scene_lines(const SceneSpec& scene, const std::vector<ControlPoint>& points) {
+std::vector<std::pair<std::string, Segment3>> scene_lines(const SceneSpec& scene,
+                                                          const std::vector<ControlPoint>& points) {
   Vec3d lo = Vec3d::Constant(HUGE_VAL), hi = -lo;
   for (const ControlPoint& p : points) lo = lo.cwiseMin(p.p_world), hi = hi.cwiseMax(p.p_world);
   const auto& box = scene.environment.room_box;
@@ -29,7 +31,8 @@ std::vector<std::pair<std::string, Segment3>> scene_lines(const SceneSpec& scene
   const double half = std::max(0.5 * (hi - lo).maxCoeff(), 1e-9);
   for (const PlaneSpec& plane : scene.local_scene)
     if (!plane.mesh)
-      for (const Segment3& s : plane_grid(plane.point, plane.normal, 0.5 * (lo + hi), half)) lines.emplace_back("grid", s);
+      for (const Segment3& s : plane_grid(plane.point, plane.normal, 0.5 * (lo + hi), half))
+        lines.emplace_back("grid", s);
   if (box)
     for (const Segment3& s : box_edges(box->min, box->max)) lines.emplace_back("box", s);
   return lines;
@@ -38,8 +41,11 @@ std::vector<std::pair<std::string, Segment3>> scene_lines(const SceneSpec& scene
 json points_json(const CalibrationResult& r) {
   json out = json::array();
   for (const PointResidual& p : r.points)
-    out.push_back({{"name", p.name}, {"uv", {p.uv_px.x(), p.uv_px.y()}},
-                   {"residual", {p.residual_px.x(), p.residual_px.y()}}, {"outlier", p.outlier}, {"behind", p.behind}});
+    out.push_back({{"name", p.name},
+                   {"uv", {p.uv_px.x(), p.uv_px.y()}},
+                   {"residual", {p.residual_px.x(), p.residual_px.y()}},
+                   {"outlier", p.outlier},
+                   {"behind", p.behind}});
   return out;
 }
 

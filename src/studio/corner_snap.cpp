@@ -10,7 +10,8 @@ namespace {
 // The structure tensor's eigenvalue ratio λmin / λmax over the window around (x, y): near 0 along
 // an edge or in a flat region, of order 1 at a corner.
 double corner_ratio(const cv::Mat& gray, int x, int y, int half) {
-  const cv::Rect window = cv::Rect(x - half, y - half, 2 * half + 1, 2 * half + 1) & cv::Rect(0, 0, gray.cols, gray.rows);
+  const cv::Rect window =
+      cv::Rect(x - half, y - half, 2 * half + 1, 2 * half + 1) & cv::Rect(0, 0, gray.cols, gray.rows);
   cv::Mat gx, gy;
   cv::Sobel(gray(window), gx, CV_64F, 1, 0);
   cv::Sobel(gray(window), gy, CV_64F, 0, 1);

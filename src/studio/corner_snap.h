@@ -12,8 +12,8 @@
 namespace insitu {
 
 struct CornerSnap {
-  bool snapped = false;          // false: keep the click as it was
-  Vec2d uv_px = Vec2d::Zero();   // the snapped position (or the click)
+  bool snapped = false;         // false: keep the click as it was
+  Vec2d uv_px = Vec2d::Zero();  // the snapped position (or the click)
   Vec2d offset_px = Vec2d::Zero();
 };
 

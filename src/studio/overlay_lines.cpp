@@ -6,7 +6,9 @@ namespace insitu {
 
 std::vector<Segment3> box_edges(const Vec3d& lo, const Vec3d& hi) {
   std::vector<Segment3> edges;
-  const auto corner = [&](int i) { return Vec3d(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z()); };
+  const auto corner = [&](int i) {
+    return Vec3d(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(), i & 4 ? hi.z() : lo.z());
+  };
   for (int i = 0; i < 8; ++i)
     for (int bit = 1; bit < 8; bit <<= 1)
       if (!(i & bit)) edges.push_back({corner(i), corner(i | bit)});

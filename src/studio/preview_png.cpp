@@ -47,8 +47,10 @@ std::string srgb_png(const Image& linear, const Image* red_where_positive, int m
   if (max_side_px > 0 && side > max_side_px) {
     const double s = double(max_side_px) / side;
     cv::Mat small;
-    cv::resize(bgr, small, cv::Size(std::max(1, int(std::lround(linear.width * s))), std::max(1, int(std::lround(linear.height * s)))),
-               0, 0, cv::INTER_AREA);
+    cv::resize(
+        bgr, small,
+        cv::Size(std::max(1, int(std::lround(linear.width * s))), std::max(1, int(std::lround(linear.height * s)))), 0,
+        0, cv::INTER_AREA);
     bgr = small;
   }
   return png_of(bgr);

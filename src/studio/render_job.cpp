@@ -70,22 +70,35 @@ void RenderJob::run(const std::string& integrator, int spp) {
     }
     RenderState state;
     const RenderControl control{&stop_, &state, 0, -1, true};  // a stop takes effect at once
-    int passes = 0, shown = 0;  // images published, and the samples of the last
+    int passes = 0, shown = 0;                                 // images published, and the samples of the last
     const auto progress = [&](const RenderProgress& p) {
-      { const std::lock_guard<std::mutex> lock(mutex_); fraction_ = p.fraction; }
+      {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        fraction_ = p.fraction;
+      }
       if (p.noise < 0) return;  // within a pass, from the rendering threads
       if (!publish_after_pass(p.spp_done, shown, spec.render.spp)) return;
       shown = p.spp_done;
       // Between passes: the threads are idle and the state holds the samples so far.
       RenderResult r = finish_render(scene, layers_from_state(state));
-      publish(name, {std::move(r.composite_linear), std::move(r.composite_encoded), clipped_photo_weight(r.layers, scene.photo), p.spp_done, spec.render.spp, ++passes, p.noise,
+      publish(name, {std::move(r.composite_linear), std::move(r.composite_encoded),
+                     clipped_photo_weight(r.layers, scene.photo), p.spp_done, spec.render.spp, ++passes, p.noise,
                      seconds(), false});
     };
     const RenderResult last = render_scene(scene, progress, control);
-    Slot final_slot{last.composite_linear, last.composite_encoded, clipped_photo_weight(last.layers, scene.photo), last.layers.spp_done, spec.render.spp, passes,
-                    last.layers.mean_relative_noise, seconds(), !last.layers.interrupted};
+    Slot final_slot{last.composite_linear,
+                    last.composite_encoded,
+                    clipped_photo_weight(last.layers, scene.photo),
+                    last.layers.spp_done,
+                    spec.render.spp,
+                    passes,
+                    last.layers.mean_relative_noise,
+                    seconds(),
+                    !last.layers.interrupted};
     if (passes > 0 || !last.layers.interrupted) publish(name, std::move(final_slot));  // stopped before a pass: nothing
-    auto finished = last.layers.interrupted || !integrator.empty() ? nullptr : std::make_shared<const Finished>(Finished{loaded, last});
+    auto finished = last.layers.interrupted || !integrator.empty()
+                        ? nullptr
+                        : std::make_shared<const Finished>(Finished{loaded, last});
     const std::lock_guard<std::mutex> lock(mutex_);
     state_ = last.layers.interrupted ? "stopped" : "done";
     if (finished) finished_ = std::move(finished);
@@ -105,10 +118,15 @@ json RenderJob::status() const {
   const std::lock_guard<std::mutex> lock(mutex_);
   json slots = json::object();
   for (const auto& [name, s] : slots_)
-    slots[name] = {{"spp_done", s.spp_done}, {"spp", s.spp}, {"noise", s.noise}, {"seconds", s.seconds},
-                   {"done", s.done}, {"passes", s.passes}, {"image", !s.linear.data.empty()}};
-  return {{"state", state_}, {"integrator", integrator_}, {"fraction", fraction_}, {"slots", slots},
-          {"error", error_ ? *error_ : json(nullptr)}, {"light", light_cube_ != nullptr}};
+    slots[name] = {{"spp_done", s.spp_done},         {"spp", s.spp},   {"noise", s.noise},
+                   {"seconds", s.seconds},           {"done", s.done}, {"passes", s.passes},
+                   {"image", !s.linear.data.empty()}};
+  return {{"state", state_},
+          {"integrator", integrator_},
+          {"fraction", fraction_},
+          {"slots", slots},
+          {"error", error_ ? *error_ : json(nullptr)},
+          {"light", light_cube_ != nullptr}};
 }
 
 std::optional<std::string> RenderJob::png(const std::string& name, const ToneMapSettings& tonemap) const {
@@ -145,8 +163,9 @@ std::optional<std::string> RenderJob::light_png(bool irradiance) const {
     const CubeMap& L = *cube;
     const double exposure = preview_exposure(L);
     // E/π at 32² per face, exact over the radiance box-averaged to kLightPreviewFace per face.
-    light_ = LightPreview{cube, display_png(cube_cross_preview(L, exposure)),
-                          display_png(cube_cross_preview(exact_irradiance_cube(L, 32, kLightPreviewFace), exposure / kPi))};
+    light_ =
+        LightPreview{cube, display_png(cube_cross_preview(L, exposure)),
+                     display_png(cube_cross_preview(exact_irradiance_cube(L, 32, kLightPreviewFace), exposure / kPi))};
   }
   return irradiance ? light_->irradiance_png : light_->cube_png;
 }

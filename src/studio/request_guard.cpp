@@ -70,7 +70,8 @@ std::string token_cookie(const StudioGuard& guard) {
 GuardVerdict judge_request(const StudioGuard& guard, const RequestHeaders& r) {
   const std::string ip = fmt::format("127.0.0.1:{}", guard.port), name = fmt::format("localhost:{}", guard.port);
   if (r.host != ip && r.host != name)
-    return {403, fmt::format("Host '{}' is not this studio's ({} or {}): a page on another site cannot use it", r.host, ip, name)};
+    return {403, fmt::format("Host '{}' is not this studio's ({} or {}): a page on another site cannot use it", r.host,
+                             ip, name)};
   const std::string scheme_token = "token ";
   const bool by_header = r.authorization.compare(0, scheme_token.size(), scheme_token) == 0 &&
                          same_secret(r.authorization.substr(scheme_token.size()), guard.token);
@@ -81,9 +82,11 @@ GuardVerdict judge_request(const StudioGuard& guard, const RequestHeaders& r) {
     return {403, fmt::format("no valid token: open the address insitu studio printed (http://{}/?token=...)", ip)};
   if (changes_state(r.method)) {
     if (r.origin != "http://" + ip && r.origin != "http://" + name)
-      return {403, fmt::format("Origin '{}' is not this studio's page: a {} must come from http://{}/", r.origin, r.method, ip)};
+      return {403, fmt::format("Origin '{}' is not this studio's page: a {} must come from http://{}/", r.origin,
+                               r.method, ip)};
     if (media_type(r.content_type) != "application/json")
-      return {415, fmt::format("a {} must be sent as Content-Type: application/json (not '{}')", r.method, r.content_type)};
+      return {415,
+              fmt::format("a {} must be sent as Content-Type: application/json (not '{}')", r.method, r.content_type)};
   }
   return {0, "", by_param};
 }

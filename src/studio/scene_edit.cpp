@@ -34,7 +34,8 @@ std::string dumped(const ordered& scene) { return scene.dump(2) + "\n"; }
 
 }  // namespace
 
-std::string swap_shots(const std::string& text, const std::string& file, const std::string& key_a, const std::string& key_b) {
+std::string swap_shots(const std::string& text, const std::string& file, const std::string& key_a,
+                       const std::string& key_b) {
   ordered scene = parse(text, file);
   ordered& shots = shots_of(scene, file);
   std::swap(shot_at(shots, file, key_a), shot_at(shots, file, key_b));
@@ -45,12 +46,17 @@ std::string turn_shot(const std::string& text, const std::string& file, const st
   if (by_deg % 90 != 0) throw InputError(file + ":$.environment.shots." + key, "shots turn by quarter turns");
   ordered scene = parse(text, file);
   ordered& shot = shot_at(shots_of(scene, file), file, key);
-  if (shot.is_string()) shot = ordered{{"file", shot}};
-  else if (shot.is_array()) shot = ordered{{"files", shot}};
-  const int before = shot.contains("rotate_deg") && shot["rotate_deg"].is_number_integer() ? shot["rotate_deg"].get<int>() : 0;
+  if (shot.is_string())
+    shot = ordered{{"file", shot}};
+  else if (shot.is_array())
+    shot = ordered{{"files", shot}};
+  const int before =
+      shot.contains("rotate_deg") && shot["rotate_deg"].is_number_integer() ? shot["rotate_deg"].get<int>() : 0;
   const int after = ((before + by_deg) % 360 + 360) % 360;
-  if (after == 0) shot.erase("rotate_deg");
-  else shot["rotate_deg"] = after;
+  if (after == 0)
+    shot.erase("rotate_deg");
+  else
+    shot["rotate_deg"] = after;
   return dumped(scene);
 }
 

@@ -16,7 +16,8 @@
 
 namespace insitu {
 
-std::string swap_shots(const std::string& text, const std::string& file, const std::string& key_a, const std::string& key_b);
+std::string swap_shots(const std::string& text, const std::string& file, const std::string& key_a,
+                       const std::string& key_b);
 std::string turn_shot(const std::string& text, const std::string& file, const std::string& key, int by_deg);
 std::string set_faced_wall(const std::string& text, const std::string& file, const std::string& wall);
 // `reference` is the page's {"polygon_px", "albedo"}, checked by the scene reader afterwards.

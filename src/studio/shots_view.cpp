@@ -32,7 +32,8 @@ int shot_of(const EnvironmentSpec& env, const std::string& where) {
 json shot_json(const ShotSpec& s, int face, const fs::path& folder) {
   json files = json::array();
   for (const std::string& f : s.files) files.push_back(fs::relative(f, folder).string());
-  json out = {{"face", face_name(face)}, {"key", s.key}, {"files", files}, {"rotate_deg", s.rotate_deg}, {"error", nullptr}};
+  json out = {
+      {"face", face_name(face)}, {"key", s.key}, {"files", files}, {"rotate_deg", s.rotate_deg}, {"error", nullptr}};
   try {
     const auto [w, h] = read_image_size(s.files.front());
     const bool quarter = s.rotate_deg % 180 != 0;
@@ -113,7 +114,8 @@ std::string shot_preview_png(const std::string& scene_path, int face, int max_si
   std::vector<double> clipped_fractions;
   for (const ImageFile& f : files) clipped_fractions.push_back(clipped_fraction(f));
   const ImageFile& file = files[files.size() / 2];
-  const ImageFile& shortest = files[std::size_t(std::min_element(clipped_fractions.begin(), clipped_fractions.end()) - clipped_fractions.begin())];
+  const ImageFile& shortest = files[std::size_t(std::min_element(clipped_fractions.begin(), clipped_fractions.end()) -
+                                                clipped_fractions.begin())];
   Image linear = linearize(file);
   if (!file.display_referred) {
     double sum = 0;

@@ -30,7 +30,11 @@ json body_json(const httplib::Request& req) { return parse_json_text(req.body, r
 // the panel does not edit) nulls and the reason.
 json points_state(const StudioServer::Impl& s) {
   if (!s.points)
-    return {{"points_file", nullptr}, {"points", nullptr}, {"points_text", ""}, {"version", ""}, {"points_refusal", s.points_refusal}};
+    return {{"points_file", nullptr},
+            {"points", nullptr},
+            {"points_text", ""},
+            {"version", ""},
+            {"points_refusal", s.points_refusal}};
   const FileVersion p = s.points->read();
   json points;
   try {
@@ -51,9 +55,10 @@ json state_json(const StudioServer::Impl& s) {
                     {"photo", {{"url", "/api/photo.png"}, {"width", s.width}, {"height", s.height}}},
                     {"model", s.scene.camera.model.value_or("auto")},
                     // The scene's tone map: the page shows it first, as "Save outputs" writes it.
-                    {"tonemap", {{"op", tonemap_name(s.scene.output.tonemap.op)},
-                                 {"key", s.scene.output.tonemap.key.value_or(-1)},
-                                 {"bias", s.scene.output.tonemap.bias}}}});
+                    {"tonemap",
+                     {{"op", tonemap_name(s.scene.output.tonemap.op)},
+                      {"key", s.scene.output.tonemap.key.value_or(-1)},
+                      {"bias", s.scene.output.tonemap.bias}}}});
   return state;
 }
 
@@ -90,7 +95,8 @@ void put_points(StudioServer::Impl& s, const httplib::Request& req, httplib::Res
 void post_calibrate(StudioServer::Impl& s, const httplib::Request& req, httplib::Response& res) {
   if (refuse_without_points(s, res)) return;
   const json body = body_json(req);
-  if (!body.is_object() || !body.contains("points")) throw InputError(req.path, "expected {\"points\": [...], \"model\": \"auto\"}");
+  if (!body.is_object() || !body.contains("points"))
+    throw InputError(req.path, "expected {\"points\": [...], \"model\": \"auto\"}");
   std::optional<CameraModel> model;
   if (body.contains("model") && body["model"] != "auto") {
     model = body["model"].is_string() ? parse_model(body["model"].get<std::string>()) : std::nullopt;
@@ -126,8 +132,10 @@ void post_shots(StudioServer::Impl& s, const httplib::Request& req, httplib::Res
     return body[k].get<std::string>();
   };
   const std::string op = text("op"), name = fs::path(s.scene_file.path()).filename().string();
-  if (op != "swap" && op != "turn" && op != "faced") throw InputError(req.path + ":$.op", "expected swap, turn or faced");
-  const int by_deg = op == "turn" && body.contains("by_deg") && body["by_deg"].is_number_integer() ? body["by_deg"].get<int>() : 90;
+  if (op != "swap" && op != "turn" && op != "faced")
+    throw InputError(req.path + ":$.op", "expected swap, turn or faced");
+  const int by_deg =
+      op == "turn" && body.contains("by_deg") && body["by_deg"].is_number_integer() ? body["by_deg"].get<int>() : 90;
   const VersionedFile::UpdateResult r = s.scene_file.update(text("version"), [&](const std::string& scene) {
     if (op == "swap") return swap_shots(scene, name, text("a"), text("b"));
     if (op == "turn") return turn_shot(scene, name, text("key"), by_deg);
@@ -146,17 +154,20 @@ void post_references(StudioServer::Impl& s, const httplib::Request& req, httplib
     throw InputError(req.path, "expected {\"version\": \"...\", \"op\": \"add\" | \"remove\", ...}");
   const std::string op = body["op"].is_string() ? body["op"].get<std::string>() : "";
   if (op != "add" && op != "remove") throw InputError(req.path + ":$.op", "expected add or remove");
-  if (op == "remove" && !(body.contains("index") && body["index"].is_number_integer() && body["index"].get<long long>() >= 0 &&
-                          body["index"].get<long long>() < (1 << 20)))
+  if (op == "remove" && !(body.contains("index") && body["index"].is_number_integer() &&
+                          body["index"].get<long long>() >= 0 && body["index"].get<long long>() < (1 << 20)))
     throw InputError(req.path + ":$.index", "expected the index of a reference");
   const std::string& path = s.scene_file.path();
   const std::string name = fs::path(path).filename().string();
-  const VersionedFile::UpdateResult r = s.scene_file.update(body["version"].get<std::string>(), [&](const std::string& scene) {
-    std::string edited = op == "add" ? add_reference(scene, name, body) : remove_reference(scene, name, body["index"].get<int>());
-    const SceneSpec spec = parse_scene_json(parse_json_text(edited, path), path, fs::path(path).parent_path().string());
-    check_references(spec, s.width, s.height);
-    return edited;
-  });
+  const VersionedFile::UpdateResult r =
+      s.scene_file.update(body["version"].get<std::string>(), [&](const std::string& scene) {
+        std::string edited =
+            op == "add" ? add_reference(scene, name, body) : remove_reference(scene, name, body["index"].get<int>());
+        const SceneSpec spec =
+            parse_scene_json(parse_json_text(edited, path), path, fs::path(path).parent_path().string());
+        check_references(spec, s.width, s.height);
+        return edited;
+      });
   if (!r.saved) return reply_error(res, 409, name, kConflict);
   reply_json(res, json{{"version", r.now.version}});
 }
@@ -165,7 +176,8 @@ void post_references(StudioServer::Impl& s, const httplib::Request& req, httplib
 json references_state(const StudioServer::Impl& s) {
   const FileVersion v = s.scene_file.read();
   const json scene = parse_json_text(v.text, s.scene_file.path());
-  return {{"version", v.version}, {"references", scene.is_object() && scene.contains("references") ? scene["references"] : json::array()}};
+  return {{"version", v.version},
+          {"references", scene.is_object() && scene.contains("references") ? scene["references"] : json::array()}};
 }
 
 json shots_state(const StudioServer::Impl& s) {
@@ -203,9 +215,11 @@ ToneMapSettings query_tonemap(const httplib::Request& req) {
 // {"integrator": "" | name, "spp": 0 | n}: a render started (render_job.h).
 void post_render(StudioServer::Impl& s, const httplib::Request& req, httplib::Response& res) {
   const json body = req.body.empty() ? json::object() : body_json(req);
-  if (!body.is_object()) throw InputError(req.path, "expected {\"integrator\": \"path\", \"spp\": 64} (either may be left out)");
+  if (!body.is_object())
+    throw InputError(req.path, "expected {\"integrator\": \"path\", \"spp\": 64} (either may be left out)");
   static const json kNone;
-  const JsonValue integrator(body.is_object() && body.contains("integrator") ? body["integrator"] : kNone, req.path, "$.integrator");
+  const JsonValue integrator(body.is_object() && body.contains("integrator") ? body["integrator"] : kNone, req.path,
+                             "$.integrator");
   const JsonValue spp(body.is_object() && body.contains("spp") ? body["spp"] : kNone, req.path, "$.spp");
   const std::string name = integrator.raw().is_null() ? "" : integrator.string();
   if (!name.empty() && !find_integrator(name)) integrator.fail(unknown_integrator_message(name));
@@ -238,11 +252,16 @@ void post_save(StudioServer::Impl& s, const httplib::Request& req, httplib::Resp
   if (!existing.empty() && !body.value("overwrite", false)) {
     const int theirs = reported_spp(report_path(paths.front()));
     const std::string where = existing[0].get<std::string>();
-    const std::string what = theirs > 0 ? fmt::format("exists, a render of {} spp: replace it with this one of {} spp?", theirs, spp)
-                                        : fmt::format("exists: replace it with this render of {} spp?", spp);
+    const std::string what =
+        theirs > 0 ? fmt::format("exists, a render of {} spp: replace it with this one of {} spp?", theirs, spp)
+                   : fmt::format("exists: replace it with this render of {} spp?", spp);
     res.status = 409;
-    reply_json(res, json{{"error", where + ": " + what}, {"where", where}, {"what", what}, {"existing", existing},
-                         {"spp", spp}, {"existing_spp", theirs}});
+    reply_json(res, json{{"error", where + ": " + what},
+                         {"where", where},
+                         {"what", what},
+                         {"existing", existing},
+                         {"spp", spp},
+                         {"existing_spp", theirs}});
     return;
   }
   json written = json::array();
@@ -263,9 +282,8 @@ void StudioServer::Impl::add_render_routes() {
   http.Post("/api/render/save", [this](const httplib::Request& req, httplib::Response& res) {
     guarded(res, [&] { post_save(*this, req, res); });
   });
-  http.Get("/api/render", [this](const httplib::Request&, httplib::Response& res) {
-    reply_json(res, render.status());
-  });
+  http.Get("/api/render",
+           [this](const httplib::Request&, httplib::Response& res) { reply_json(res, render.status()); });
   http.Get(R"(/api/render/(\w+)\.png)", [this](const httplib::Request& req, httplib::Response& res) {
     guarded(res, [&] {
       const auto png = render.png(req.matches[1], query_tonemap(req));
@@ -288,7 +306,8 @@ void StudioServer::Impl::add_api_routes() {
     guarded(res, [&] { reply_json(res, shots_state(*this)); });
   });
   http.Get(R"(/api/shot/([0-5])\.png)", [this](const httplib::Request& req, httplib::Response& res) {
-    guarded(res, [&] { res.set_content(shot_preview_png(scene_file.path(), std::stoi(req.matches[1]), 320), "image/png"); });
+    guarded(res,
+            [&] { res.set_content(shot_preview_png(scene_file.path(), std::stoi(req.matches[1]), 320), "image/png"); });
   });
   http.Post("/api/shots", [this](const httplib::Request& req, httplib::Response& res) {
     guarded(res, [&] { post_shots(*this, req, res); });

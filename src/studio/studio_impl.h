@@ -20,10 +20,10 @@ namespace insitu {
 struct StudioServer::Impl {
   StudioOptions options;
   SceneSpec scene;
-  std::string folder;      // the scene file's folder: the only one /files/ serves from
+  std::string folder;  // the scene file's folder: the only one /files/ serves from
   int width = 0, height = 0;
-  std::string photo_png;   // the photo, encoded once
-  cv::Mat gray;            // its luminance, sRGB-encoded, CV_32F: for corner snapping
+  std::string photo_png;  // the photo, encoded once
+  cv::Mat gray;           // its luminance, sRGB-encoded, CV_32F: for corner snapping
   // The points panel's file; none when the camera is not a "points" camera in JSON, and then
   // `points_refusal` says why (the page shows it; PUT /api/points and /api/calibrate answer 409).
   std::optional<PointsStore> points;

@@ -35,14 +35,23 @@ std::string content_type(const std::string& name) {
 std::string points_refusal(const SceneSpec& scene) {
   const CameraSpec& c = scene.camera;
   switch (c.kind) {
-    case CameraSpec::Kind::Fspy: return "this scene's camera comes from fSpy (" + fs::path(c.file).filename().string() + "): the points panel edits a \"points\" camera only";
-    case CameraSpec::Kind::File: return "this scene's camera comes from " + fs::path(c.file).filename().string() + ": the points panel edits a \"points\" camera only";
+    case CameraSpec::Kind::Fspy:
+      return "this scene's camera comes from fSpy (" + fs::path(c.file).filename().string() +
+             "): the points panel edits a \"points\" camera only";
+    case CameraSpec::Kind::File:
+      return "this scene's camera comes from " + fs::path(c.file).filename().string() +
+             ": the points panel edits a \"points\" camera only";
     case CameraSpec::Kind::LookAt:
-    case CameraSpec::Kind::Explicit: return "this scene's camera is given by numbers (eye and look, or R and t): the points panel edits a \"points\" camera only";
-    case CameraSpec::Kind::Points: break;
+    case CameraSpec::Kind::Explicit:
+      return "this scene's camera is given by numbers (eye and look, or R and t): the points panel edits a \"points\" "
+             "camera only";
+    case CameraSpec::Kind::Points:
+      break;
   }
-  if (fs::path(c.points).extension() != ".json") return "the studio saves points as JSON; this scene's points are in " + fs::path(c.points).filename().string();
-  if (c.bottom_left_origin) return "the studio writes top-left pixel coordinates; this scene's points have \"origin\": \"bottom_left\"";
+  if (fs::path(c.points).extension() != ".json")
+    return "the studio saves points as JSON; this scene's points are in " + fs::path(c.points).filename().string();
+  if (c.bottom_left_origin)
+    return "the studio writes top-left pixel coordinates; this scene's points have \"origin\": \"bottom_left\"";
   return "";
 }
 
@@ -54,7 +63,8 @@ void load_photo(StudioServer::Impl& s) {
   for (int y = 0; y < linear.height; ++y)
     for (int x = 0; x < linear.width; ++x) {
       const Rgb c = linear.rgb(x, y);
-      s.gray.at<float>(y, x) = 0.2126f * linear_to_srgb(c[0]) + 0.7152f * linear_to_srgb(c[1]) + 0.0722f * linear_to_srgb(c[2]);
+      s.gray.at<float>(y, x) =
+          0.2126f * linear_to_srgb(c[0]) + 0.7152f * linear_to_srgb(c[1]) + 0.0722f * linear_to_srgb(c[2]);
     }
   s.photo_png = srgb_png(linear);
 }
@@ -65,7 +75,8 @@ void load_photo(StudioServer::Impl& s) {
 const httplib::Headers kSecurityHeaders = {
     {"X-Frame-Options", "DENY"},
     {"Content-Security-Policy",
-     "default-src 'self'; img-src 'self' data: blob:; object-src 'none'; base-uri 'none'; form-action 'none'; frame-ancestors 'none'"},
+     "default-src 'self'; img-src 'self' data: blob:; object-src 'none'; base-uri 'none'; form-action 'none'; "
+     "frame-ancestors 'none'"},
     {"X-Content-Type-Options", "nosniff"},
     {"Referrer-Policy", "no-referrer"},
     {"Cache-Control", "no-store"},
@@ -77,16 +88,18 @@ const httplib::Headers kSecurityHeaders = {
 constexpr int kServerThreads = 32, kIdleSeconds = 2, kReadSeconds = 5, kWriteSeconds = 5;
 
 RequestHeaders headers_of(const httplib::Request& req) {
-  return {req.method, req.get_header_value("Host"), req.get_header_value("Origin"), req.get_header_value("Content-Type"),
-          req.get_header_value("Authorization"), req.get_header_value("Cookie"),
+  return {req.method,
+          req.get_header_value("Host"),
+          req.get_header_value("Origin"),
+          req.get_header_value("Content-Type"),
+          req.get_header_value("Authorization"),
+          req.get_header_value("Cookie"),
           req.has_param("token") ? req.get_param_value("token") : ""};
 }
 
 }  // namespace
 
-void reply_json(httplib::Response& res, const json& body) {
-  res.set_content(json_text(body), "application/json");
-}
+void reply_json(httplib::Response& res, const json& body) { res.set_content(json_text(body), "application/json"); }
 
 void reply_error(httplib::Response& res, int status, const std::string& where, const std::string& what) {
   res.status = status;
@@ -94,18 +107,23 @@ void reply_error(httplib::Response& res, int status, const std::string& where, c
 }
 
 StudioServer::Impl::Impl(const StudioOptions& o)
-    : options(o), scene(parse_scene_file(o.scene)), folder(fs::absolute(o.scene).parent_path().string()),
-      points_refusal(insitu::points_refusal(scene)), scene_file(o.scene, ""), render(o.scene), guard{random_token(), 0} {
+    : options(o),
+      scene(parse_scene_file(o.scene)),
+      folder(fs::absolute(o.scene).parent_path().string()),
+      points_refusal(insitu::points_refusal(scene)),
+      scene_file(o.scene, ""),
+      render(o.scene),
+      guard{random_token(), 0} {
   if (points_refusal.empty()) points.emplace(scene.camera.points);
   load_photo(*this);
   secure_server();
   for (const StudioAsset* a = kStudioAssets; a->name; ++a)
-    http.Get(std::string("/") + (std::string(a->name) == "index.html" ? "" : a->name), [a](const httplib::Request&, httplib::Response& res) {
-      res.set_content(reinterpret_cast<const char*>(a->data), a->size, content_type(a->name).c_str());
-    });
-  http.Get("/api/photo.png", [this](const httplib::Request&, httplib::Response& res) {
-    res.set_content(photo_png, "image/png");
-  });
+    http.Get(std::string("/") + (std::string(a->name) == "index.html" ? "" : a->name),
+             [a](const httplib::Request&, httplib::Response& res) {
+               res.set_content(reinterpret_cast<const char*>(a->data), a->size, content_type(a->name).c_str());
+             });
+  http.Get("/api/photo.png",
+           [this](const httplib::Request&, httplib::Response& res) { res.set_content(photo_png, "image/png"); });
   http.Get(R"(/files/(.+))", [this](const httplib::Request& req, httplib::Response& res) {
     const auto file = file_under(folder, req.matches[1]);
     if (!file) return reply_error(res, 404, "", "no such file under the scene's folder");
@@ -156,15 +174,19 @@ StudioServer::~StudioServer() = default;
 
 int StudioServer::bind() {
   // Only the loopback address: the studio writes files and must never be reachable from the network.
-  const int port = impl_->options.port == 0 ? impl_->http.bind_to_any_port("127.0.0.1")
-                                            : (impl_->http.bind_to_port("127.0.0.1", impl_->options.port) ? impl_->options.port : -1);
+  const int port = impl_->options.port == 0
+                       ? impl_->http.bind_to_any_port("127.0.0.1")
+                       : (impl_->http.bind_to_port("127.0.0.1", impl_->options.port) ? impl_->options.port : -1);
   if (port <= 0)
     throw InputError(fmt::format("--port {}", impl_->options.port),
-                     "127.0.0.1 has this port in use (another studio?) or will not give it: choose another, or --port 0 for any free one");
+                     "127.0.0.1 has this port in use (another studio?) or will not give it: choose another, or --port "
+                     "0 for any free one");
   return impl_->guard.port = port;
 }
 
-std::string StudioServer::url() const { return fmt::format("http://127.0.0.1:{}/?token={}", impl_->guard.port, impl_->guard.token); }
+std::string StudioServer::url() const {
+  return fmt::format("http://127.0.0.1:{}/?token={}", impl_->guard.port, impl_->guard.token);
+}
 const std::string& StudioServer::token() const { return impl_->guard.token; }
 
 void StudioServer::run() {

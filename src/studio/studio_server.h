@@ -37,8 +37,8 @@
 namespace insitu {
 
 struct StudioOptions {
-  std::string scene;                          // the scene file
-  int port = 8080;                            // 0: any free port
+  std::string scene;  // the scene file
+  int port = 8080;    // 0: any free port
   std::size_t max_body_bytes = std::size_t(1) << 20;
 };
 

@@ -20,7 +20,8 @@ struct FileVersion {
 
 class VersionedFile {
  public:
-  VersionedFile(std::string path, std::string if_missing) : path_(std::move(path)), if_missing_(std::move(if_missing)) {}
+  VersionedFile(std::string path, std::string if_missing)
+      : path_(std::move(path)), if_missing_(std::move(if_missing)) {}
   const std::string& path() const { return path_; }
 
   FileVersion read() const;
@@ -30,7 +31,8 @@ class VersionedFile {
     FileVersion now;
   };
   // `edit` maps the current text to the new one; what it throws propagates and nothing is written.
-  UpdateResult update(const std::string& edited_from_version, const std::function<std::string(const std::string&)>& edit);
+  UpdateResult update(const std::string& edited_from_version,
+                      const std::function<std::string(const std::string&)>& edit);
 
  private:
   FileVersion read_unlocked() const;

@@ -77,7 +77,8 @@ insitu::Camera fixture_camera(const SceneFixture& fx) {
 std::vector<insitu_control_point> known_points(const SceneFixture& fx, const insitu::Camera& truth) {
   std::vector<insitu_control_point> points;
   nlohmann::json file = nlohmann::json::array();
-  for (const insitu::Vec3d& p : {insitu::Vec3d(0, 0, 0), {1, 0, 0}, {1, 0, -1}, {0, 0, -1}, {0.5, 0.5, -0.5}, {0.2, 0.8, -0.9}}) {
+  for (const insitu::Vec3d& p :
+       {insitu::Vec3d(0, 0, 0), {1, 0, 0}, {1, 0, -1}, {0, 0, -1}, {0.5, 0.5, -0.5}, {0.2, 0.8, -0.9}}) {
     const insitu::Vec2d uv = truth.project(p);
     points.push_back({uv.x(), uv.y(), p.x(), p.y(), p.z()});
     file.push_back({{"uv", {uv.x(), uv.y()}}, {"xyz", {p.x(), p.y(), p.z()}}});
@@ -110,7 +111,9 @@ TEST(CApi, LayersAreTheCLIsExrBitForBit) {
     const std::vector<float> data = layer(r.r, name.c_str(), &channels);
     const char* names[] = {"R", "G", "B", "A"};
     for (int c = 0; c < channels; ++c) {
-      std::string ch = channels == 1 ? (name == "depth" ? "Z" : "Y") : name == "normal" ? std::string(1, "XYZ"[c]) : names[c];
+      std::string ch = channels == 1      ? (name == "depth" ? "Z" : "Y")
+                       : name == "normal" ? std::string(1, "XYZ"[c])
+                                          : names[c];
       if (name != "composite") ch = name + "." + ch;
       EXPECT_EQ(channel_of(data, channels, c), exr_channel(fx.dir.file("cli.layers.exr"), ch)) << ch;
       ++compared;
@@ -139,7 +142,8 @@ TEST(CApi, SceneFromJsonTextAndSettings) {
   EXPECT_EQ(insitu_scene_set(a, "render.spp", "-3"), INSITU_ERROR_INPUT);
   EXPECT_NE(std::string(insitu_last_error()).find("$.render.spp"), std::string::npos) << insitu_last_error();
   EXPECT_EQ(insitu_scene_set(a, "render.spp", "{"), INSITU_ERROR_INPUT);
-  EXPECT_NE(std::string(insitu_last_error()).find("render.spp:1:2: malformed JSON"), std::string::npos) << insitu_last_error();
+  EXPECT_NE(std::string(insitu_last_error()).find("render.spp:1:2: malformed JSON"), std::string::npos)
+      << insitu_last_error();
   EXPECT_EQ(insitu_scene_set(a, "render.colour", "1"), INSITU_ERROR_INPUT);  // no integrator reads it
   EXPECT_NE(std::string(insitu_last_error()).find("colour"), std::string::npos) << insitu_last_error();
   Result again;
@@ -221,11 +225,13 @@ TEST(CApi, CalibrationFromMemoryIsTheCLIs) {
   SceneFixture fx;
   const insitu::Camera truth = fixture_camera(fx);
   const std::vector<insitu_control_point> points = known_points(fx, truth);
-  const auto cli = insitu::test::run_insitu(fx.dir, "calibrate --points " + fx.dir.file("points.json") + " --size 48 32 " +
-                                                        "--box sofa 0 0 -1 1 0.5 0 -o " + fx.dir.file("camera.json"));
+  const auto cli =
+      insitu::test::run_insitu(fx.dir, "calibrate --points " + fx.dir.file("points.json") + " --size 48 32 " +
+                                           "--box sofa 0 0 -1 1 0.5 0 -o " + fx.dir.file("camera.json"));
   ASSERT_EQ(cli.exit_code, 0) << cli.err;
   insitu_calibration* c = nullptr;
-  ASSERT_EQ(insitu_calibrate(points.data(), points.size(), 48, 32, nullptr, nullptr, &c), INSITU_OK) << insitu_last_error();
+  ASSERT_EQ(insitu_calibrate(points.data(), points.size(), 48, 32, nullptr, nullptr, &c), INSITU_OK)
+      << insitu_last_error();
   const double lo[3] = {0, 0, -1}, hi[3] = {1, 0.5, 0};
   ASSERT_EQ(insitu_calibration_add_box(c, "sofa", lo, hi), INSITU_OK);
   EXPECT_EQ(std::string(insitu_calibration_json(c)), insitu::test::slurp(fx.dir.file("camera.json")));
@@ -252,7 +258,8 @@ TEST(CApi, CalibrationFromMemoryIsTheCLIs) {
   scam.width = 64;
   ASSERT_EQ(insitu_scene_set_camera(s, &scam), INSITU_OK);
   EXPECT_EQ(insitu_scene_camera(s, &back), INSITU_ERROR_INPUT);
-  EXPECT_NE(std::string(insitu_last_error()).find("64x32 images, the photo is 48x32"), std::string::npos) << insitu_last_error();
+  EXPECT_NE(std::string(insitu_last_error()).find("64x32 images, the photo is 48x32"), std::string::npos)
+      << insitu_last_error();
   // Four points cannot calibrate: the calibration's own message.
   insitu_calibration* none = nullptr;
   EXPECT_EQ(insitu_calibrate(points.data(), 4, 48, 32, nullptr, nullptr, &none), INSITU_ERROR_INPUT);
@@ -345,7 +352,8 @@ TEST(CApi, ResultBuffersAndFiles) {
   EXPECT_EQ(insitu_result_copy_layer(r.r, "objects", buffer.data(), buffer.size() - 1), INSITU_ERROR_ARGUMENT);
   const float* data = nullptr;
   EXPECT_EQ(insitu_result_layer(r.r, "colour", &data, nullptr), INSITU_ERROR_ARGUMENT);
-  EXPECT_NE(std::string(insitu_last_error()).find("no layer 'colour' (the layers: composite, objects"), std::string::npos);
+  EXPECT_NE(std::string(insitu_last_error()).find("no layer 'colour' (the layers: composite, objects"),
+            std::string::npos);
   ASSERT_EQ(insitu_result_write(r.r, fx.dir.file("a.png").c_str(), fx.dir.file("a.exr").c_str()), INSITU_OK)
       << insitu_last_error();
   EXPECT_TRUE(std::filesystem::exists(fx.dir.file("a.png.report.json")));
@@ -366,7 +374,8 @@ TEST(CApi, LibraryPageShowsTheTestedExamples) {
   for (const auto& [file, fence] : {std::pair{"minimal.c", "```c\n"}, std::pair{"minimal.py", "```python\n"}}) {
     const std::string text = insitu::test::slurp(std::string(INSITU_SOURCE_DIR) + "/examples/" + file);
     ASSERT_FALSE(text.empty()) << file;
-    EXPECT_NE(readme.find(fence + text + "```\n"), std::string::npos) << "docs/library.md does not show examples/" << file;
+    EXPECT_NE(readme.find(fence + text + "```\n"), std::string::npos)
+        << "docs/library.md does not show examples/" << file;
     EXPECT_LE(std::count(text.begin(), text.end(), '\n'), std::string(file) == "minimal.c" ? 24 : 10) << file;
   }
 }
@@ -390,7 +399,8 @@ TEST(CApi, ResumableRenderContinuesBitForBit) {
       << insitu_last_error();
   ASSERT_TRUE(std::filesystem::exists(checkpoint));
   Result rest;
-  ASSERT_EQ(insitu_render_resumable(s, checkpoint.c_str(), nullptr, nullptr, &rest.r), INSITU_OK) << insitu_last_error();
+  ASSERT_EQ(insitu_render_resumable(s, checkpoint.c_str(), nullptr, nullptr, &rest.r), INSITU_OK)
+      << insitu_last_error();
   for (const char* name : {"composite", "objects", "with", "without", "variance", "samples"})
     EXPECT_EQ(layer(rest.r, name), layer(whole.r, name)) << name;
   EXPECT_FALSE(std::filesystem::exists(checkpoint));
@@ -399,8 +409,10 @@ TEST(CApi, ResumableRenderContinuesBitForBit) {
   ASSERT_EQ(insitu_scene_set(s, "render.seed", "2"), INSITU_OK);
   Result refused;
   EXPECT_EQ(insitu_render_resumable(s, checkpoint.c_str(), nullptr, nullptr, &refused.r), INSITU_ERROR_INPUT);
-  EXPECT_NE(std::string(insitu_last_error()).find("a checkpoint of another scene"), std::string::npos) << insitu_last_error();
-  EXPECT_EQ(insitu_render_resumable(s, fx.dir.file("photo.png").c_str(), nullptr, nullptr, &refused.r), INSITU_ERROR_INPUT);
+  EXPECT_NE(std::string(insitu_last_error()).find("a checkpoint of another scene"), std::string::npos)
+      << insitu_last_error();
+  EXPECT_EQ(insitu_render_resumable(s, fx.dir.file("photo.png").c_str(), nullptr, nullptr, &refused.r),
+            INSITU_ERROR_INPUT);
   insitu_scene_free(s);
 }
 
