@@ -170,6 +170,15 @@ RenderState stopped_after_first_pass(SceneFixture& fx) {
 
 // The checkpoint file: read back as written; refused for another fingerprint, when truncated, and
 // when it is not a checkpoint.
+// The tiles across a width, ⌈w / 16⌉, for any width a checkpoint's header may claim: near 2³¹
+// the old (w + 15) / 16 overflowed (the checkpoint fuzzer found it under UBSan).
+TEST(Resume, TilesAcrossAnyWidth) {
+  for (int w : {1, 15, 16, 17, 640, 1920}) EXPECT_EQ(tiles_across(w), (w + 15) / 16) << w;
+  const int big = std::numeric_limits<int>::max() - 10;
+  EXPECT_EQ(tiles_across(big), big / 16 + 1);
+  EXPECT_EQ(tiles_across(std::numeric_limits<int>::max()), std::numeric_limits<int>::max() / 16 + 1);
+}
+
 TEST(Resume, CheckpointRoundTripAndRefusals) {
   SceneFixture fx;
   const RenderState state = stopped_after_first_pass(fx);

@@ -272,7 +272,7 @@ void start_state(RenderState& st, int w, int h, int spp, int begin, int end, dou
     throw std::invalid_argument("render: the state to resume is of another noise target");
   if (st.width != w || st.height != h || st.spp != spp || st.sample_begin != begin || st.sample_end != end ||
       st.pixels.size() != std::size_t(w) * h || st.passes_done < 0 || st.passes_done > plan_passes(st) ||
-      st.tiles_done < 0 || st.tiles_done >= tiles_across(w) * tiles_across(h))
+      st.tiles_done < 0 || st.tiles_done >= long(tiles_across(w)) * long(tiles_across(h)))
     throw std::invalid_argument("render: the state to resume is of another image size, spp or sample range");
 }
 

@@ -67,7 +67,9 @@ inline double pixel_value(const PixelSums& p) {
 // Tiles of kTilePixels² pixels, numbered row by row; a pass renders them in that order, however
 // many threads share it, so that a pass cancelled midway has done tiles [0, tiles_done).
 constexpr int kTilePixels = 16;
-inline int tiles_across(int pixels) { return (pixels + kTilePixels - 1) / kTilePixels; }
+// ⌈pixels / kTilePixels⌉ for pixels ≥ 0, without forming pixels + 15 (a checkpoint's header may
+// claim a width near 2³¹).
+inline int tiles_across(int pixels) { return pixels / kTilePixels + (pixels % kTilePixels != 0 ? 1 : 0); }
 
 // The passes a render of n samples per pixel makes (progress and interruption come between them).
 inline int render_passes(int n) { return n < 8 ? n : 8; }
