@@ -35,7 +35,7 @@ struct BatchFixture {
   nlohmann::json entries = nlohmann::json::array();
 
   // room_box: the environment as an emitting box, whose room light and irradiance grids the
-  // entries sharing the room share (render/room_cache.h).
+  // entries sharing the room share (light/room_cache.h).
   explicit BatchFixture(int spp = 8, bool room_box = false) {
     auto j = fx.scene;
     j["render"] = {{"integrator", "path"}, {"spp", spp}};

@@ -1,4 +1,4 @@
-// Environment importance sampling (render/env_sampling.h): the sampler against its own pdf.
+// Environment importance sampling (light/env_sampling.h): the sampler against its own pdf.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "cube_fixture.h"
 #include "light/texel_geometry.h"
-#include "render/env_sampling.h"
+#include "light/env_sampling.h"
 
 namespace insitu {
 namespace {

@@ -20,7 +20,7 @@
 #include "light/texel_geometry.h"
 #include "relight/inverse_lighting.h"
 #include "relight/inverse_lighting_pixels.h"
-#include "render/plane_irradiance.h"
+#include "light/plane_irradiance.h"
 #include "test_util.h"
 
 namespace insitu {

@@ -1,4 +1,4 @@
-// Every irradiance mode behind one factory (render/irradiance_at.h): the directional modes are
+// Every irradiance mode behind one factory (light/irradiance_at.h): the directional modes are
 // make_irradiance's field wherever x is, the volume is its probes' interpolation, and a volume
 // without a room box is refused.
 #include <gtest/gtest.h>
@@ -6,8 +6,8 @@
 #include <stdexcept>
 
 #include "cube_fixture.h"
-#include "render/irradiance_at.h"
-#include "render/irradiance_volume.h"
+#include "light/irradiance_at.h"
+#include "light/irradiance_volume.h"
 
 namespace insitu {
 namespace {

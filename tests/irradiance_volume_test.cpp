@@ -7,7 +7,7 @@
 #include "cube_fixture.h"
 #include "integrators/registry.h"
 #include "light/texel_geometry.h"
-#include "render/irradiance_volume.h"
+#include "light/irradiance_volume.h"
 
 namespace insitu {
 namespace {

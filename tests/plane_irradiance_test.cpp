@@ -4,7 +4,7 @@
 
 #include "cube_fixture.h"
 #include "light/texel_geometry.h"
-#include "render/plane_irradiance.h"
+#include "light/plane_irradiance.h"
 
 namespace insitu {
 namespace {

@@ -1,8 +1,8 @@
-// The room's prepared light and grids, shared by the renders of one room (render/room_cache.h).
+// The room's prepared light and grids, shared by the renders of one room (light/room_cache.h).
 #include <gtest/gtest.h>
 
 #include "cube_fixture.h"
-#include "render/room_cache.h"
+#include "light/room_cache.h"
 
 namespace insitu {
 namespace {

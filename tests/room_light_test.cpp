@@ -3,7 +3,7 @@
 #include <random>
 
 #include "cube_fixture.h"
-#include "render/room_light.h"
+#include "light/room_light.h"
 #include "light/texel_geometry.h"
 
 namespace insitu {

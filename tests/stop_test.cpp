@@ -11,8 +11,8 @@
 #include "integrators/registry.h"
 #include "light/irradiance.h"
 #include "render/embree_scene.h"
-#include "render/irradiance_volume.h"
-#include "render/room_cache.h"
+#include "light/irradiance_volume.h"
+#include "light/room_cache.h"
 #include "scene/pipeline.h"
 #include "scene_fixture.h"
 

@@ -10,7 +10,7 @@
 // --index I renders entry I only (a Slurm array task: --index $SLURM_ARRAY_TASK_ID); with
 // --per-task K, task I renders entries I·K … I·K + K − 1 and --count prints the number of tasks.
 // Without --index, every entry in turn. The room (photo, camera, environment, recovered light, and
-// the room light and irradiance grids the path integrator prepares: render/room_cache.h) is loaded
+// the room light and irradiance grids the path integrator prepares: light/room_cache.h) is loaded
 // once and shared by the entries of the process that leave it as it is, so a task of K entries
 // pays the room's start-up once. An entry's outputs are written atomically, the
 // report last (scene/pipeline.h, write_outputs); a killed task leaves none of its files under a

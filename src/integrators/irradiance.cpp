@@ -4,7 +4,7 @@
 //
 // ρ = Kd × map_Kd(uv) (Lambertian), n the shading normal facing the camera, E one of the
 // irradiance modes of irradiance.h: gaussian | sh9 | exact look the cube up by the normal alone;
-// volume (render/irradiance_volume.h) also by the position, from SH9 probes of the emitting room
+// volume (light/irradiance_volume.h) also by the position, from SH9 probes of the emitting room
 // box and its openings (it needs environment.room_box). No shadows, no occlusion between objects,
 // no bounce light: what a real-time engine with a better irradiance than the legacy blur would
 // draw. With mode `gaussian` it equals `realtime`.
@@ -14,7 +14,7 @@
 //               as render.irradiance (DESIGN.md), or render.irradiance.irradiance in its own object.
 #include "integrators/registry.h"
 #include "light/irradiance.h"
-#include "render/irradiance_at.h"
+#include "light/irradiance_at.h"
 
 namespace insitu {
 namespace {

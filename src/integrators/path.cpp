@@ -58,9 +58,9 @@
 #include "core/stop.h"
 #include "integrators/registry.h"
 #include "render/bsdf.h"
-#include "render/env_sampling.h"
-#include "render/plane_irradiance.h"
-#include "render/room_light.h"
+#include "light/env_sampling.h"
+#include "light/plane_irradiance.h"
+#include "light/room_light.h"
 
 namespace insitu {
 namespace {

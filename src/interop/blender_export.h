@@ -12,7 +12,7 @@
 //   - the camera (interop/blender_camera.h), the photo as its background and, in the compositor,
 //     under the render (Alpha Over);
 //   - the environment as the world; with a room box, the box's walls emitting the environment
-//     seen from the capture point (render/room_light.h) and catching shadows, with the openings
+//     seen from the capture point (light/room_light.h) and catching shadows, with the openings
 //     cut out so that the world's distant light comes through them; a wall lying on an infinite
 //     local-scene plane is left out (the plane is that surface);
 //   - the local scene as shadow catchers: infinite planes as squares 1000 times the scene's size,

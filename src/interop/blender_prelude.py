@@ -143,7 +143,7 @@ def surface_material(name, kd, texture="", ks=(0.0, 0.0, 0.0), roughness=1.0):
 
 
 def box_emission_material(world_path, capture):
-    """The room box of insitu's room light (src/render/room_light.h): a point q of a wall emits
+    """The room box of insitu's room light (src/light/room_light.h): a point q of a wall emits
     what the capture point c saw in its direction, L(q) = env((q - c) / |q - c|)."""
     mat, nt, out = new_material("insitu room box")
     geometry = nt.nodes.new("ShaderNodeNewGeometry")

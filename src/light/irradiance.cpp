@@ -241,7 +241,7 @@ std::unique_ptr<IrradianceField> make_irradiance(IrradianceMode mode, const Cube
     case IrradianceMode::kVolume:
       break;
   }
-  throw std::logic_error("make_irradiance takes the directional modes; every mode's factory is render/irradiance_at.h");
+  throw std::logic_error("make_irradiance takes the directional modes; every mode's factory is light/irradiance_at.h");
 }
 
 }  // namespace insitu

@@ -27,7 +27,7 @@
 namespace insitu {
 
 // `volume` is the one mode that depends on position as well: SH9 probes in the room box
-// (render/irradiance_volume.h), which only the irradiance integrator builds; make_irradiance and
+// (light/irradiance_volume.h), which only the irradiance integrator builds; make_irradiance and
 // the cube-based reports take the three directional modes.
 enum class IrradianceMode { kGaussian, kSh9, kExact, kVolume };
 inline constexpr Named<IrradianceMode> kIrradianceModes[] = {{IrradianceMode::kGaussian, "gaussian"},

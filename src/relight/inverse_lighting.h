@@ -88,7 +88,7 @@
 
 #include "core/camera.h"
 #include "relight/clipped_sources.h"
-#include "render/room_light.h"
+#include "light/room_light.h"
 
 namespace insitu {
 

@@ -11,7 +11,7 @@
 #include "core/colour.h"
 #include "core/stop.h"
 #include "light/texel_geometry.h"
-#include "render/plane_irradiance.h"
+#include "light/plane_irradiance.h"
 
 namespace insitu {
 namespace inverse_lighting_detail {

@@ -10,8 +10,8 @@
 #include "core/camera.h"
 #include "light/cubemap.h"
 #include "render/embree_scene.h"
-#include "render/room_cache.h"
-#include "render/room_light.h"
+#include "light/room_cache.h"
+#include "light/room_light.h"
 #include "light/irradiance.h"
 #include "core/sampler.h"
 

@@ -9,7 +9,7 @@
 #include "core/camera.h"
 #include "light/cubemap.h"
 #include "render/embree_scene.h"
-#include "render/room_cache.h"
+#include "light/room_cache.h"
 #include "light/environment.h"
 #include "core/error.h"
 #include "core/image.h"

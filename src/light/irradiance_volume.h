@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "light/irradiance.h"
-#include "render/room_light.h"
+#include "light/room_light.h"
 
 namespace insitu {
 

@@ -1,4 +1,4 @@
-#include "render/plane_irradiance.h"
+#include "light/plane_irradiance.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "render/room_cache.h"
+#include "light/room_cache.h"
 
 #include <stdexcept>
 

@@ -41,7 +41,7 @@
 #include <optional>
 #include <vector>
 
-#include "render/env_sampling.h"
+#include "light/env_sampling.h"
 
 namespace insitu {
 

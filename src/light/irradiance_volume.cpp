@@ -1,4 +1,4 @@
-#include "render/irradiance_volume.h"
+#include "light/irradiance_volume.h"
 
 #include <algorithm>
 #include <cmath>

@@ -9,7 +9,7 @@
 #include <optional>
 
 #include "light/irradiance.h"
-#include "render/room_light.h"
+#include "light/room_light.h"
 
 namespace insitu {
 

@@ -1,8 +1,8 @@
-#include "render/irradiance_at.h"
+#include "light/irradiance_at.h"
 
 #include <stdexcept>
 
-#include "render/irradiance_volume.h"
+#include "light/irradiance_volume.h"
 
 namespace insitu {
 namespace {

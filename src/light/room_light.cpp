@@ -1,4 +1,4 @@
-#include "render/room_light.h"
+#include "light/room_light.h"
 
 #include <algorithm>
 #include <cmath>

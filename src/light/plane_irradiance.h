@@ -17,7 +17,7 @@
 #include <atomic>
 #include <vector>
 
-#include "render/room_light.h"
+#include "light/room_light.h"
 
 namespace insitu {
 

@@ -1,4 +1,4 @@
-#include "render/env_sampling.h"
+#include "light/env_sampling.h"
 
 #include <algorithm>
 #include <cmath>

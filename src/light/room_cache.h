@@ -15,7 +15,7 @@
 #include <optional>
 #include <tuple>
 
-#include "render/plane_irradiance.h"
+#include "light/plane_irradiance.h"
 
 namespace insitu {
 
