@@ -48,6 +48,15 @@ std::string recover_light(const std::string& scene_path, CubeMap& cube) {
   return out;
 }
 
+// A shot's aim as registration found it (light/shot_registration.h), or why it has none.
+std::string aim_text(const std::optional<Registration>& r, int f) {
+  if (!r) return "";
+  const ShotAim& a = r->shots[std::size_t(f)];
+  if (!a.registered) return ", nominal aim (" + a.reason + ")";
+  return fmt::format(", turned {:.2f}° (yaw {:+.2f}°, pitch {:+.2f}°, roll {:+.2f}°), {} matches, residual {:.3f}°",
+                     a.rotation_deg, a.yaw_deg, a.pitch_deg, a.roll_deg, a.matches, a.residual_deg);
+}
+
 int run_cubemap(const CubemapArgs& a) {
   Warnings warnings;
   EnvironmentInfo info;
@@ -98,9 +107,9 @@ int run_cubemap(const CubemapArgs& a) {
               info.response ? ", camera response recovered from brackets" : "");
   if (spec.from_shots())
     for (int f = 0; f < 6; ++f)
-      std::printf("  %-3s %-40s coverage %5.1f%%, clipped %5.2f%%\n", face_name(f),
+      std::printf("  %-3s %-40s coverage %5.1f%%, clipped %5.2f%%%s\n", face_name(f),
                   spec.shots[std::size_t(f)].files.front().c_str(), 100 * info.coverage[std::size_t(f)],
-                  100 * info.clipped[std::size_t(f)]);
+                  100 * info.clipped[std::size_t(f)], aim_text(info.registration, f).c_str());
   std::printf("%s", light_line.c_str());
   std::printf("wrote cube.exr, cube.png, equirect.exr and irradiance_{%s}.{exr,png} to %s\n", written.c_str(),
               a.out.c_str());

@@ -230,13 +230,16 @@ void warn_if_one_shot_limits(const EnvironmentSpec& spec, const ShotSet& set, in
                   set.shots[std::size_t(smallest)].width, set.shots[std::size_t(smallest)].height, n, n, others));
 }
 
-CubeMap assemble(const EnvironmentSpec& spec, const ShotSet& set, EnvironmentInfo& info, Warnings& warnings) {
+CubeMap assemble(const EnvironmentSpec& spec, const LinearShots& shots, EnvironmentInfo& info, Warnings& warnings) {
+  const ShotSet& set = shots.set;
   const int n = spec.face_size > 0 ? spec.face_size : natural_face_size(set);
   if (spec.face_size <= 0) warn_if_one_shot_limits(spec, set, n, warnings);
   AssemblyInfo assembly;
   CubeMap cube;
+  const bool any_clipped = *std::max_element(info.clipped.begin(), info.clipped.end()) > 0;
+  CubeMap clipped_cube;
   try {
-    cube = assemble_cube(set, n, &assembly);
+    cube = assemble_cube(set, n, &assembly, any_clipped ? &shots.clipped : nullptr, &clipped_cube);
   } catch (const InputError& e) {
     throw e.with_context(spec.where);
   }
@@ -244,8 +247,9 @@ CubeMap assemble(const EnvironmentSpec& spec, const ShotSet& set, EnvironmentInf
   for (int f = 0; f < 6; ++f)
     if (assembly.coverage[std::size_t(f)] < 1.0)
       warnings.add(spec.shots[std::size_t(f)].files.front(),
-                   fmt::format("covers {:.1f}% of face {}; the rest is filled from its neighbours",
+                   fmt::format("face {1} is {0:.1f}% covered by the shots; the rest is filled from its neighbours",
                                100 * assembly.coverage[std::size_t(f)], face_name(f)));
+  if (any_clipped) info.clipped_cube = std::move(clipped_cube);
   return cube;
 }
 
@@ -269,6 +273,21 @@ CubeMap scale_by_estimate(const CubeMap& cube, const ImageFile& photo, const Env
   return scaled(cube, float(info.exposure_factor));
 }
 
+// Each shot's aim from the shots (shot_registration.h). A shot that could have been registered
+// (its view overlaps a neighbour's) and was not is named with the reason; it keeps its nominal
+// direction.
+void register_aims(const EnvironmentSpec& spec, LinearShots& shots, EnvironmentInfo& info, Warnings& warnings) {
+  Registration r = register_shots(shots.set);
+  shots.set.aim = shots.clipped.aim = r.aim;
+  for (int f = 0; f < 6; ++f) {
+    const ShotAim& a = r.shots[std::size_t(f)];
+    if (r.overlap && !a.registered)
+      warnings.add(spec.shots[std::size_t(f)].files.front(),
+                   "not registered: " + a.reason + "; its nominal direction is used");
+  }
+  info.registration = std::move(r);
+}
+
 CubeMap load_shot_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo& info,
                               const ImageFile* photo) {
   const ShotFiles files = read_shot_files(spec);
@@ -276,9 +295,11 @@ CubeMap load_shot_environment(const EnvironmentSpec& spec, Warnings& warnings, E
   const ResponseCurve response = info.response.value_or(srgb_response());
   LinearShots shots = linearize_shots(spec, files, response, info, warnings);
   const bool per_shot_exif = apply_exif_exposure(spec, photo, shots, info);
-  CubeMap cube = assemble(spec, shots.set, info, warnings);
-  if (*std::max_element(info.clipped.begin(), info.clipped.end()) > 0)
-    info.clipped_cube = assemble_cube(shots.clipped, cube.size());
+  if (spec.register_shots == EnvironmentSpec::Register::kAuto) register_aims(spec, shots, info, warnings);
+  const ShotGains gains = overlap_gains(shots.set, &shots.clipped);
+  apply_gains(shots.set, gains);
+  info.shot_gain = gains.gain;
+  CubeMap cube = assemble(spec, shots, info, warnings);
   if (spec.exposure == EnvironmentSpec::Exposure::kFactor) return scaled(cube, float(spec.exposure_factor));
   if (!per_shot_exif && photo) return scale_by_estimate(cube, *photo, spec, info, warnings);
   return cube;

@@ -15,6 +15,8 @@
 #include "core/error.h"
 #include "light/hdr_merge.h"
 #include "light/environment_spec.h"
+#include "light/shot_gains.h"
+#include "light/shot_registration.h"
 
 namespace insitu {
 
@@ -29,6 +31,9 @@ struct EnvironmentInfo {
   // With clipped shots: per texel of the cube, the fraction of it that was clipped (the shots'
   // masks assembled like the shots themselves; a merged bracket's clipping is its shortest's).
   std::optional<CubeMap> clipped_cube;
+  std::optional<Registration> registration;  // six shots with "register": "auto"
+  std::array<Rgb, 6> shot_gain = {Rgb::Ones(), Rgb::Ones(), Rgb::Ones(),
+                                  Rgb::Ones(), Rgb::Ones(), Rgb::Ones()};  // from overlaps (shot_gains.h)
 };
 
 // `photo` (as stored) gives k_photo and the estimate; without it shots keep their own unit.

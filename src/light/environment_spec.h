@@ -48,6 +48,9 @@ struct EnvironmentSpec {
   double exposure_factor = 1.0;
   // Recover the strength of light that clipped in the shots against the photo (inverse_lighting.h).
   bool inverse_lighting = true;
+  // Find where each shot really looked from the shots themselves (shot_registration.h), or take
+  // the nominal directions as exact.
+  enum class Register { kAuto, kNone } register_shots = Register::kAuto;
   bool from_shots() const { return image.empty(); }
 };
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cassert>
 #include <fmt/format.h>
+#include <optional>
+#include <vector>
 
 #include "core/error.h"
 
@@ -40,53 +42,122 @@ int natural_face_size(const ShotSet& set, int max_face_size) {
   return n;
 }
 
-CubeMap assemble_cube(const ShotSet& set, int n, AssemblyInfo* info) {
-  CubeMap cube(n), weight(n);
-  bool holes = false;
+ShotBasis aimed_basis(const ShotSet& set, int s) {
+  const ShotBasis b = shot_basis(s, set.faced_face);
+  const Mat3d& R = set.aim[std::size_t(s)];
+  return {R * b.forward, R * b.up, R * b.right};
+}
+
+namespace {
+
+// One shot ready to be sampled: shrunk to at most one pixel per texel, with its aimed axes.
+struct PreparedShot {
+  Image image, clipped;  // clipped: empty, or the shot's clipped degree (0..1) at the same size
+  ShotBasis basis;
+  double f_px = 0;
+};
+
+PreparedShot prepare_shot(const ShotSet& set, const ShotSet* clipped, int s, int n) {
+  PreparedShot p;
+  p.image = set.shots[std::size_t(s)];
+  if (clipped) p.clipped = clipped->shots[std::size_t(s)];
+  const double tan_half = std::tan(0.5 * deg_to_rad(set.hfov_deg[std::size_t(s)]));
+  // Shrink a shot larger than its face by area averaging (which keeps its integral) before
+  // sampling it. The 1e-9 keeps tan 45° = 0.99999999999999989 from rounding n up.
+  const int needed_w = std::max(1, int(std::ceil(n * tan_half - 1e-9)));
+  if (p.image.width > needed_w) {
+    const int needed_h = std::max(1, int(std::lround(double(p.image.height) * needed_w / p.image.width)));
+    p.image = resize(p.image, needed_w, needed_h, "box");
+    if (clipped) p.clipped = resize(p.clipped, needed_w, needed_h, "box");
+  }
+  p.basis = aimed_basis(set, s);
+  p.f_px = 0.5 * p.image.width / tan_half;
+  return p;
+}
+
+Rgb bilinear(const Image& img, double x, double y) {
+  const int x0 = std::min(int(x), img.width - 1), y0 = std::min(int(y), img.height - 1);
+  const int x1 = std::min(x0 + 1, img.width - 1), y1 = std::min(y0 + 1, img.height - 1);
+  const float wx = float(x - x0), wy = float(y - y0);
+  return (1 - wy) * ((1 - wx) * img.rgb(x0, y0) + wx * img.rgb(x1, y0)) +
+         wy * ((1 - wx) * img.rgb(x0, y1) + wx * img.rgb(x1, y1));
+}
+
+// What one shot says about a direction: its radiance, its clipped degree and its blending weight.
+struct ShotSample {
+  Rgb radiance, clipped;
+  double weight = 0;
+};
+
+// The feathered weight of a pixel (u, v ∈ [0, 1] across the shot): the tent min(u, 1−u) ·
+// min(v, 1−v), 0 on the shot's border and largest at its centre, so that the blend of
+// overlapping shots has no seam (the distance-to-border feathering of OpenCV's FeatherBlender,
+// separable). A clipped pixel's weight drops to 1/1000 of it, so that where a neighbour did not
+// clip, the neighbour's radiance is taken.
+std::optional<ShotSample> sample_shot(const PreparedShot& p, const Vec3d& d) {
+  const double z = d.dot(p.basis.forward);
+  const double w = p.image.width, h = p.image.height;
+  // Pixel position (corner origin) of the direction in the shot.
+  const double px = 0.5 * w + p.f_px * d.dot(p.basis.right) / z;
+  const double py = 0.5 * h - p.f_px * d.dot(p.basis.up) / z;
+  const double tol = 1e-3;
+  if (!(z > 0) || px < -tol || px > w + tol || py < -tol || py > h + tol) return std::nullopt;
+  const double x = std::clamp(px - 0.5, 0.0, w - 1.0), y = std::clamp(py - 0.5, 0.0, h - 1.0);
+  ShotSample s;
+  s.radiance = bilinear(p.image, x, y);
+  s.clipped = p.clipped.width > 0 ? bilinear(p.clipped, x, y) : Rgb::Zero();
+  const double u = std::clamp(px / w, 0.0, 1.0), v = std::clamp(py / h, 0.0, 1.0);
+  s.weight = std::max(1e-12, std::min(u, 1 - u) * std::min(v, 1 - v)) * (1 - 0.999 * double(s.clipped.maxCoeff()));
+  return s;
+}
+
+}  // namespace
+
+// Each texel: the shots that see its direction, blended by their weights (sample_shot). One shot
+// alone gives its own sample unchanged.
+CubeMap assemble_cube(const ShotSet& set, int n, AssemblyInfo* info, const ShotSet* clipped, CubeMap* clipped_cube) {
+  std::vector<PreparedShot> shots;
+  for (int s = 0; s < 6; ++s) shots.push_back(prepare_shot(set, clipped, s, n));
+  CubeMap cube(n), weight(n), clip(n);
+  std::array<long, 6> used{};
   AssemblyInfo local;
+  bool holes = false;
   for (int f = 0; f < 6; ++f) {
-    Image shot = set.shots[std::size_t(f)];
-    const double tan_half = std::tan(0.5 * deg_to_rad(set.hfov_deg[std::size_t(f)]));
-    // Shrink a shot larger than its face by area averaging (which keeps its integral) before
-    // sampling it. The 1e-9 keeps tan 45° = 0.99999999999999989 from rounding n up.
-    const int needed_w = std::max(1, int(std::ceil(n * tan_half - 1e-9)));
-    if (shot.width > needed_w) {
-      const int needed_h = std::max(1, int(std::lround(double(shot.height) * needed_w / shot.width)));
-      shot = resize(shot, needed_w, needed_h, "box");
-    }
-    const ShotBasis b = shot_basis(f, set.faced_face);
-    const double w = shot.width, h = shot.height, f_px = 0.5 * w / tan_half;
     long covered = 0;
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
         const Vec3d d = texel_direction(f, i, j, n).cast<double>();
-        const double z = d.dot(b.forward);
-        // Pixel position (corner origin) of the direction in the shot.
-        const double px = 0.5 * w + f_px * d.dot(b.right) / z;
-        const double py = 0.5 * h - f_px * d.dot(b.up) / z;
-        const double tol = 1e-3;
-        if (!(z > 0) || px < -tol || px > w + tol || py < -tol || py > h + tol) continue;
+        Rgb sum = Rgb::Zero(), clip_sum = Rgb::Zero(), only = Rgb::Zero(), only_clip = Rgb::Zero();
+        double wsum = 0;
+        int count = 0;
+        for (int s = 0; s < 6; ++s)
+          if (const auto smp = sample_shot(shots[std::size_t(s)], d)) {
+            ++count, ++used[std::size_t(s)];
+            only = smp->radiance, only_clip = smp->clipped;
+            sum += float(smp->weight) * smp->radiance, clip_sum += float(smp->weight) * smp->clipped;
+            wsum += smp->weight;
+          }
+        if (count == 0) continue;
         ++covered;
-        const double x = std::clamp(px - 0.5, 0.0, w - 1.0), y = std::clamp(py - 0.5, 0.0, h - 1.0);
-        const int x0 = std::min(int(x), shot.width - 1), y0 = std::min(int(y), shot.height - 1);
-        const int x1 = std::min(x0 + 1, shot.width - 1), y1 = std::min(y0 + 1, shot.height - 1);
-        const float wx = float(x - x0), wy = float(y - y0);
-        const Rgb c = (1 - wy) * ((1 - wx) * shot.rgb(x0, y0) + wx * shot.rgb(x1, y0)) +
-                      wy * ((1 - wx) * shot.rgb(x0, y1) + wx * shot.rgb(x1, y1));
-        cube.set_texel(f, i, j, c);
+        cube.set_texel(f, i, j, count == 1 ? only : Rgb(sum / float(wsum)));
+        clip.set_texel(f, i, j, count == 1 ? only_clip : Rgb(clip_sum / float(wsum)));
         weight.set_texel(f, i, j, Rgb::Ones());
       }
     local.coverage[std::size_t(f)] = double(covered) / (double(n) * n);
-    if (covered == 0)
-      throw InputError(set.names[std::size_t(f)], fmt::format("the shot covers none of face {} (field of view {}°)",
-                                                              face_name(f), set.hfov_deg[std::size_t(f)]));
     holes |= covered < long(n) * n;
   }
+  for (int s = 0; s < 6; ++s)
+    if (used[std::size_t(s)] == 0)
+      throw InputError(set.names[std::size_t(s)], fmt::format("the shot covers none of the cube (field of view {}°)",
+                                                              set.hfov_deg[std::size_t(s)]));
   cube.update_borders();
+  clip.update_borders();
   if (holes) {
     weight.update_borders();
     fill_uncovered(cube, weight);
+    if (clipped) fill_uncovered(clip, weight);
   }
+  if (clipped_cube) *clipped_cube = std::move(clip);
   if (info) *info = local;
   return cube;
 }

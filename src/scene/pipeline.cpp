@@ -365,6 +365,17 @@ nlohmann::json adaptive_report(double noise_target, const RenderLayers& layers) 
   return {{"noise_target", noise_target}, {"mean_spp", mean_spp(layers)}, {"spp_histogram", bins}};
 }
 
+// A shot's aim as registration found it (light/shot_registration.h); null with "register": "none".
+nlohmann::json registration_json(const std::optional<Registration>& r, int f) {
+  if (!r) return nullptr;
+  const ShotAim& a = r->shots[std::size_t(f)];
+  nlohmann::json j = {{"registered", a.registered},    {"rotation_deg", a.rotation_deg}, {"yaw_deg", a.yaw_deg},
+                      {"pitch_deg", a.pitch_deg},      {"roll_deg", a.roll_deg},         {"matches", a.matches},
+                      {"residual_deg", a.residual_deg}};
+  if (!a.registered) j["reason"] = a.reason;
+  return j;
+}
+
 }  // namespace
 
 std::string report_path(const std::string& image_path) { return image_path + ".report.json"; }
@@ -381,7 +392,11 @@ nlohmann::json render_report(const LoadedScene& s, const RenderResult& r, const 
                        {"files", s.spec.environment.shots[std::size_t(f)].files},
                        {"rotate_deg", s.spec.environment.shots[std::size_t(f)].rotate_deg},
                        {"coverage_percent", 100 * info.coverage[std::size_t(f)]},
-                       {"clipped_percent", 100 * info.clipped[std::size_t(f)]}});
+                       {"clipped_percent", 100 * info.clipped[std::size_t(f)]},
+                       {"registration", registration_json(info.registration, f)},
+                       {"gain",
+                        {info.shot_gain[std::size_t(f)][0], info.shot_gain[std::size_t(f)][1],
+                         info.shot_gain[std::size_t(f)][2]}}});
   json calibration = nullptr;
   if (s.calibration)
     calibration = {{"model", model_name(s.calibration->model)},

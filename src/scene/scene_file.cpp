@@ -273,10 +273,16 @@ EnvironmentSpec parse_environment(const JsonValue& v, const fs::path& dir) {
   }
   if (auto n = o.find("face_size")) e.face_size = int(n->integer(1, 4096));
   if (auto il = o.find("inverse_lighting")) e.inverse_lighting = il->boolean();
+  if (auto r = o.find("register")) {
+    const std::string mode = r->string();
+    if (mode != "auto" && mode != "none") r->fail("expected \"auto\" or \"none\"");
+    e.register_shots = mode == "none" ? EnvironmentSpec::Register::kNone : EnvironmentSpec::Register::kAuto;
+  }
   if (auto rb = o.find("room_box")) e.room_box = parse_room_box(*rb);
   if (auto img = o.find("image")) {
     if (o.has("shots")) o.fail("give 'image' or 'shots', not both");
     e.image = existing_file(*img, dir);
+    if (o.has("register")) o.get("register").fail("an HDR image has no shots to register");
     if (e.exposure == EnvironmentSpec::Exposure::kExif)
       o.get("exposure").fail("an HDR image has no exposure to read: give a factor");
     o.finish();

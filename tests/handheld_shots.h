@@ -1,0 +1,66 @@
+// Handheld shots for the registration's tests and benchmark (light/shot_registration.h): six
+// shots of an equirectangular world, each turned by a known misaim.
+#pragma once
+#include <array>
+#include <random>
+#include <string>
+
+#include "light/cubemap.h"
+#include "light/equirect.h"
+#include "light/sixshot.h"
+
+namespace insitu {
+namespace test {
+
+inline Mat3d rotation(const Vec3d& rotation_vector_rad) {
+  const double angle = rotation_vector_rad.norm();
+  if (angle == 0) return Mat3d::Identity();
+  return Eigen::AngleAxisd(angle, rotation_vector_rad / angle).toRotationMatrix();
+}
+
+inline double angle_deg(const Mat3d& a, const Mat3d& b) {
+  return rad_to_deg(Eigen::AngleAxisd(a * b.transpose()).angle());
+}
+
+// Six shots of `world` as a hand aims them: each turned by its true aim.
+inline ShotSet handheld_shots(const Image& world, const std::array<Mat3d, 6>& aim, double hfov_deg, int w, int h) {
+  ShotSet set;
+  set.faced_face = kNegZ;
+  set.set_hfov(hfov_deg);
+  for (int s = 0; s < 6; ++s) {
+    const ShotBasis b = shot_basis(s, kNegZ);
+    const Mat3d& R = aim[std::size_t(s)];
+    set.shots[std::size_t(s)] = render_shot([&](const Vec3f& d) { return equirect_lookup(world, d); },
+                                            ShotBasis{R * b.forward, R * b.up, R * b.right}, hfov_deg, w, h);
+    set.names[std::size_t(s)] = std::string("shot") + face_name(s);
+  }
+  return set;
+}
+
+// Misaims of σ = 2° per axis about random axes (roll included), their mean rotation vector taken out:
+// the registration's prior fixes the shots' common rotation at the nominal one.
+inline std::array<Mat3d, 6> misaims(unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> n(0, deg_to_rad(2.0));
+  std::array<Vec3d, 6> v;
+  Vec3d mean = Vec3d::Zero();
+  for (Vec3d& x : v) mean += (x = Vec3d(n(rng), n(rng), n(rng))) / 6;
+  std::array<Mat3d, 6> R;
+  for (int s = 0; s < 6; ++s) R[std::size_t(s)] = rotation(v[std::size_t(s)] - mean);
+  return R;
+}
+
+// The mean relative luminance error of cube a against cube b, over every texel.
+inline double mean_relative_error(const CubeMap& a, const CubeMap& b) {
+  double err = 0, norm = 0;
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < a.size(); ++j)
+      for (int i = 0; i < a.size(); ++i) {
+        err += std::abs(luminance(a.texel(f, i, j)) - luminance(b.texel(f, i, j)));
+        norm += luminance(b.texel(f, i, j));
+      }
+  return err / norm;
+}
+
+}  // namespace test
+}  // namespace insitu
