@@ -17,6 +17,10 @@
 #    "scale": s}], "camera": {"eye": [...], "look": [...], "hfov_deg": 50, "width": 320,
 #    "height": 240}, "insertion": [x,y,z], "samples": {"photo": 1024, "shots": 256},
 #    "shot_size": 128, "seed": 1}
+# "handheld": {"hfov_deg": 110, "aspect": 0.75, "aim_sigma_deg": 2, "seed": 3} renders the shots as
+# a hand aims them: shot_size wide and aspect × as tall, with hfov_deg across, each turned from its
+# nominal direction by a rotation vector of normal components σ = aim_sigma_deg (roll included),
+# written to OUT_DIR/aims.json; the insitu scene is told only the nominal directions.
 # A closed room adds "room": {"min": [...], "max": [...], "albedo": [...], "window": {...},
 # "lamp": {...}, "sun": {...}} (make_room below). "references": [{"sphere": {"center": [x,y,z],
 # "radius": r}, "albedo": a, "stand": r_rod}] puts a grey ball of albedo a (on a rod of radius r_rod from the floor,
@@ -349,15 +353,35 @@ def main():
     setup_render(scene, samples.get("photo", 1024), c["width"], c["height"], seed)
     render_to(os.path.join(out_dir, "photo.exr"))
     n = desc.get("shot_size", 128)
-    setup_render(scene, samples.get("shots", 256), n, n, seed)
+    hand = desc.get("handheld")
+    setup_render(scene, samples.get("shots", 256), n, round(n * hand["aspect"]) if hand else n, seed)
     shots = {}
-    for face, (forward, up) in SHOTS.items():
-        scene.camera = make_camera("shot" + face, desc["insertion"], forward, up, 90.0, "AUTO")
+    for face, (forward, up) in shot_aims(hand).items():
+        scene.camera = make_camera("shot" + face, desc["insertion"], forward, up, hand["hfov_deg"] if hand else 90.0,
+                                   "HORIZONTAL" if hand else "AUTO")
         name = "shot_" + face.replace("+", "p").replace("-", "n") + ".exr"
         render_to(os.path.join(out_dir, "shots", name))
         shots[face] = "shots/" + name
     shots["faced"] = "-z"
+    if hand:
+        shots["hfov_deg"] = hand["hfov_deg"]
     write_insitu_scene(shots)
+
+
+def shot_aims(hand):
+    """Each shot's (forward, up): nominal (SHOTS), or turned as a hand aims it (see "handheld")."""
+    if not hand:
+        return SHOTS
+    import random
+    rng = random.Random(hand.get("seed", 1))
+    aims, truth = {}, {}
+    for face, (forward, up) in SHOTS.items():
+        v = Vector([math.radians(rng.gauss(0, hand["aim_sigma_deg"])) for _ in range(3)])
+        R = Matrix.Rotation(v.length, 3, v.normalized()) if v.length > 0 else Matrix.Identity(3)
+        aims[face] = (list(R @ Vector(forward)), list(R @ Vector(up)))
+        truth[face] = [math.degrees(x) for x in v]
+    json.dump({"rotation_vector_deg": truth}, open(os.path.join(out_dir, "aims.json"), "w"), indent=1)
+    return aims
 
 
 def copy_mesh(path):
