@@ -278,6 +278,22 @@ CubeMap scale_by_estimate(const CubeMap& cube, const ImageFile& photo, const Env
 // direction.
 void register_aims(const EnvironmentSpec& spec, LinearShots& shots, EnvironmentInfo& info, Warnings& warnings) {
   Registration r = register_shots(shots.set);
+  shots.set.aim = r.aim;
+  if (spec.room_box) {
+    // A room box declares the room's walls along the world's axes: its lines anchor the aims.
+    const LineAnchor anchor = anchor_to_room_axes(shots.set, r.group);
+    std::string loose;
+    for (int f = 0; f < 6; ++f) {
+      r.aim[std::size_t(f)] = anchor.correction[std::size_t(f)] * r.aim[std::size_t(f)];
+      describe_aim(r.aim[std::size_t(f)], shot_basis(f, spec.faced_face), r.shots[std::size_t(f)]);
+      if (!anchor.anchored[std::size_t(f)]) loose += (loose.empty() ? "" : ", ") + std::string(face_name(f));
+    }
+    if (!loose.empty())
+      warnings.add(spec.where, "shots " + loose +
+                                   ": too few straight lines along two of the room's axes to check their aim; "
+                                   "it is taken as given");
+    info.line_anchor = anchor;
+  }
   shots.set.aim = shots.clipped.aim = r.aim;
   for (int f = 0; f < 6; ++f) {
     const ShotAim& a = r.shots[std::size_t(f)];

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "light/hdr_merge.h"
 #include "light/environment_spec.h"
+#include "light/room_lines.h"
 #include "light/shot_gains.h"
 #include "light/shot_registration.h"
 
@@ -32,6 +33,7 @@ struct EnvironmentInfo {
   // masks assembled like the shots themselves; a merged bracket's clipping is its shortest's).
   std::optional<CubeMap> clipped_cube;
   std::optional<Registration> registration;  // six shots with "register": "auto"
+  std::optional<LineAnchor> line_anchor;     // ... and a room box: the aims anchored to its axes
   std::array<Rgb, 6> shot_gain = {Rgb::Ones(), Rgb::Ones(), Rgb::Ones(),
                                   Rgb::Ones(), Rgb::Ones(), Rgb::Ones()};  // from overlaps (shot_gains.h)
 };

@@ -56,8 +56,8 @@ PairView pair_view(const MatchImage& a, const MatchImage& b, double margin_deg) 
   return v;
 }
 
-// The shot resampled into the view (bilinear), stretched to 8 bits between the 0.5 % and 99.5 %
-// quantiles of what it sees; `mask` is 255 where the shot sees the view's pixel.
+// The shot resampled into the view (bilinear), stretched to 8 bits over what it sees; `mask` is
+// 255 where the shot sees the view's pixel.
 cv::Mat view_of(const MatchImage& m, const PairView& v, cv::Mat& mask) {
   cv::Mat map_x(v.h, v.w, CV_32F), map_y(v.h, v.w, CV_32F);
   mask = cv::Mat::zeros(v.h, v.w, CV_8U);
@@ -70,24 +70,29 @@ cv::Mat view_of(const MatchImage& m, const PairView& v, cv::Mat& mask) {
   const cv::Mat src(m.log_y.height, m.log_y.width, CV_32F, const_cast<float*>(m.log_y.data.data()));
   cv::Mat warped;
   cv::remap(src, warped, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  const cv::Mat out = stretched_8bit(warped, mask);
+  cv::erode(mask, mask, cv::Mat(), cv::Point(-1, -1), 4);  // no features on the seen area's edge
+  return out;
+}
+
+}  // namespace
+
+cv::Mat stretched_8bit(const cv::Mat& m, const cv::Mat& mask) {
   std::vector<float> seen;
-  for (int y = 0; y < v.h; ++y)
-    for (int x = 0; x < v.w; ++x)
-      if (mask.at<unsigned char>(y, x)) seen.push_back(warped.at<float>(y, x));
-  cv::Mat out;
-  if (seen.size() < 16) return cv::Mat::zeros(v.h, v.w, CV_8U);
+  for (int y = 0; y < m.rows; ++y)
+    for (int x = 0; x < m.cols; ++x)
+      if (mask.empty() || mask.at<unsigned char>(y, x)) seen.push_back(m.at<float>(y, x));
+  if (seen.size() < 16) return cv::Mat::zeros(m.rows, m.cols, CV_8U);
   const auto q = [&](double p) {
     auto it = seen.begin() + std::ptrdiff_t(p * double(seen.size() - 1));
     std::nth_element(seen.begin(), it, seen.end());
     return *it;
   };
   const float lo = q(0.005), range = std::max(1e-6f, q(0.995) - lo);
-  warped.convertTo(out, CV_8U, 255.0 / range, -255.0 * lo / range);
-  cv::erode(mask, mask, cv::Mat(), cv::Point(-1, -1), 4);  // no features on the seen area's edge
+  cv::Mat out;
+  m.convertTo(out, CV_8U, 255.0 / range, -255.0 * lo / range);
   return out;
 }
-
-}  // namespace
 
 MatchImage match_image(const Image& shot, double hfov_deg, const Mat3d& B, int max_side_px) {
   // log(Y + ε), ε a thousandth of the median, so that black stays finite.

@@ -10,6 +10,7 @@
 // ratio test 0.75 among those), and the matches are verified by RANSAC (cv::findHomography: the
 // views of one centre differ by a homography). A match's pixels map back to nominal world rays.
 #pragma once
+#include <opencv2/core.hpp>
 #include <vector>
 
 #include "core/image.h"
@@ -30,6 +31,10 @@ MatchImage match_image(const Image& shot, double hfov_deg, const Mat3d& B, int m
 struct RayPair {
   Vec3d u_a, u_b;
 };
+// A float image (a log luminance) to 8 bits between its 0.5 % and 99.5 % quantiles over `mask`
+// (255 where counted; empty: everywhere).
+cv::Mat stretched_8bit(const cv::Mat& m, const cv::Mat& mask);
+
 std::vector<RayPair> verified_matches(const MatchImage& a, const MatchImage& b, double max_angle_deg = 12);
 
 }  // namespace insitu

@@ -145,15 +145,34 @@ void describe(const std::vector<PairMatches>& pairs, const std::array<std::array
     }
   for (int s = 0; s < 6; ++s) {
     ShotAim& a = r.shots[std::size_t(s)];
-    const Vec3d v(aa[std::size_t(s)][0], aa[std::size_t(s)][1], aa[std::size_t(s)][2]);
-    const Vec3d local = B[std::size_t(s)].transpose() * v;  // (right, up, forward) components
-    a.rotation_deg = rad_to_deg(v.norm());
-    a.pitch_deg = rad_to_deg(local[0]), a.yaw_deg = rad_to_deg(local[1]), a.roll_deg = rad_to_deg(local[2]);
+    describe_aim(rotation_of(aa[std::size_t(s)]),
+                 ShotBasis{B[std::size_t(s)].col(2), B[std::size_t(s)].col(1), B[std::size_t(s)].col(0)}, a);
     if (a.matches > 0) a.residual_deg = std::sqrt(sum_sq[std::size_t(s)] / a.matches);
   }
 }
 
+// Shots joined by a pair's matches share a group (both registered).
+void join_groups(const std::vector<PairMatches>& pairs, Registration& r) {
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const PairMatches& p : pairs) {
+      if (p.rays.empty() || !r.shots[std::size_t(p.a)].registered || !r.shots[std::size_t(p.b)].registered) continue;
+      const int g = std::min(r.group[std::size_t(p.a)], r.group[std::size_t(p.b)]);
+      for (int s : {p.a, p.b})
+        if (r.group[std::size_t(s)] != g) r.group[std::size_t(s)] = g, changed = true;
+    }
+  }
+}
+
 }  // namespace
+
+void describe_aim(const Mat3d& aim, const ShotBasis& nominal, ShotAim& a) {
+  const Eigen::AngleAxisd aa(aim);
+  const Vec3d v = aa.angle() * aa.axis();
+  a.rotation_deg = rad_to_deg(aa.angle());
+  a.pitch_deg = rad_to_deg(v.dot(nominal.right)), a.yaw_deg = rad_to_deg(v.dot(nominal.up));
+  a.roll_deg = rad_to_deg(v.dot(nominal.forward));
+}
 
 double nominal_overlap(const ShotSet& set, int a, int b) {
   const ShotBasis ba = shot_basis(a, set.faced_face), bb = shot_basis(b, set.faced_face);
@@ -211,6 +230,7 @@ Registration register_shots(const ShotSet& set, const RegistrationOptions& o) {
     r.aim[std::size_t(s)] = Mat3d::Identity();  // the nominal direction
     a.rotation_deg = a.yaw_deg = a.pitch_deg = a.roll_deg = 0;
   }
+  join_groups(pairs, r);
   return r;
 }
 

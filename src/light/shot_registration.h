@@ -37,8 +37,12 @@ struct Registration {
   std::array<Mat3d, 6> aim = {Mat3d::Identity(), Mat3d::Identity(), Mat3d::Identity(),
                               Mat3d::Identity(), Mat3d::Identity(), Mat3d::Identity()};
   std::array<ShotAim, 6> shots;
-  bool overlap = false;  // whether any two shots' nominal views overlap
+  bool overlap = false;                           // whether any two shots' nominal views overlap
+  std::array<int, 6> group = {0, 1, 2, 3, 4, 5};  // shots registered together share their group
 };
+
+// R_aim's angle and its rotation vector along the shot's nominal axes (ShotAim's fields).
+void describe_aim(const Mat3d& aim, const ShotBasis& nominal, ShotAim& a);
 
 struct RegistrationOptions {
   int max_side_px = 1200;        // features are found on each shot shrunk to this (time, memory)

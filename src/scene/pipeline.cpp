@@ -376,6 +376,18 @@ nlohmann::json registration_json(const std::optional<Registration>& r, int f) {
   return j;
 }
 
+// How the room's lines anchored a shot's aim (light/room_lines.h); null without a room box.
+nlohmann::json room_lines_json(const std::optional<LineAnchor>& a, int f) {
+  if (!a) return nullptr;
+  const auto s = std::size_t(f);
+  nlohmann::json j = {{"anchored", a->anchored[s]},
+                      {"turn_deg", a->turn_deg[s]},
+                      {"sigma_deg", a->sigma_deg[s]},
+                      {"lines_xyz", a->lines[s]}};
+  if (!a->anchored[s]) j["reason"] = a->reason[s];
+  return j;
+}
+
 }  // namespace
 
 std::string report_path(const std::string& image_path) { return image_path + ".report.json"; }
@@ -394,6 +406,7 @@ nlohmann::json render_report(const LoadedScene& s, const RenderResult& r, const 
                        {"coverage_percent", 100 * info.coverage[std::size_t(f)]},
                        {"clipped_percent", 100 * info.clipped[std::size_t(f)]},
                        {"registration", registration_json(info.registration, f)},
+                       {"room_lines", room_lines_json(info.line_anchor, f)},
                        {"gain",
                         {info.shot_gain[std::size_t(f)][0], info.shot_gain[std::size_t(f)][1],
                          info.shot_gain[std::size_t(f)][2]}}});
