@@ -8,6 +8,7 @@
 
 #include "light/environment.h"
 #include "light/equirect.h"
+#include "light/shot_features.h"
 #include "light/shot_gains.h"
 #include "light/shot_registration.h"
 #include "light/sixshot.h"
@@ -170,6 +171,28 @@ TEST(ShotGains, AShotsExposureAndWhiteBalanceAreMatchedToItsNeighbours) {
   const double before = mean_relative_error(assemble_cube(set, n), clean);
   apply_gains(set, g);
   EXPECT_LT(mean_relative_error(assemble_cube(set, n), clean), 0.05 * before);
+}
+
+// The matches' verification: 40 rays turned by a known rotation among 400 random pairs (noise,
+// repeated texture). RANSAC with the rotation model keeps the 40 and only them, and the rotation
+// refitted on them is the true one.
+TEST(ShotRegistration, RotationRansacFindsTheTurnedRaysAmongNoise) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> g(0, 1);
+  std::uniform_real_distribution<double> spread(-0.3, 0.3);
+  const Mat3d R = Eigen::AngleAxisd(deg_to_rad(3.0), Vec3d(0.3, 1, 0.2).normalized()).toRotationMatrix();
+  std::vector<RayPair> pairs;
+  for (int k = 0; k < 40; ++k) {
+    const Vec3d u = Vec3d(spread(rng), spread(rng), 1).normalized();
+    pairs.push_back({u, R * u});
+  }
+  for (int k = 0; k < 400; ++k)
+    pairs.push_back({Vec3d(spread(rng), spread(rng), 1).normalized(), Vec3d(spread(rng), spread(rng), 1).normalized()});
+  std::shuffle(pairs.begin(), pairs.end(), rng);
+  const std::vector<RayPair> in = rotation_inliers(pairs, deg_to_rad(0.05));
+  ASSERT_EQ(in.size(), 40u);
+  for (const RayPair& p : in) EXPECT_LT((R * p.u_a - p.u_b).norm(), 1e-9);
+  EXPECT_LT(angle_deg(kabsch_rotation(in), R), 1e-6);
 }
 
 // Through the scene file: "register" defaults to "auto", whose aims the environment reports (a

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/calib3d.hpp>
+#include <random>
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -139,20 +139,43 @@ std::vector<RayPair> verified_matches(const MatchImage& a, const MatchImage& b, 
       allowed.at<unsigned char>(int(i), int(j)) = cv::norm(ka[i].pt - kb[j].pt) <= reach_px ? 1 : 0;
   std::vector<std::vector<cv::DMatch>> knn;
   cv::BFMatcher(cv::NORM_L2).knnMatch(da, db, knn, 2, allowed);
-  std::vector<cv::Point2f> pa, pb;
+  std::vector<RayPair> candidates;
   for (const auto& m : knn) {
     if (m.empty() || (m.size() == 2 && m[0].distance > 0.75f * m[1].distance)) continue;
-    pa.push_back(ka[std::size_t(m[0].queryIdx)].pt);
-    pb.push_back(kb[std::size_t(m[0].trainIdx)].pt);
+    const cv::Point2f pa = ka[std::size_t(m[0].queryIdx)].pt, pb = kb[std::size_t(m[0].trainIdx)].pt;
+    candidates.push_back({v.ray(pa.x + 0.5, pa.y + 0.5), v.ray(pb.x + 0.5, pb.y + 0.5)});
   }
-  if (pa.size() < 8) return out;
-  std::vector<unsigned char> inlier;
-  cv::setRNGSeed(1);  // RANSAC's samples: the same shots register the same way every time
-  const cv::Mat H = cv::findHomography(pa, pb, cv::RANSAC, 1.5, inlier, 4000, 0.999);
-  if (H.empty()) return out;
-  for (std::size_t k = 0; k < pa.size(); ++k)
-    if (inlier[k]) out.push_back({v.ray(pa[k].x + 0.5, pa[k].y + 0.5), v.ray(pb[k].x + 0.5, pb[k].y + 0.5)});
-  return out;
+  return rotation_inliers(candidates, 1.5 / v.f_px);
+}
+
+Mat3d kabsch_rotation(const std::vector<RayPair>& pairs) {
+  Mat3d H = Mat3d::Zero();
+  for (const RayPair& p : pairs) H += p.u_b * p.u_a.transpose();
+  const Eigen::JacobiSVD<Mat3d> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Mat3d D = Mat3d::Identity();
+  D(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0 ? -1 : 1;
+  return svd.matrixU() * D * svd.matrixV().transpose();
+}
+
+std::vector<RayPair> rotation_inliers(const std::vector<RayPair>& candidates, double threshold_rad) {
+  std::vector<RayPair> best;
+  if (candidates.size() < 2) return best;
+  const auto inliers_of = [&](const Mat3d& R) {
+    std::vector<RayPair> in;
+    for (const RayPair& p : candidates)
+      if ((R * p.u_a - p.u_b).norm() < threshold_rad) in.push_back(p);
+    return in;
+  };
+  std::mt19937 rng(1);  // the same shots register the same way every time
+  std::uniform_int_distribution<std::size_t> pick(0, candidates.size() - 1);
+  for (int it = 0; it < 2000; ++it) {
+    const std::size_t i = pick(rng), j = pick(rng);
+    if (i == j || candidates[i].u_a.cross(candidates[j].u_a).norm() < 1e-3) continue;
+    std::vector<RayPair> in = inliers_of(kabsch_rotation({candidates[i], candidates[j]}));
+    if (in.size() > best.size()) best = std::move(in);
+  }
+  if (best.size() >= 3) best = inliers_of(kabsch_rotation(best));  // refit on all, once
+  return best;
 }
 
 }  // namespace insitu

@@ -7,8 +7,8 @@
 // overlap and a margin for the misaim; there the same surface looks the same in both, up to the
 // misaim's small rotation. SIFT (Lowe 2004) runs on each view's log luminance; a feature is
 // compared only with the other's features within the misaim's reach (guided matching, Lowe's
-// ratio test 0.75 among those), and the matches are verified by RANSAC (cv::findHomography: the
-// views of one centre differ by a homography). A match's pixels map back to nominal world rays.
+// ratio test 0.75 among those), and the matches are verified by RANSAC with the true model, a
+// rotation (rotation_inliers). A match's pixels map back to nominal world rays.
 #pragma once
 #include <opencv2/core.hpp>
 #include <vector>
@@ -31,6 +31,16 @@ MatchImage match_image(const Image& shot, double hfov_deg, const Mat3d& B, int m
 struct RayPair {
   Vec3d u_a, u_b;
 };
+// The rotation R that best maps the pairs' u_a onto their u_b (Kabsch: the SVD of Σ u_b u_aᵀ,
+// its determinant made +1).
+Mat3d kabsch_rotation(const std::vector<RayPair>& pairs);
+
+// RANSAC with a rotation's minimal sample, two pairs (2000 draws, a fixed seed): the largest set
+// of pairs with |R u_a − u_b| < threshold_rad, refitted once on all of them. A rotation has 3
+// degrees of freedom where a homography has 8, so noise and repeated texture, which a homography
+// lets through in tens, rarely line up with one.
+std::vector<RayPair> rotation_inliers(const std::vector<RayPair>& candidates, double threshold_rad);
+
 // A float image (a log luminance) to 8 bits between its 0.5 % and 99.5 % quantiles over `mask`
 // (255 where counted; empty: everywhere).
 cv::Mat stretched_8bit(const cv::Mat& m, const cv::Mat& mask);
