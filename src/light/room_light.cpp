@@ -22,13 +22,14 @@ float rect_area(const RoomOpening& o) {
 
 }  // namespace
 
-RoomLight::RoomLight(const CubeMap& cube, std::optional<RoomBox> box) : box_(std::move(box)), env_(cube) {
-  if (box_ && !box_->openings.empty()) set_strategies(cube);
+RoomLight::RoomLight(const CubeMap& cube, std::optional<RoomBox> box, const std::vector<float>* outside_share)
+    : box_(std::move(box)), env_(cube) {
+  if (box_ && !box_->openings.empty()) set_strategies(cube, outside_share);
 }
 
-// The share of each texel (f, i, j) whose directions from c leave the box through an opening,
-// from 4 × 4 directions per texel: a sun texel across the window's edge belongs to both parts.
-std::vector<float> RoomLight::outside_shares(int n) const {
+// From 4 × 4 directions per texel: a sun texel across the window's edge belongs to both parts.
+std::vector<float> RoomLight::opening_shares(int n) const {
+  if (!box_ || box_->openings.empty()) return {};
   const int m = 4;
   std::vector<float> share(std::size_t(6) * n * n);
   for (int f = 0; f < 6; ++f)
@@ -71,9 +72,12 @@ Rgb RoomLight::wall_neighbours(const CubeMap& cube, const std::vector<float>& sh
 // a sun at the window's edge would give if L_out filled the texel. (For an even sky it
 // underestimates the thin ring of texels along the window's edge by s.) Each side is sampled in
 // proportion to its light and its share of the texel.
-void RoomLight::set_strategies(const CubeMap& cube) {
+void RoomLight::set_strategies(const CubeMap& cube, const std::vector<float>* given_share) {
   const int n = cube.size();
-  const std::vector<float> outside_share = outside_shares(n);
+  const std::size_t texels = std::size_t(6) * std::size_t(n) * std::size_t(n);
+  const std::vector<float> own_share =
+      given_share && given_share->size() == texels ? std::vector<float>{} : opening_shares(n);
+  const std::vector<float>& outside_share = own_share.empty() ? *given_share : own_share;
   auto share_of = [&](int f, int i, int j) { return double(outside_share[(std::size_t(f) * n + j) * n + i]); };
   wall_cube_ = cube;
   outside_cube_ = cube;

@@ -65,8 +65,9 @@ struct RoomSample {
 
 class RoomLight {
  public:
-  // Without a box every call is the distant cube's.
-  RoomLight(const CubeMap& cube, std::optional<RoomBox> box);
+  // Without a box every call is the distant cube's. `outside_share`: opening_shares(cube.size())
+  // of a light of the same box, when many are built (it depends on the box alone); else computed.
+  RoomLight(const CubeMap& cube, std::optional<RoomBox> box, const std::vector<float>* outside_share = nullptr);
   RoomLight(const RoomLight&) = delete;  // its samplers refer to its own cubes
   RoomLight& operator=(const RoomLight&) = delete;
   RoomSample sample(const Vec3f& x, float u_pick, float u_s, float u_t) const;
@@ -78,6 +79,9 @@ class RoomLight {
   int openings_at(const Vec3f& q, int axis) const;
   float opening_probability() const { return p_dir_ + p_area_; }
   bool inside(const Vec3f& x) const;  // strictly inside the box (false without one)
+  // The share of each texel (face, i, j) of a cube of n a face, indexed (face·n + j)·n + i, whose
+  // directions from the capture point leave the box through an opening (empty without openings).
+  std::vector<float> opening_shares(int n) const;
 
  private:
   struct Exit {
@@ -93,8 +97,7 @@ class RoomLight {
   RoomSample sample_wall(const Vec3f& x, float u, float u_s, float u_t) const;
   RoomSample sample_outside(const Vec3f& x, float u, float u_s, float u_t) const;
   RoomSample sample_portal(const Vec3f& x, float u, float u_s, float u_t) const;
-  void set_strategies(const CubeMap& cube);
-  std::vector<float> outside_shares(int n) const;
+  void set_strategies(const CubeMap& cube, const std::vector<float>* outside_share);
 
   Rgb wall_neighbours(const CubeMap& cube, const std::vector<float>& share, int f, int i, int j) const;
 

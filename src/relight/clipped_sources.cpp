@@ -22,22 +22,6 @@ std::array<int, 3> neighbour(int f, int i, int j, int di, int dj, int n) {
   return {c.face, std::clamp(int(c.s * float(n)), 0, n - 1), std::clamp(int(c.t * float(n)), 0, n - 1)};
 }
 
-ClippedSource summarize(std::vector<std::array<int, 3>> texels, const CubeMap& radiance) {
-  const int n = radiance.size();
-  ClippedSource s;
-  Vec3d dir = Vec3d::Zero();
-  for (const auto& t : texels) {
-    const double dw = texel_solid_angle(t[1], t[2], n);
-    const double y = luminance(radiance.texel(t[0], t[1], t[2])) * dw;
-    s.solid_angle_sr += dw;
-    s.power += y;
-    dir += (y + 1e-30) * texel_direction(t[0], t[1], t[2], n).cast<double>();
-  }
-  s.dir_world = dir.normalized().cast<float>();
-  s.texels = std::move(texels);
-  return s;
-}
-
 bool is_clipped(const CubeMap& clipped, const std::array<int, 3>& t) {
   return clipped.texel(t[0], t[1], t[2]).maxCoeff() >= 0.5f;
 }
@@ -77,10 +61,26 @@ ClippedSource grow(const CubeMap& clipped, const CubeMap& radiance, const std::v
       stack.push_back(u);
     }
   }
-  return summarize(std::move(texels), radiance);
+  return clipped_source(std::move(texels), radiance);
 }
 
 }  // namespace
+
+ClippedSource clipped_source(std::vector<std::array<int, 3>> texels, const CubeMap& radiance) {
+  const int n = radiance.size();
+  ClippedSource s;
+  Vec3d dir = Vec3d::Zero();
+  for (const auto& t : texels) {
+    const double dw = texel_solid_angle(t[1], t[2], n);
+    const double y = luminance(radiance.texel(t[0], t[1], t[2])) * dw;
+    s.solid_angle_sr += dw;
+    s.power += y;
+    dir += (y + 1e-30) * texel_direction(t[0], t[1], t[2], n).cast<double>();
+  }
+  s.dir_world = dir.normalized().cast<float>();
+  s.texels = std::move(texels);
+  return s;
+}
 
 std::vector<ClippedSource> find_clipped_sources(const CubeMap& clipped, const CubeMap& radiance, int max_sources,
                                                 int reach_texels) {
@@ -113,7 +113,7 @@ std::vector<ClippedSource> split_into_parts(const ClippedSource& source, const C
   block = std::max(1, block);
   for (const auto& t : source.texels) groups[{t[0], t[1] / block, t[2] / block}].push_back(t);
   std::vector<ClippedSource> parts;
-  for (auto& [key, texels] : groups) parts.push_back(summarize(std::move(texels), radiance));
+  for (auto& [key, texels] : groups) parts.push_back(clipped_source(std::move(texels), radiance));
   return parts;
 }
 

@@ -18,6 +18,9 @@ struct ClippedSource {
   double power = 0;  // Σ Y(L0) ΔΩ: its share of c's irradiance-like power
 };
 
+// The source made of these texels (face, i, j) of `radiance`: its direction, solid angle and power.
+ClippedSource clipped_source(std::vector<std::array<int, 3>> texels, const CubeMap& radiance);
+
 // Largest power (at the lower bound) first. Every region is its own source, up to `max_sources`;
 // only beyond that are the rest merged into the last one kept (a bound on the fit's unknowns for a
 // cube of many specks). The lower bound does not rank the true power: a lamp clips in fewer texels

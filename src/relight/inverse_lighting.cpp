@@ -11,6 +11,7 @@
 
 #include "core/colour.h"
 #include "core/stop.h"
+#include "relight/fit_resolution.h"
 #include "relight/inverse_lighting_pixels.h"
 #include "relight/inverse_lighting_solve.h"
 #include "relight/linear_variance.h"
@@ -436,11 +437,12 @@ bool refine_concentrated_parts(std::vector<FitPixel>& pixels, const Albedos& alb
   if (replaced.empty()) return false;
   const std::vector<FitPixel> coarse_pixels = pixels;
   const InverseLightingResult coarse = res;
-  std::vector<std::unique_ptr<RoomLight>> lights(finer.size());
-  tbb::parallel_for(std::size_t(0), finer.size(), [&](std::size_t k) {
-    throw_if_stopped(in.stop);
-    lights[k] = std::make_unique<RoomLight>(source_only(*in.radiance, finer[k].texels), in.room);
-  });
+  const std::vector<float> shares =
+      in.room ? RoomLight(CubeMap(1), in.room).opening_shares(in.radiance->size()) : std::vector<float>{};
+  const inverse_lighting_detail::PartLights lights{finer.size(), [&](std::size_t k) {
+                                                     return std::make_unique<RoomLight>(
+                                                         source_only(*in.radiance, finer[k].texels), in.room, &shares);
+                                                   }};
   inverse_lighting_detail::replace_part_estimates(pixels, replaced, lights, in, res.parts.size());
   for (auto r = replaced.rbegin(); r != replaced.rend(); ++r) res.parts.erase(res.parts.begin() + *r);
   for (PartFit& p : finer) res.parts.push_back(std::move(p));
@@ -454,10 +456,10 @@ bool refine_concentrated_parts(std::vector<FitPixel>& pixels, const Albedos& alb
   return true;
 }
 
-}  // namespace
-
-InverseLightingResult recover_clipped_sources(const InverseLightingInput& in) {
+// The fit on the cubes as given (recover_clipped_sources shrinks them first).
+InverseLightingResult recover_at_resolution(const InverseLightingInput& in) {
   InverseLightingResult res;
+  res.fit_face_size = in.radiance->size();
   std::vector<ClippedSource> sources;
   // Parts of about (n/16)² texels (at least 2²; make_parts). Regions closer than a part's width
   // are one source: the fit resolves nothing finer, and a speck beside a window's edge (JPEG
@@ -479,17 +481,15 @@ InverseLightingResult recover_clipped_sources(const InverseLightingInput& in) {
   }
   res.parts = make_parts(sources, *in.radiance, base_block);
   const CubeMap rest = with_scaled_sources(*in.radiance, sources, std::vector<double>(sources.size(), 0.0));
-  RoomLight room0(rest, in.room);
-  // Each part's cube (its texels alone) and the RoomLight that refers to it: full-size samplers,
-  // the recovery's largest serial cost before they were built in parallel.
-  std::vector<CubeMap> cubes(res.parts.size());
-  std::vector<std::unique_ptr<RoomLight>> lights(res.parts.size());
-  tbb::parallel_for(std::size_t(0), res.parts.size(), [&](std::size_t k) {
-    throw_if_stopped(in.stop);
-    cubes[k] = source_only(*in.radiance, res.parts[k].texels);
-    lights[k] = std::make_unique<RoomLight>(cubes[k], in.room);
-  });
-  throw_if_stopped(in.stop);
+  // Which texels c saw through the openings: the box's alone, the same for every light below.
+  const std::vector<float> shares =
+      in.room ? RoomLight(CubeMap(1), in.room).opening_shares(in.radiance->size()) : std::vector<float>{};
+  RoomLight room0(rest, in.room, &shares);
+  // Each part's light: the cube with its texels alone (estimate_irradiance builds a few at a time).
+  const inverse_lighting_detail::PartLights lights{
+      res.parts.size(), [&](std::size_t k) {
+        return std::make_unique<RoomLight>(source_only(*in.radiance, res.parts[k].texels), in.room, &shares);
+      }};
   std::vector<FitPixel> pixels = gather_pixels(in, room0, res.references);
   estimate_irradiance(pixels, room0, lights, in);
   inverse_lighting_detail::light_balls_from_the_floor(pixels, rest, in);
@@ -505,7 +505,23 @@ InverseLightingResult recover_clipped_sources(const InverseLightingInput& in) {
     refine_concentrated_parts(pixels, albedos, in, res);
   }
   fit_colours(pixels, in, res);
-  describe(res);
+  return res;
+}
+
+}  // namespace
+
+InverseLightingResult recover_clipped_sources(const InverseLightingInput& in) {
+  InverseLightingResult res;
+  if (!in.clipped || in.radiance->size() <= kFitFaceSize) {
+    res = recover_at_resolution(in);
+  } else {
+    const FitCubes shrunk = shrink_for_fit(*in.radiance, *in.clipped);
+    InverseLightingInput coarse = in;
+    coarse.radiance = &shrunk.radiance, coarse.clipped = &shrunk.clipped;
+    res = recover_at_resolution(coarse);
+    map_to_full_resolution(res, *in.radiance, *in.clipped);
+  }
+  if (res.status != "none") describe(res);
   return res;
 }
 

@@ -43,6 +43,12 @@
 // cut into its texels and the sources fitted again, so that the photo, not the grid, places it
 // (refine_concentrated_parts; docs/validation.md, "Where the part grid falls").
 //
+// Size. The fit sees the cube at most kFitFaceSize texels a face (fit_resolution.h: shrunk, and
+// the result mapped back so each part adds the same power to the full cube's clipped texels), and
+// builds the parts' lights a few at a time (inverse_lighting_pixels.h, PartLights): its memory is
+// bounded whatever the shots' size and however many specks clipped, and so is its time, with the
+// photo's pixels (max_pixels on a grid) and the parts (make_parts: about 48).
+//
 // Colour. A texel that clipped in all three channels kept no colour (white at the clip level),
 // but a warm bulb's light is orange on the walls it lights. With the parts' scales fixed at the
 // luminance fit's, each channel is fitted as the luminance was, one multiplier m_k,c per
@@ -173,6 +179,7 @@ struct InverseLightingResult {
   // at the lower bound, when the photo determines that much (empty otherwise).
   std::optional<double> missing_irradiance;
   double residual_rms = 0;  // of the log residuals (robust fit's final)
+  int fit_face_size = 0;    // the cube's face as the fit saw it (fit_resolution.h)
   std::string status;       // "none" (nothing clipped), "fitted", "partly", "undetermined"
   std::string message;      // one sentence for the user
   bool any_determined() const;

@@ -249,20 +249,47 @@ void gather_reference_pixels(const InverseLightingInput& in, const RoomLight& ro
   }
 }
 
-// E0 and every Ek at a point, by the renderer's estimator; `scale` multiplies the sample counts.
-// E0 = E_rest + Σ_k Ek with E_rest that of the cube without the clipped texels (room0): the parts'
-// own estimates in both, so that where the clipped light is all there is (everything clipped)
-// E = E_rest + Σ (1 + a_k) Ek trades against ρ exactly, as it does in truth, instead of through
-// two independent noises that the fit would take for information.
-void estimate_at(FitPixel& p, const Vec3f& x, const RoomLight& room0,
-                 const std::vector<std::unique_ptr<RoomLight>>& parts, const InverseLightingInput& in, int scale,
-                 std::uint64_t key) {
-  p.e0_rgb = PlaneIrradiance::estimate(room0, x, p.n, scale * in.samples, 2 * key);
-  p.ek_rgb.clear();
-  for (std::size_t k = 0; k < parts.size(); ++k) {
-    p.ek_rgb.push_back(PlaneIrradiance::estimate(*parts[k], x, p.n, scale * in.part_samples, 2 * key + 1 + (k << 40)));
-    p.e0_rgb += p.ek_rgb.back();
+// A point where the parts' irradiance is estimated: lifted off its surface, its normal, the
+// samples per part and its random stream (part k's is key + ((k + offset) << 40)).
+struct EstimatePoint {
+  Vec3f x = Vec3f::Zero(), n = Vec3f::Zero();
+  int samples = 0;
+  std::uint64_t key = 0;
+};
+
+// E of every part at every point, out[i][k], by the renderer's estimator. The parts' lights are
+// built kPartLightBatch at a time, used at every point and freed: a RoomLight costs about 110
+// bytes a texel of the cube with openings (two cubes and three samplers), 11 MB at the fit's 128
+// face (fit_resolution.h), so that is what bounds the fit's memory, not how many parts there are.
+constexpr std::size_t kPartLightBatch = 8;
+std::vector<std::vector<Rgb>> estimate_parts(const std::vector<EstimatePoint>& points, const PartLights& lights,
+                                             std::uint64_t offset, const std::atomic<bool>* stop) {
+  std::vector<std::vector<Rgb>> out(points.size(), std::vector<Rgb>(lights.count, Rgb::Zero()));
+  for (std::size_t b = 0; b < lights.count; b += kPartLightBatch) {
+    const std::size_t e = std::min(lights.count, b + kPartLightBatch);
+    std::vector<std::unique_ptr<RoomLight>> batch(e - b);
+    tbb::parallel_for(b, e, [&](std::size_t k) {
+      throw_if_stopped(stop);
+      batch[k - b] = lights.make(k);
+    });
+    tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t i) {
+      throw_if_stopped(stop);
+      const EstimatePoint& p = points[i];
+      for (std::size_t k = b; k < e; ++k)
+        out[i][k] = PlaneIrradiance::estimate(*batch[k - b], p.x, p.n, p.samples, p.key + ((k + offset) << 40));
+    });
   }
+  return out;
+}
+
+// The pixel's Ek, and E0 = E_rest + Σ_k Ek (in the order of k) with E_rest its own estimate of the
+// cube without the clipped texels already in e0_rgb: the parts' own estimates in both, so that
+// where the clipped light is all there is (everything clipped) E = E_rest + Σ (1 + a_k) Ek trades
+// against ρ exactly, as it does in truth, instead of through two independent noises that the fit
+// would take for information.
+void set_part_estimates(FitPixel& p, const std::vector<Rgb>& ek) {
+  p.ek_rgb = ek;
+  for (const Rgb& e : ek) p.e0_rgb += e;
   p.e0 = luminance(p.e0_rgb);
   p.ek.clear();
   for (const Rgb& e : p.ek_rgb) p.ek.push_back(luminance(e));
@@ -310,8 +337,8 @@ std::vector<FitPixel> gather_pixels(const InverseLightingInput& in, const RoomLi
 // normal and their own estimate, with 4× the samples. E at a point of a ball is the room light's
 // over the normal's whole hemisphere: below the horizon that is the floor as the shots saw it
 // (the cube's lower half), not the floor beside the ball, which its own shadow darkens a little.
-void estimate_irradiance(std::vector<FitPixel>& pixels, const RoomLight& room0,
-                         const std::vector<std::unique_ptr<RoomLight>>& parts, const InverseLightingInput& in) {
+void estimate_irradiance(std::vector<FitPixel>& pixels, const RoomLight& room0, const PartLights& parts,
+                         const InverseLightingInput& in) {
   const float lift = in.room ? 1e-4f * Vec3f(in.room->max - in.room->min).maxCoeff() : 0.0f;
   std::map<int, FitPixel> by_surface;
   std::vector<FitPixel*> todo;
@@ -321,13 +348,18 @@ void estimate_irradiance(std::vector<FitPixel>& pixels, const RoomLight& room0,
     else
       by_surface.emplace(p.surface, p);
   for (auto& [surface, p] : by_surface) todo.push_back(&p);
+  std::vector<EstimatePoint> points(todo.size());
   tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t i) {
     throw_if_stopped(in.stop);
     FitPixel& p = *todo[i];
     const int scale = p.on_ball ? 4 : in.room ? 1 : 16;
     const std::uint64_t key = in.room ? i : p.on_ball ? (std::uint64_t(1) << 32) + i : std::uint64_t(p.surface);
-    estimate_at(p, p.x + lift * p.n, room0, parts, in, scale, key);
+    const Vec3f x = p.x + lift * p.n;
+    p.e0_rgb = PlaneIrradiance::estimate(room0, x, p.n, scale * in.samples, 2 * key);
+    points[i] = {x, p.n, scale * in.part_samples, 2 * key + 1};
   });
+  const std::vector<std::vector<Rgb>> ek = estimate_parts(points, parts, 0, in.stop);
+  for (std::size_t i = 0; i < todo.size(); ++i) set_part_estimates(*todo[i], ek[i]);
   for (FitPixel& p : pixels) {
     if (p.on_ball || in.room) continue;
     const FitPixel& e = by_surface.at(p.surface);
@@ -337,44 +369,34 @@ void estimate_irradiance(std::vector<FitPixel>& pixels, const RoomLight& room0,
                pixels.end());
 }
 
-void replace_part_estimates(std::vector<FitPixel>& pixels, const std::vector<int>& replaced,
-                            const std::vector<std::unique_ptr<RoomLight>>& lights, const InverseLightingInput& in,
-                            std::uint64_t key) {
+void replace_part_estimates(std::vector<FitPixel>& pixels, const std::vector<int>& replaced, const PartLights& lights,
+                            const InverseLightingInput& in, std::uint64_t key) {
   const float lift = in.room ? 1e-4f * Vec3f(in.room->max - in.room->min).maxCoeff() : 0.0f;
-  std::map<int, std::vector<Rgb>> by_surface;
-  auto estimate = [&](const FitPixel& p, std::uint64_t k) {
-    const int scale = p.on_ball ? 4 : in.room ? 1 : 16;
-    std::vector<Rgb> e;
-    for (std::size_t l = 0; l < lights.size(); ++l)
-      e.push_back(PlaneIrradiance::estimate(*lights[l], p.x + lift * p.n, p.n, scale * in.part_samples,
-                                            2 * k + 1 + ((l + key) << 40)));
-    return e;
-  };
-  std::vector<std::vector<Rgb>> fresh(pixels.size());
-  for (const FitPixel& p : pixels)
-    if (!p.on_ball && !in.room) by_surface.emplace(p.surface, std::vector<Rgb>{});
-  std::vector<int> surfaces;
-  for (auto& [s, e] : by_surface) surfaces.push_back(s);
-  tbb::parallel_for(std::size_t(0), surfaces.size(), [&](std::size_t i) {
-    throw_if_stopped(in.stop);
-    const int s = surfaces[i];
-    const auto p =
-        std::find_if(pixels.begin(), pixels.end(), [&](const FitPixel& q) { return !q.on_ball && q.surface == s; });
-    by_surface.at(s) = estimate(*p, std::uint64_t(s));
-  });
-  tbb::parallel_for(std::size_t(0), pixels.size(), [&](std::size_t i) {
-    throw_if_stopped(in.stop);
+  // A point per pixel on a ball or in a room box; one per plane (its first pixel's) for the rest.
+  std::vector<EstimatePoint> points;
+  std::vector<std::size_t> point_of(pixels.size());
+  std::map<int, std::size_t> plane_point;
+  for (std::size_t i = 0; i < pixels.size(); ++i) {
     const FitPixel& p = pixels[i];
-    if (p.on_ball || in.room) fresh[i] = estimate(p, p.on_ball ? (std::uint64_t(1) << 32) + i : i);
-  });
+    const int scale = p.on_ball ? 4 : in.room ? 1 : 16;
+    const bool own = p.on_ball || in.room;
+    if (!own && plane_point.count(p.surface)) {
+      point_of[i] = plane_point.at(p.surface);
+      continue;
+    }
+    const std::uint64_t k = own ? (p.on_ball ? (std::uint64_t(1) << 32) + i : i) : std::uint64_t(p.surface);
+    point_of[i] = points.size();
+    if (!own) plane_point[p.surface] = points.size();
+    points.push_back({p.x + lift * p.n, p.n, scale * in.part_samples, 2 * k + 1});
+  }
+  const std::vector<std::vector<Rgb>> fresh = estimate_parts(points, lights, key, in.stop);
   for (std::size_t i = 0; i < pixels.size(); ++i) {
     FitPixel& p = pixels[i];
-    const std::vector<Rgb>& e = (p.on_ball || in.room) ? fresh[i] : by_surface.at(p.surface);
     for (auto r = replaced.rbegin(); r != replaced.rend(); ++r) {
       p.e0_rgb -= p.ek_rgb[std::size_t(*r)];
       p.ek_rgb.erase(p.ek_rgb.begin() + *r);
     }
-    for (const Rgb& x : e) p.ek_rgb.push_back(x), p.e0_rgb += x;
+    for (const Rgb& x : fresh[point_of[i]]) p.ek_rgb.push_back(x), p.e0_rgb += x;
     p.e0 = luminance(p.e0_rgb);
     p.ek.clear();
     for (const Rgb& x : p.ek_rgb) p.ek.push_back(luminance(x));

@@ -3,6 +3,7 @@
 // ball) and are neither clipped nor dark, where they see it and with which normal; and E0 and
 // each part's Ek there, by the renderer's own estimator.
 #pragma once
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -32,16 +33,22 @@ struct FitPixel {
 std::vector<FitPixel> gather_pixels(const InverseLightingInput& in, const RoomLight& room,
                                     std::vector<ReferenceUse>& uses);
 
-// E0 and every Ek at each pixel (`parts`: each part's texels alone); pixels whose E0 is 0 dropped.
-void estimate_irradiance(std::vector<FitPixel>& pixels, const RoomLight& room0,
-                         const std::vector<std::unique_ptr<RoomLight>>& parts, const InverseLightingInput& in);
+// The parts' lights (each part's texels alone), built only while their irradiance is estimated,
+// a few at a time: what bounds the fit's memory, however many parts there are.
+struct PartLights {
+  std::size_t count = 0;
+  std::function<std::unique_ptr<RoomLight>(std::size_t part)> make;
+};
+
+// E0 and every Ek at each pixel; pixels whose E0 is 0 dropped.
+void estimate_irradiance(std::vector<FitPixel>& pixels, const RoomLight& room0, const PartLights& parts,
+                         const InverseLightingInput& in);
 
 // Each pixel's Ek of the parts in `replaced` (ascending) dropped, and those of `lights` appended,
 // estimated as estimate_irradiance does; E0 keeps E_rest + Σ Ek. `key` sets the new estimates'
 // random streams apart from the first ones.
-void replace_part_estimates(std::vector<FitPixel>& pixels, const std::vector<int>& replaced,
-                            const std::vector<std::unique_ptr<RoomLight>>& lights, const InverseLightingInput& in,
-                            std::uint64_t key);
+void replace_part_estimates(std::vector<FitPixel>& pixels, const std::vector<int>& replaced, const PartLights& lights,
+                            const InverseLightingInput& in, std::uint64_t key);
 
 // Each reference ball pixel's E0 with the floor it sees below it read from the photo (or its
 // plate) where the photo shows it, instead of from the cube's lower half (`rest`: without the

@@ -163,6 +163,7 @@ nlohmann::json light_report(const LoadedScene& s) {
       {"reference_surfaces", il->reference_surfaces},
       {"clipped_power_share", il->clipped_power_share},
       {"residual_sigma_log", il->residual_rms},
+      {"fit_face_size", il->fit_face_size},
       {"sources", sources}};
   return out;
 }
