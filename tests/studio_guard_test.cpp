@@ -134,8 +134,8 @@ TEST(StudioGuard, ServesNothingToAForeignHostOrWithoutTheToken) {
   auto bare = studio.bare_client();
   const httplib::Headers rebound = {{"Host", "evil.example:" + std::to_string(studio.port())},
                                     {"Authorization", "token " + studio.token()}};
-  for (const char* path :
-       {"/", "/studio.js", "/api/state", "/api/photo.png", "/files/points.json", "/api/shots", "/api/render"}) {
+  for (const char* path : {"/", "/studio.js", "/api/state", "/api/photo.png", "/files/points.json", "/api/shots",
+                           "/api/shots/stitched.png", "/api/render"}) {
     EXPECT_EQ(status_of(good.Get(path), path), 200) << path;
     const auto foreign = good.Get(path, rebound);
     EXPECT_EQ(status_of(foreign, path), 403) << path;

@@ -2,12 +2,15 @@
 // the edits of the scene file (turn, swap, faced wall) read back by the library's own parser.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/math.h"
 #include "light/cubemap.h"
 #include "scene/scene_file.h"
 #include "studio/scene_edit.h"
@@ -53,6 +56,52 @@ TEST(StudioShots, ShowsEachShotAsTheLibraryAssemblesIt) {
   EXPECT_LE(std::max(png.cols, png.rows), 320);
   EXPECT_EQ(png.cols, png.rows);
   EXPECT_EQ(c.Get("/api/shot/6.png")->status, 404);
+}
+
+// The stitched view's PNG, decoded.
+cv::Mat stitched(const StudioFixture& studio) {
+  const auto r = studio.client().Get("/api/shots/stitched.png");
+  if (!r || r->status != 200) return {};
+  return cv::imdecode(cv::Mat(1, int(r->body.size()), CV_8U, const_cast<char*>(r->body.data())), cv::IMREAD_COLOR);
+}
+
+// The stitched view: the cross at 160 pixels a face, each shot outlined in its colour, and what no
+// shot saw hatched. The demo's square 90° shots cover the sphere exactly: no gap, and the −z
+// shot's frame is its square's edge (drawn last, on top). Narrowed to 60°, six square shots see
+// 6 · 4 asin(sin² 30°) sr (a rectangular pyramid's solid angle) of 4π: the gap is 51.7 %, and a
+// square's corner is hatched.
+TEST(StudioShots, TheStitchedViewOutlinesEachShotAndHatchesWhatNoneSaw) {
+  TempDir dir;
+  StudioFixture studio(dir);
+  const json v = get_json(studio.client(), "/api/shots");
+  ASSERT_TRUE(v["error"].is_null()) << v.dump();
+  EXPECT_LT(v["gap_percent"].get<double>(), 0.1);
+  for (const json& s : v["shots"]) {
+    EXPECT_EQ(s["outline"].get<std::string>().size(), 7u);
+    EXPECT_TRUE(s.contains("registration") && s.contains("room_lines")) << s.dump();
+  }
+  cv::Mat png = stitched(studio);
+  ASSERT_FALSE(png.empty());
+  EXPECT_EQ(png.cols, 640);
+  EXPECT_EQ(png.rows, 480);
+  const std::string hex = v["shots"][5]["outline"];  // −z, "#rrggbb"; OpenCV's pixels are BGR
+  const long rgb = std::strtol(hex.c_str() + 1, nullptr, 16);
+  const cv::Vec3b edge = png.at<cv::Vec3b>(240, 319);
+  EXPECT_EQ(edge, cv::Vec3b(uchar(rgb & 255), uchar((rgb >> 8) & 255), uchar(rgb >> 16)));
+
+  json scene = json::parse(text_of(studio.folder() / "scene.json"));
+  scene["environment"]["shots"]["hfov_deg"] = 60;
+  std::ofstream(studio.folder() / "scene.json") << scene.dump(2);
+  const json narrow = get_json(studio.client(), "/api/shots");
+  const double seen = 6 * 4 * std::asin(std::pow(std::sin(deg_to_rad(30.0)), 2)) / (4 * kPi);
+  EXPECT_NEAR(narrow["gap_percent"].get<double>(), 100 * (1 - seen), 1.0);
+  png = stitched(studio);
+  ASSERT_FALSE(png.empty());
+  // The −z square's top-left corner (165, 165: (x + y) mod 8 < 3, a hatched diagonal) is 53° off
+  // the −z axis and as far from −x and the ceiling: outside every 60° shot, tinted magenta.
+  const cv::Vec3b corner = png.at<cv::Vec3b>(165, 165);
+  EXPECT_GT(int(corner[2]), int(corner[1]) + 40);
+  EXPECT_GT(int(corner[0]), int(corner[1]) + 40);
 }
 
 // Turning a shot writes rotate_deg into the scene file (a bracket list becomes an object), the

@@ -18,8 +18,8 @@ double preview_exposure(const CubeMap& cube) {
   return median > 0 ? 0.18 / median : 1.0;
 }
 
-Image cube_cross_preview(const CubeMap& cube, double exposure) {
-  const int n = cube.size();
+Image cube_cross_preview(const CubeMap& cube, double exposure, int face_px) {
+  const int n = face_px > 0 ? face_px : cube.size();
   Image out(4 * n, 3 * n, 3, 0.0f);
   const struct {
     int face, col, row;

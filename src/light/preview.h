@@ -16,7 +16,8 @@ namespace insitu {
 
 // The exposure that puts the cube's median luminance at 0.18.
 double preview_exposure(const CubeMap& cube);
-Image cube_cross_preview(const CubeMap& cube, double exposure);
+// `face_px`: pixels a face of the cross (0: the cube's own size).
+Image cube_cross_preview(const CubeMap& cube, double exposure, int face_px = 0);
 // An equirectangular image (width 4n, height 2n) of the cube, linear.
 Image cube_to_equirect(const CubeMap& cube);
 

@@ -19,6 +19,7 @@
 #include "render/checkpoint.h"
 #include "render/mesh.h"
 #include "scene/light_recovery.h"
+#include "scene/shots_report.h"
 
 namespace insitu {
 
@@ -365,29 +366,6 @@ nlohmann::json adaptive_report(double noise_target, const RenderLayers& layers) 
   return {{"noise_target", noise_target}, {"mean_spp", mean_spp(layers)}, {"spp_histogram", bins}};
 }
 
-// A shot's aim as registration found it (light/shot_registration.h); null with "register": "none".
-nlohmann::json registration_json(const std::optional<Registration>& r, int f) {
-  if (!r) return nullptr;
-  const ShotAim& a = r->shots[std::size_t(f)];
-  nlohmann::json j = {{"registered", a.registered},    {"rotation_deg", a.rotation_deg}, {"yaw_deg", a.yaw_deg},
-                      {"pitch_deg", a.pitch_deg},      {"roll_deg", a.roll_deg},         {"matches", a.matches},
-                      {"residual_deg", a.residual_deg}};
-  if (!a.registered) j["reason"] = a.reason;
-  return j;
-}
-
-// How the room's lines anchored a shot's aim (light/room_lines.h); null without a room box.
-nlohmann::json room_lines_json(const std::optional<LineAnchor>& a, int f) {
-  if (!a) return nullptr;
-  const auto s = std::size_t(f);
-  nlohmann::json j = {{"anchored", a->anchored[s]},
-                      {"turn_deg", a->turn_deg[s]},
-                      {"sigma_deg", a->sigma_deg[s]},
-                      {"lines_xyz", a->lines[s]}};
-  if (!a->anchored[s]) j["reason"] = a->reason[s];
-  return j;
-}
-
 }  // namespace
 
 std::string report_path(const std::string& image_path) { return image_path + ".report.json"; }
@@ -399,17 +377,7 @@ nlohmann::json render_report(const LoadedScene& s, const RenderResult& r, const 
   const auto& info = s.environment_info;
   json shots = json::array();
   if (s.spec.environment.from_shots())
-    for (int f = 0; f < 6; ++f)
-      shots.push_back({{"face", face_name(f)},
-                       {"files", s.spec.environment.shots[std::size_t(f)].files},
-                       {"rotate_deg", s.spec.environment.shots[std::size_t(f)].rotate_deg},
-                       {"coverage_percent", 100 * info.coverage[std::size_t(f)]},
-                       {"clipped_percent", 100 * info.clipped[std::size_t(f)]},
-                       {"registration", registration_json(info.registration, f)},
-                       {"room_lines", room_lines_json(info.line_anchor, f)},
-                       {"gain",
-                        {info.shot_gain[std::size_t(f)][0], info.shot_gain[std::size_t(f)][1],
-                         info.shot_gain[std::size_t(f)][2]}}});
+    for (int f = 0; f < 6; ++f) shots.push_back(shot_report(s.spec.environment, info, f));
   json calibration = nullptr;
   if (s.calibration)
     calibration = {{"model", model_name(s.calibration->model)},

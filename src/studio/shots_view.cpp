@@ -9,7 +9,9 @@
 #include "light/environment.h"
 #include "light/hdr_merge.h"
 #include "scene/scene_file.h"
+#include "scene/shots_report.h"
 #include "studio/preview_png.h"
+#include "studio/stitched_view.h"
 
 namespace insitu {
 namespace fs = std::filesystem;
@@ -55,7 +57,11 @@ void add_assembly(const EnvironmentSpec& env, const fs::path& folder, json& out)
       shot["coverage_percent"] = 100 * info.coverage[std::size_t(f)];
       shot["clipped_percent"] = 100 * info.clipped[std::size_t(f)];
       shot["hfov_deg"] = info.hfov_deg[std::size_t(f)];
+      shot["registration"] = registration_json(info.registration, f);
+      shot["room_lines"] = room_lines_json(info.line_anchor, f);
+      shot["outline"] = outline_colour(f);
     }
+    out["gap_percent"] = 100 * gap_fraction(shot_frames(env, info));
     // The library's warnings name files by their full path; the page names them from the folder.
     const std::string prefix = folder.string() + "/";
     for (std::string w : warnings.items) {

@@ -3,8 +3,10 @@
 //
 // shots_view gives, per face: its key in the scene file, its files, its turn and its field of
 // view, its size as used, the percentage of its pixels that clipped and of its cube face that it
-// covers (from the library's own assembly, load_environment), and any error the library raised
-// about it ({"where", "what"}, as the CLI prints them). An error that names no single shot (or a
+// covers (from the library's own assembly, load_environment), its registration and room lines as
+// the render report gives them (scene/shots_report.h), its outline's colour in the stitched view
+// (stitched_view.h), and any error the library raised about it ({"where", "what"}, as the CLI
+// prints them); and `gap_percent`, the share of the sphere that no shot sees. An error that names no single shot (or a
 // scene that does not parse) is the view's own "error".
 #pragma once
 #include <string>

@@ -13,6 +13,7 @@
 #include "studio/render_job.h"
 #include "studio/scene_edit.h"
 #include "studio/shots_view.h"
+#include "studio/stitched_view.h"
 #include "studio/studio_impl.h"
 
 namespace insitu {
@@ -308,6 +309,9 @@ void StudioServer::Impl::add_api_routes() {
   http.Get(R"(/api/shot/([0-5])\.png)", [this](const httplib::Request& req, httplib::Response& res) {
     guarded(res,
             [&] { res.set_content(shot_preview_png(scene_file.path(), std::stoi(req.matches[1]), 320), "image/png"); });
+  });
+  http.Get("/api/shots/stitched.png", [this](const httplib::Request&, httplib::Response& res) {
+    guarded(res, [&] { res.set_content(stitched_png(scene_file.path(), 160), "image/png"); });
   });
   http.Post("/api/shots", [this](const httplib::Request& req, httplib::Response& res) {
     guarded(res, [&] { post_shots(*this, req, res); });

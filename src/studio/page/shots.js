@@ -31,6 +31,40 @@ async function load_shots() {
   if (data.image) $("shots-state").textContent = `This scene is lit by the HDR image ${data.image}, not by six shots.`;
   if (data.faced) $("faced").value = data.faced;
   draw_cube();
+  draw_stitched();
+}
+
+// One line per shot: its outline's colour, and where registration and the room's lines put it.
+function aim_text(shot) {
+  const r = shot.registration, l = shot.room_lines;
+  const parts = [];
+  if (!r) parts.push("aimed as given (registration off)");
+  else if (r.registered) parts.push(`registered: turned ${r.rotation_deg.toFixed(2)}° (yaw ${r.yaw_deg.toFixed(2)}°, pitch ${r.pitch_deg.toFixed(2)}°, roll ${r.roll_deg.toFixed(2)}°), residual ${r.residual_deg.toFixed(3)}° over ${r.matches} matches`);
+  else parts.push(`not registered: ${r.reason}`);
+  if (l) parts.push(l.anchored ? `room lines: turned ${l.turn_deg.toFixed(2)}° (σ ${l.sigma_deg.toFixed(2)}°)` : `room lines: ${l.reason}`);
+  return parts.join("; ");
+}
+
+function draw_stitched() {
+  const st = SHOTS.state;
+  const img = $("stitched"), legend = $("stitched-legend");
+  legend.replaceChildren();
+  if (!st.shots.length || st.error || st.shots.some((s) => s.error)) { img.hidden = true; return; }
+  img.hidden = false;
+  img.src = `/api/shots/stitched.png?v=${st.version}`;
+  for (const shot of st.shots) {
+    const li = document.createElement("li");
+    const swatch = Object.assign(document.createElement("span"), { className: "swatch" });
+    swatch.style.background = shot.outline;
+    li.append(swatch, Object.assign(document.createElement("b"), { textContent: shot.key }), " ", aim_text(shot));
+    legend.append(li);
+  }
+  if (st.gap_percent !== undefined) {
+    const li = document.createElement("li");
+    li.className = st.gap_percent > 0.05 ? "warn" : "";
+    li.textContent = st.gap_percent > 0.05 ? `${st.gap_percent.toFixed(1)} % of the sphere no shot saw (hatched): filled in from its neighbours` : "no gap: every direction is in some shot";
+    legend.append(li);
+  }
 }
 
 // One edit of the scene file, then the shots read again.
