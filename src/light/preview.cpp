@@ -21,10 +21,7 @@ double preview_exposure(const CubeMap& cube) {
 Image cube_cross_preview(const CubeMap& cube, double exposure, int face_px) {
   const int n = face_px > 0 ? face_px : cube.size();
   Image out(4 * n, 3 * n, 3, 0.0f);
-  const struct {
-    int face, col, row;
-  } layout[6] = {{kNegX, 0, 1}, {kNegZ, 1, 1}, {kPosX, 2, 1}, {kPosZ, 3, 1}, {kPosY, 1, 0}, {kNegY, 1, 2}};
-  for (const auto& l : layout) {
+  for (const CrossSquare& l : kCrossLayout) {
     const Image view = render_shot([&](const Vec3f& d) { return cube.lookup(d); }, l.face, kNegZ, 90.0, n, n);
     for (int y = 0; y < n; ++y)
       for (int x = 0; x < n; ++x)

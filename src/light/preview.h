@@ -14,6 +14,13 @@
 
 namespace insitu {
 
+// The cross's squares: each face's column and row, in squares of the face's size.
+struct CrossSquare {
+  int face, col, row;
+};
+constexpr CrossSquare kCrossLayout[6] = {{kNegX, 0, 1}, {kNegZ, 1, 1}, {kPosX, 2, 1},
+                                         {kPosZ, 3, 1}, {kPosY, 1, 0}, {kNegY, 1, 2}};
+
 // The exposure that puts the cube's median luminance at 0.18.
 double preview_exposure(const CubeMap& cube);
 // `face_px`: pixels a face of the cross (0: the cube's own size).

@@ -426,8 +426,9 @@ std::pair<std::vector<int>, std::vector<PartFit>> concentrated_parts(const Inver
 // Returns whether the fine fit was kept: not where it left a source undetermined that the coarse
 // fit determined (more unknowns; the closed room's window at one offset of the grid went to the
 // lower bound, 34 %), where the coarse fit stands.
+// `shares`: the box's opening shares at the cube's size (RoomLight::opening_shares), computed once.
 bool refine_concentrated_parts(std::vector<FitPixel>& pixels, const Albedos& albedos, const InverseLightingInput& in,
-                               InverseLightingResult& res) {
+                               const std::vector<float>& shares, InverseLightingResult& res) {
   if (std::any_of(pixels.begin(), pixels.end(),
                   [&](const FitPixel& p) { return p.shadow_ball >= 0 || albedos.reference[std::size_t(p.surface)]; }))
     return false;
@@ -437,8 +438,6 @@ bool refine_concentrated_parts(std::vector<FitPixel>& pixels, const Albedos& alb
   if (replaced.empty()) return false;
   const std::vector<FitPixel> coarse_pixels = pixels;
   const InverseLightingResult coarse = res;
-  const std::vector<float> shares =
-      in.room ? RoomLight(CubeMap(1), in.room).opening_shares(in.radiance->size()) : std::vector<float>{};
   const inverse_lighting_detail::PartLights lights{finer.size(), [&](std::size_t k) {
                                                      return std::make_unique<RoomLight>(
                                                          source_only(*in.radiance, finer[k].texels), in.room, &shares);
@@ -502,7 +501,7 @@ InverseLightingResult recover_at_resolution(const InverseLightingInput& in) {
   res.reference_surfaces = albedos.references;
   if (pixels.size() >= 16) {
     fit_sources(pixels, albedos, res, in.stop);
-    refine_concentrated_parts(pixels, albedos, in, res);
+    refine_concentrated_parts(pixels, albedos, in, shares, res);
   }
   fit_colours(pixels, in, res);
   return res;

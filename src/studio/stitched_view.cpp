@@ -22,15 +22,9 @@ Rgb colour_of(const char* hex) {
   return Rgb(float((v >> 16) & 255) / 255.0f, float((v >> 8) & 255) / 255.0f, float(v & 255) / 255.0f);
 }
 
-// The cross's squares (light/preview.h): face, column, row; each a 90° view as render_shot makes it.
-struct Square {
-  int face, col, row;
-};
-constexpr Square kCross[6] = {{kNegX, 0, 1}, {kNegZ, 1, 1}, {kPosX, 2, 1}, {kPosZ, 3, 1}, {kPosY, 1, 0}, {kNegY, 1, 2}};
-
 // The direction through pixel (x, y) of the cross at n pixels a face; false off the cross.
 bool cross_direction(int x, int y, int n, Vec3d& d) {
-  for (const Square& q : kCross) {
+  for (const CrossSquare& q : kCrossLayout) {
     if (x / n != q.col || y / n != q.row) continue;
     const ShotBasis b = shot_basis(q.face, kNegZ);
     // render_shot's pixel centres for a 90° view: f_px = n / 2.
@@ -43,7 +37,7 @@ bool cross_direction(int x, int y, int n, Vec3d& d) {
 
 // The cross pixel direction d falls in (the square whose view holds it), or false.
 bool cross_pixel(const Vec3d& d, int n, int& x, int& y) {
-  for (const Square& q : kCross) {
+  for (const CrossSquare& q : kCrossLayout) {
     const ShotBasis b = shot_basis(q.face, kNegZ);
     const double z = d.dot(b.forward);
     if (z <= 0) continue;
