@@ -14,7 +14,10 @@
 #include <optional>
 #include <random>
 
+#include "core/colour.h"
 #include "core/stop.h"
+#include "light/environment.h"
+#include "light/equirect.h"
 #include "cube_fixture.h"
 #include "relight/clipped_sources.h"
 #include "relight/fit_resolution.h"
@@ -296,6 +299,46 @@ TEST(InverseLighting, RecoversAClippedLampInABoxRoom) {
   // Applied: the lamp's texels carry about the true radiance again.
   const CubeMap fitted = r.apply(fx.clipped);
   EXPECT_NEAR(cube_power(fitted), cube_power(fx.truth), 0.1 * cube_power(fx.truth));
+}
+
+// The same room through an 8-bit panorama (light/panorama.h, light/environment.h): the truth in
+// the panorama's own frame turned by yaw 90°, sRGB-encoded with 1 at the clip level 0.5 (clipped
+// above, as a phone's panorama clips a lamp), read back by load_environment with the factor 0.5.
+// Its clipped pixels are the clipped cube, and the fit finds the lamp where it is, at the true
+// scale 50 within 3σ or 10 %, as from the clipped cube itself.
+TEST(InverseLighting, APanoramasClippedLampIsRecovered) {
+  Fixture fx;
+  make_room(fx);
+  test::TempDir dir;
+  const double yaw_deg = 90;
+  const float c = float(std::cos(deg_to_rad(yaw_deg))), s = float(std::sin(deg_to_rad(yaw_deg)));
+  Image pano(512, 256, 3);
+  for (int y = 0; y < pano.height; ++y)
+    for (int x = 0; x < pano.width; ++x) {
+      const Vec3f d = equirect_to_direction((float(x) + 0.5f) / 512, (float(y) + 0.5f) / 256);
+      const Vec3f d_world(c * d.x() + s * d.z(), d.y(), -s * d.x() + c * d.z());  // R_y(yaw) d
+      const Rgb v = fx.truth.lookup_nearest(d_world) / 0.5f;
+      pano.set_rgb(x, y, v.unaryExpr([](float l) { return linear_to_srgb(std::min(l, 1.0f)); }));
+    }
+  write_image(dir.file("pano.png"), pano);
+  EnvironmentSpec spec;
+  spec.image = dir.file("pano.png");
+  spec.yaw_deg = yaw_deg;
+  spec.exposure = EnvironmentSpec::Exposure::kFactor;
+  spec.exposure_factor = 0.5;
+  spec.face_size = kFace;
+  Warnings warnings;
+  EnvironmentInfo info;
+  fx.clipped = load_environment(spec, warnings, &info);
+  ASSERT_TRUE(info.panorama);
+  ASSERT_TRUE(info.clipped_cube.has_value());
+  fx.mask = *info.clipped_cube;
+  const InverseLightingResult r = recover_clipped_sources(fx.in);
+  ASSERT_EQ(r.sources.size(), 1u);
+  const SourceFit& lamp = r.sources[0];
+  ASSERT_TRUE(lamp.determined) << r.message;
+  EXPECT_GT(lamp.source.dir_world.dot(Vec3f(0.2f, 1, 0.1f).normalized()), 0.99f);
+  EXPECT_NEAR(lamp.scale, 50.0, std::max(3 * lamp.sigma, 5.0)) << "σ " << lamp.sigma;
 }
 
 // The same lamp in shots that give a 512 face: the fit runs on the cube shrunk to 128

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_util.h"
+#include "core/colour.h"
 #include "core/image.h"
 #include "light/cubemap.h"
 #include "scene_fixture.h"
@@ -75,6 +76,60 @@ TEST(LightRecovery, AnHdrImageNeedsNothing) {
   const CliRun r = run_insitu(fx.dir, "render " + fx.write() + " -o " + fx.dir.file("out.exr") + " --layers none");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(light_of(fx, "out.exr.report.json")["determined_by"], "hdr image");
+}
+
+// An 8-bit panorama is one single shot: its clipped lamp is fitted, and the report says it is a
+// panorama, how much of the sphere it saw and how much clipped (the 16 × 4 lamp of 64 × 32).
+TEST(LightRecovery, APanoramasClippedLightIsFittedAndReported) {
+  SceneFixture fx;
+  Image pano(64, 32, 3, 0.4f);
+  for (int y = 2; y < 6; ++y)
+    for (int x = 24; x < 40; ++x) pano.set_rgb(x, y, Rgb(1, 1, 1));
+  write_image(fx.dir.file("pano.png"), pano);
+  auto j = clipped_shots_scene(fx);
+  j["environment"] = {{"image", "pano.png"},
+                      {"yaw_deg", 90},
+                      {"exposure", 1.0},
+                      {"room_box", {{"min", {-2, 0, -2}}, {"max", {2, 2.5, 2}}, {"capture", {0.5, 1, -0.5}}}}};
+  const CliRun r =
+      run_insitu(fx.dir, "render " + fx.write(j) + " -o " + fx.dir.file("out.exr") + " --layers none --spp 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto env = nlohmann::json::parse(slurp(fx.dir.file("out.exr.report.json")))["environment"];
+  EXPECT_NEAR(env["panorama"]["coverage_percent"].get<double>(), 100.0, 1e-6);
+  EXPECT_NEAR(env["panorama"]["clipped_percent"].get<double>(), 100.0 * 64 / (64 * 32), 1e-6);
+  EXPECT_EQ(env["panorama"]["yaw_deg"], 90);
+  ASSERT_TRUE(env["light"].contains("inverse_lighting")) << env["light"].dump();
+  EXPECT_EQ(env["light"]["inverse_lighting"]["sources"].size(), 1u);
+  EXPECT_NE(env["light"]["determined_by"], "hdr image");
+}
+
+// Shots balanced bluer than a grey photo: the light is balanced back to it, said as a warning and
+// in the report (blue's gain 0.4/0.3 of red's and green's, at luminance 1); "none" keeps theirs.
+TEST(LightRecovery, TheLightIsWhiteBalancedToThePhoto) {
+  SceneFixture fx;
+  write_image(fx.dir.file("photo.png"), Image(fx.width, fx.height, 3, 0.5f));
+  auto j = clipped_shots_scene(fx);
+  const char* keys[6] = {"+x", "-x", "up", "down", "+z", "-z"};
+  for (int f = 0; f < 6; ++f) {
+    Image shot(16, 16, 3);
+    for (int p = 0; p < 16 * 16; ++p) shot.set_rgb(p % 16, p / 16, Rgb(0.3f, 0.3f, 0.4f));
+    write_image(fx.dir.file(std::string("blue") + keys[f] + ".png"), shot);
+    j["environment"]["shots"][keys[f]] = std::string("blue") + keys[f] + ".png";
+  }
+  const CliRun r = run_insitu(fx.dir, "render " + fx.write(j) + " -o " + fx.dir.file("out.exr") + " --layers none");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("white balance differs from the photo's"), std::string::npos) << r.err;
+  const auto wb = nlohmann::json::parse(slurp(fx.dir.file("out.exr.report.json")))["environment"]["white_balance"];
+  ASSERT_TRUE(wb["determined"].get<bool>()) << wb.dump();
+  // 0.3 and 0.4 as 8-bit codes, sRGB-decoded: the gain undoes their ratio.
+  const double ratio = srgb_to_linear(std::round(0.4f * 255) / 255) / srgb_to_linear(std::round(0.3f * 255) / 255);
+  EXPECT_NEAR(wb["gain"][0].get<double>() / wb["gain"][2].get<double>(), ratio, 0.01 * ratio);
+  EXPECT_NEAR(wb["gain"][0].get<double>(), wb["gain"][1].get<double>(), 1e-3);
+  j["environment"]["white_balance"] = "none";
+  const CliRun off = run_insitu(fx.dir, "render " + fx.write(j) + " -o " + fx.dir.file("off.exr") + " --layers none");
+  ASSERT_EQ(off.exit_code, 0) << off.err;
+  EXPECT_TRUE(
+      nlohmann::json::parse(slurp(fx.dir.file("off.exr.report.json")))["environment"]["white_balance"].is_null());
 }
 
 // A white sheet drawn in the photo: the report counts its pixels (sampled, clipped, used), and

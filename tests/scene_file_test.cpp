@@ -286,7 +286,8 @@ TEST(SceneFile, EnvironmentOfWrongShape) {
   write_image(fx.dir.file("square.exr"), Image(8, 8, 3, 1.0f));
   auto j = fx.scene;
   j["environment"] = "square.exr";
-  expect_error(fx, j, ":$.environment", "neither equirectangular (2:1) nor a cube strip (1:6)");
+  expect_error(fx, j, ":$.environment",
+               "neither equirectangular (2:1, or partial with GPano metadata) nor a cube strip (1:6)");
 }
 
 TEST(SceneFile, CameraFileOfAnotherSizeIsAnError) {

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "light/equirect.h"
+#include "light/panorama.h"
 #include "core/json_reader.h"
 #include "light/sixshot.h"
 
@@ -56,35 +57,6 @@ CubeMap scaled(const CubeMap& cube, float factor) {
     for (int j = -1; j <= cube.size(); ++j)
       for (int i = -1; i <= cube.size(); ++i) out.set_texel(f, i, j, cube.texel(f, i, j) * factor);
   return out;
-}
-
-CubeMap load_image_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo& info) {
-  Image img;
-  try {
-    img = linearize(read_image_file(spec.image), &info.clamped_values);
-  } catch (const InputError& e) {
-    throw e.with_context(spec.where);
-  }
-  CubeMap cube;
-  if (img.width == 2 * img.height) {
-    cube = cube_from_equirect(img, spec.face_size > 0 ? spec.face_size : std::max(1, img.width / 4));
-  } else if (img.height == 6 * img.width) {
-    cube = cube_from_strip(img);
-    if (spec.face_size > 0 && spec.face_size != cube.size())
-      throw InputError(spec.where, fmt::format("{}: a cube strip has face size {}, face_size asks for {}", spec.image,
-                                               cube.size(), spec.face_size));
-  } else {
-    throw InputError(spec.where, fmt::format("{}: {}x{} is neither equirectangular (2:1) nor a cube strip (1:6)",
-                                             spec.image, img.width, img.height));
-  }
-  if (info.clamped_values > 0)
-    warnings.add(spec.image, fmt::format("{} negative or non-finite values clamped to 0", info.clamped_values));
-  if (spec.exposure == EnvironmentSpec::Exposure::kFactor) {
-    info.exposure_factor = spec.exposure_factor;
-    info.exposure_source = "factor";
-    return scaled(cube, float(spec.exposure_factor));
-  }
-  return cube;
 }
 
 using ShotFiles = std::array<std::vector<ImageFile>, 6>;
@@ -273,6 +245,94 @@ CubeMap scale_by_estimate(const CubeMap& cube, const ImageFile& photo, const Env
   return scaled(cube, float(info.exposure_factor));
 }
 
+// The image's placement in the sphere: a cube strip's faces, a whole 2:1 image, or a partial
+// panorama placed by its GPano metadata (JPEG files only: where phones and 360° cameras write it).
+std::optional<PanoramaPlacement> image_placement(const EnvironmentSpec& spec, const ImageFile& file) {
+  const int w = file.stored.width, h = file.stored.height;
+  if (file.format == "jpeg")
+    if (auto gpano = read_gpano(spec.image, w, h)) return gpano;
+  if (w == 2 * h) return whole_panorama(w, h);
+  if (h == 6 * w) return std::nullopt;
+  throw InputError(spec.where, fmt::format("{}: {}x{} is neither equirectangular (2:1, or partial with GPano "
+                                           "metadata) nor a cube strip (1:6)",
+                                           spec.image, w, h));
+}
+
+// A texel per pixel at the equator: a quarter of the full panorama's width, at most 1024 for an
+// 8-bit panorama as for shots (sixshot.h natural_face_size).
+CubeMap image_cube(const EnvironmentSpec& spec, const Image& img, const std::optional<PanoramaPlacement>& placement,
+                   bool display_referred, double* coverage) {
+  if (!placement) {
+    if (spec.face_size > 0 && spec.face_size != img.width)
+      throw InputError(spec.where, fmt::format("{}: a cube strip has face size {}, face_size asks for {}", spec.image,
+                                               img.width, spec.face_size));
+    if (spec.yaw_deg != 0) throw InputError(spec.where + ".yaw_deg", spec.image + ": a cube strip cannot be turned");
+    return cube_from_strip(img);
+  }
+  int n = std::max(1, int(std::lround(placement->full_width / 4)));
+  if (display_referred) n = std::min(n, 1024);
+  if (spec.face_size > 0) n = spec.face_size;
+  return cube_from_panorama(img, *placement, spec.yaw_deg, n, coverage);
+}
+
+// An 8-bit panorama into the photo's unit as a single shot: value × k_photo / k_pano by EXIF
+// when both have it, else the estimate (scale_by_estimate).
+CubeMap panorama_exposure(const EnvironmentSpec& spec, const ImageFile& file, const CubeMap& cube,
+                          const ImageFile* photo, EnvironmentInfo& info, Warnings& warnings) {
+  const std::optional<double> k_pano = file.exposure.relative();
+  const std::optional<double> k_photo = photo ? photo->exposure.relative() : std::nullopt;
+  if (k_pano && k_photo) {
+    info.exposure_source = "exif";
+    info.exposure_factor = *k_photo / *k_pano;
+    return scaled(cube, float(info.exposure_factor));
+  }
+  if (spec.exposure == EnvironmentSpec::Exposure::kExif)
+    throw InputError(spec.where + ".exposure", (!k_pano ? spec.image
+                                                : photo ? photo->path
+                                                        : std::string("the photo")) +
+                                                   ": no exposure time in its EXIF");
+  return photo ? scale_by_estimate(cube, *photo, spec, info, warnings) : cube;
+}
+
+CubeMap load_image_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo& info,
+                               const ImageFile* photo) {
+  ImageFile file;
+  Image img;
+  std::optional<PanoramaPlacement> placement;
+  try {
+    file = read_image_file(spec.image);
+    img = linearize(file, &info.clamped_values);
+    placement = image_placement(spec, file);
+  } catch (const InputError& e) {
+    throw e.with_context(spec.where);
+  }
+  info.panorama = file.display_referred;
+  if (!info.panorama && spec.exposure == EnvironmentSpec::Exposure::kExif)
+    throw InputError(spec.where + ".exposure", spec.image + ": an HDR image has no exposure to read: give a factor");
+  CubeMap cube = image_cube(spec, img, placement, info.panorama, &info.panorama_coverage);
+  if (info.clamped_values > 0)
+    warnings.add(spec.image, fmt::format("{} negative or non-finite values clamped to 0", info.clamped_values));
+  if (info.panorama && info.panorama_coverage < 0.999)
+    warnings.add(spec.image, fmt::format("the panorama saw {:.1f}% of the sphere; the rest is its nearest edge, "
+                                         "stretched",
+                                         100 * info.panorama_coverage));
+  if (info.panorama) {
+    info.panorama_clipped = clipped_fraction(file);
+    if (info.panorama_clipped > 0) {
+      info.clipped_cube = image_cube(spec, clipped_mask(file), placement, true, nullptr);
+      if (info.panorama_clipped > 0.001)
+        warnings.add(spec.image, fmt::format("{:.1f}% of pixels clipped: radiance there is only a lower bound",
+                                             100 * info.panorama_clipped));
+    }
+  }
+  if (spec.exposure == EnvironmentSpec::Exposure::kFactor) {
+    info.exposure_factor = spec.exposure_factor;
+    info.exposure_source = "factor";
+    return scaled(cube, float(spec.exposure_factor));
+  }
+  return info.panorama ? panorama_exposure(spec, file, cube, photo, info, warnings) : cube;
+}
+
 // Each shot's aim from the shots (shot_registration.h). A shot that could have been registered
 // (its view overlaps a neighbour's) and was not is named with the reason; it keeps its nominal
 // direction.
@@ -327,7 +387,7 @@ CubeMap load_environment(const EnvironmentSpec& spec, Warnings& warnings, Enviro
                          const ImageFile* photo) {
   EnvironmentInfo info;
   CubeMap cube = spec.from_shots() ? load_shot_environment(spec, warnings, info, photo)
-                                   : load_image_environment(spec, warnings, info);
+                                   : load_image_environment(spec, warnings, info, photo);
   if (info_out) *info_out = info;
   return cube;
 }

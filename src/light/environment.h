@@ -1,12 +1,15 @@
 // The room's light as a radiance cube in the photo's radiance unit (DESIGN.md "Colour and
-// light"), from six shots (single images or exposure brackets) or from an HDR image
-// (equirectangular 2:1, or a vertical strip of the six faces 1:6).
+// light"), from six shots (single images or exposure brackets) or from an image: HDR, or an 8-bit
+// panorama (equirectangular 2:1 or partial, light/panorama.h; or a vertical strip of the six
+// faces 1:6).
 //
 // Shots are linearized by the inverse sRGB curve, or by the camera response recovered from the
 // first bracketed shot (hdr_merge.h), which then also linearizes the photo. They are brought into
 // the photo's unit by their relative exposure k = t·ISO/N²: value × k_photo / k_shot (a merged
 // bracket set is already divided by k). Without EXIF on the photo and every single shot, `auto`
-// estimates one factor, median(photo luminance) / median(cube luminance), and says so.
+// estimates one factor, median(photo luminance) / median(cube luminance), and says so. An 8-bit
+// panorama is one single shot: the sRGB curve, its clipped pixels, EXIF or the estimate. An HDR
+// image keeps its own unit unless a factor is given.
 #pragma once
 #include <array>
 #include <optional>
@@ -34,6 +37,11 @@ struct EnvironmentInfo {
   std::optional<CubeMap> clipped_cube;
   std::optional<Registration> registration;  // six shots with "register": "auto"
   std::optional<LineAnchor> line_anchor;     // ... and a room box: the aims anchored to its axes
+  // An image that is display-referred (8- or 16-bit: a panorama): linearized by the sRGB curve, its
+  // clipped pixels in clipped_cube, brought into the photo's unit as a single shot is.
+  bool panorama = false;
+  double panorama_coverage = 1;  // the fraction of the sphere the image saw (light/panorama.h)
+  double panorama_clipped = 0;   // the fraction of its pixels that clipped
   std::array<Rgb, 6> shot_gain = {Rgb::Ones(), Rgb::Ones(), Rgb::Ones(),
                                   Rgb::Ones(), Rgb::Ones(), Rgb::Ones()};  // from overlaps (shot_gains.h)
 };

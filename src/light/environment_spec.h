@@ -25,7 +25,10 @@ struct ShotSpec {
 
 struct EnvironmentSpec {
   std::string where;
-  std::string image;              // equirectangular (2:1) or cube strip (1:6) HDR image
+  // An equirectangular image (2:1, or partial with GPano metadata: light/panorama.h) or a cube
+  // strip (1:6): HDR, or 8-bit as a phone's panorama mode or a 360° camera gives it.
+  std::string image;
+  double yaw_deg = 0;             // the image turned about +Y: its centre column looks along +X turned by yaw
   std::array<ShotSpec, 6> shots;  // or six shots, by face (+X, −X, +Y, −Y, +Z, −Z)
   int faced_face = kNegZ;
   std::optional<double> hfov_deg;  // for every shot that does not give its own
@@ -51,6 +54,9 @@ struct EnvironmentSpec {
   // Find where each shot really looked from the shots themselves (shot_registration.h), or take
   // the nominal directions as exact.
   enum class Register { kAuto, kNone } register_shots = Register::kAuto;
+  // Balance the light's colour to the photo's (relight/photo_white_balance.h): shots and 8-bit
+  // panoramas; an HDR image keeps its own.
+  bool white_balance_to_photo = true;
   bool from_shots() const { return image.empty(); }
 };
 

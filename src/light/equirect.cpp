@@ -1,5 +1,7 @@
 #include "light/equirect.h"
 
+#include "light/panorama.h"
+
 #include <algorithm>
 #include <cassert>
 
@@ -32,21 +34,7 @@ Rgb equirect_lookup(const Image& img, const Vec3f& dir) {
 }
 
 CubeMap cube_from_equirect(const Image& img, int n, int ss) {
-  CubeMap cube(n);
-  for (int f = 0; f < 6; ++f)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        Rgb sum = Rgb::Zero();
-        for (int b = 0; b < ss; ++b)
-          for (int a = 0; a < ss; ++a) {
-            const float s = (float(i) + (float(a) + 0.5f) / float(ss)) / float(n);
-            const float t = (float(j) + (float(b) + 0.5f) / float(ss)) / float(n);
-            sum += equirect_lookup(img, face_to_direction(f, s, t).normalized());
-          }
-        cube.set_texel(f, i, j, sum / float(ss * ss));
-      }
-  cube.update_borders();
-  return cube;
+  return cube_from_panorama(img, whole_panorama(img.width, img.height), 0.0, n, nullptr, ss);
 }
 
 CubeMap cube_from_strip(const Image& strip) {

@@ -88,6 +88,34 @@ void warn_of_references(LoadedScene& s) {
 
 }  // namespace
 
+void match_white_balance(LoadedScene& s) {
+  const EnvironmentSpec& e = s.spec.environment;
+  if (!e.white_balance_to_photo || (!e.from_shots() && !s.environment_info.panorama)) return;
+  const auto& clipped = s.environment_info.clipped_cube;
+  s.white_balance = white_balance_to_photo(s.environment, clipped ? &*clipped : nullptr, s.room, s.camera,
+                                           s.photo_linear, clipped_mask(s.photo));
+  const WhiteBalance& wb = *s.white_balance;
+  if (!wb.determined) {
+    s.warnings.add(e.where, "the light's white balance is not matched to the photo: " + wb.reason);
+    return;
+  }
+  s.environment = white_balanced(s.environment, wb.gain);
+  if ((wb.gain - Rgb::Ones()).cwiseAbs().maxCoeff() > 0.05f)
+    s.warnings.add(e.where, fmt::format("the shots' white balance differs from the photo's: the light is multiplied by "
+                                        "({:.3f}, {:.3f}, {:.3f}) to match it; lock white balance when you shoot",
+                                        wb.gain[0], wb.gain[1], wb.gain[2]));
+}
+
+nlohmann::json white_balance_report(const LoadedScene& s) {
+  if (!s.white_balance) return nullptr;
+  const WhiteBalance& wb = *s.white_balance;
+  return {{"determined", wb.determined},
+          {"gain", {wb.gain[0], wb.gain[1], wb.gain[2]}},
+          {"log_gain_sigma", {wb.sigma[0], wb.sigma[1], wb.sigma[2]}},
+          {"pixels", wb.pixels},
+          {"reason", wb.determined ? nlohmann::json(nullptr) : nlohmann::json(wb.reason)}};
+}
+
 void recover_clipped_light(LoadedScene& s, const std::atomic<bool>* stop) {
   if (!s.environment_info.clipped_cube || !s.spec.environment.inverse_lighting) return warn_of_references(s);
   const Image photo_clipped = clipped_mask(s.photo);
@@ -103,10 +131,10 @@ void recover_clipped_light(LoadedScene& s, const std::atomic<bool>* stop) {
 
 std::string light_determined_by(const LoadedScene& s) {
   const EnvironmentSpec& e = s.spec.environment;
-  if (!e.from_shots()) return "hdr image";
+  if (!e.from_shots() && !s.environment_info.panorama) return "hdr image";
   bool brackets = false;
   for (const ShotSpec& shot : e.shots) brackets = brackets || shot.files.size() >= 2;
-  if (!s.environment_info.clipped_cube) return brackets ? "brackets" : "shots";
+  if (!s.environment_info.clipped_cube) return e.from_shots() ? (brackets ? "brackets" : "shots") : "panorama";
   const auto& il = s.inverse_lighting;
   if (!il || !il->any_determined()) return "lower bound";
   return il->reference_surfaces > 0 ? "inverse lighting with a reference" : "inverse lighting";

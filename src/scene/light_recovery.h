@@ -9,6 +9,11 @@
 
 namespace insitu {
 
+// Balances the light of shots or a panorama to the photo's colour (environment.white_balance
+// "photo", relight/photo_white_balance.h): s.white_balance, and s.environment multiplied by its
+// gain when determined; a gain more than 5 % from 1 in a channel is said.
+void match_white_balance(LoadedScene& s);
+
 // Fits the clipped sources (when a shot clipped and environment.inverse_lighting is on), scales
 // them in s.environment, and warns when the photo does not determine them.
 void recover_clipped_light(LoadedScene& s, const std::atomic<bool>* stop = nullptr);
@@ -19,5 +24,8 @@ std::string light_determined_by(const LoadedScene& s);
 
 // The report's "light" object: the above, and each source's scale, σ and energy added.
 nlohmann::json light_report(const LoadedScene& s);
+
+// The report's "white_balance" object: the gain, its σ, the pixels compared; null when off.
+nlohmann::json white_balance_report(const LoadedScene& s);
 
 }  // namespace insitu

@@ -227,6 +227,7 @@ void load_room(const SceneSpec& spec, LoadedScene& s, const std::atomic<bool>* s
     s.room = room;
   }
   throw_if_stopped(stop);
+  match_white_balance(s);
   recover_clipped_light(s, stop);
   s.room_cache = std::make_shared<RoomCache>(s.environment, s.room);
 }
@@ -235,7 +236,7 @@ void load_room(const SceneSpec& spec, LoadedScene& s, const std::atomic<bool>* s
 void copy_room(const LoadedScene& from, LoadedScene& s) {
   s.photo = from.photo, s.photo_linear = from.photo_linear, s.camera = from.camera, s.calibration = from.calibration;
   s.environment = from.environment, s.environment_info = from.environment_info, s.room = from.room;
-  s.inverse_lighting = from.inverse_lighting, s.room_cache = from.room_cache;
+  s.inverse_lighting = from.inverse_lighting, s.room_cache = from.room_cache, s.white_balance = from.white_balance;
   s.warnings.items.insert(s.warnings.items.end(), from.room_warnings.items.begin(), from.room_warnings.items.end());
 }
 
@@ -397,6 +398,11 @@ nlohmann::json render_report(const LoadedScene& s, const RenderResult& r, const 
         {"response_from_brackets", info.response.has_value()},
         {"clamped_values", info.clamped_values},
         {"shots", shots},
+        {"panorama", info.panorama ? json{{"coverage_percent", 100 * info.panorama_coverage},
+                                          {"clipped_percent", 100 * info.panorama_clipped},
+                                          {"yaw_deg", s.spec.environment.yaw_deg}}
+                                   : json(nullptr)},
+        {"white_balance", white_balance_report(s)},
         {"light", light_report(s)}}},
       {"render",
        {{"integrator", s.spec.render.integrator},

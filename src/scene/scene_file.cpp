@@ -278,13 +278,17 @@ EnvironmentSpec parse_environment(const JsonValue& v, const fs::path& dir) {
     if (mode != "auto" && mode != "none") r->fail("expected \"auto\" or \"none\"");
     e.register_shots = mode == "none" ? EnvironmentSpec::Register::kNone : EnvironmentSpec::Register::kAuto;
   }
+  if (auto wb = o.find("white_balance")) {
+    const std::string mode = wb->string();
+    if (mode != "photo" && mode != "none") wb->fail("expected \"photo\" or \"none\"");
+    e.white_balance_to_photo = mode == "photo";
+  }
   if (auto rb = o.find("room_box")) e.room_box = parse_room_box(*rb);
   if (auto img = o.find("image")) {
     if (o.has("shots")) o.fail("give 'image' or 'shots', not both");
     e.image = existing_file(*img, dir);
-    if (o.has("register")) o.get("register").fail("an HDR image has no shots to register");
-    if (e.exposure == EnvironmentSpec::Exposure::kExif)
-      o.get("exposure").fail("an HDR image has no exposure to read: give a factor");
+    if (o.has("register")) o.get("register").fail("an image has no shots to register");
+    if (auto y = o.find("yaw_deg")) e.yaw_deg = y->number(-360.0, 360.0);
     o.finish();
     return e;
   }

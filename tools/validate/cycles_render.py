@@ -6,6 +6,9 @@
 #
 #   blender -b --factory-startup --python tools/validate/cycles_render.py -- SCENE.json OUT_DIR
 #   ... -- SCENE.json OUT_DIR --ladder 16,64,256,1024 --reference 4096
+#   ... -- SCENE.json OUT_DIR --panorama 2048
+# The third form renders only the empty room as an equirectangular panorama from the insertion
+# point (OUT_DIR/pano.exr; tools/validate/panorama.sh makes the phone's JPEG of it).
 # The second form (bench/cycles/run.sh, issue 16) renders only the truth, at each spp of the ladder
 # with the scene's seed and at the reference spp with the next seed, as cycles_SPP.exr and
 # cycles_reference.exr, and writes each render's wall-clock seconds (scene sync and BVH included,
@@ -434,7 +437,28 @@ def write_insitu_scene(shots):
     print("validate: wrote", os.path.join(out_dir, "scene.json"), flush=True)
 
 
-if option("--ladder"):
+def panorama(width):
+    """The empty room from the insertion point as one equirectangular panorama, width × width/2,
+    as a 360° camera takes it: OUT_DIR/pano.exr. Its centre column looks along +X and its top
+    row straight up (light/equirect.h's layout: Cycles' panorama camera centres its image on the
+    camera's view and keeps its up)."""
+    scene, _, _, objects = build_scene()
+    for obj in objects:
+        obj.hide_render = True
+    cam = make_camera("pano", desc["insertion"], [1, 0, 0], [0, 1, 0], 90.0)
+    cam.data.type = "PANO"
+    if hasattr(cam.data, "panorama_type"):
+        cam.data.panorama_type = "EQUIRECTANGULAR"
+    else:
+        cam.data.cycles.panorama_type = "EQUIRECTANGULAR"
+    scene.camera = cam
+    setup_render(scene, desc.get("samples", {}).get("shots", 256), width, width // 2, desc.get("seed", 1))
+    render_to(os.path.join(out_dir, "pano.exr"))
+
+
+if option("--panorama"):
+    panorama(int(option("--panorama")))
+elif option("--ladder"):
     ladder([int(v) for v in option("--ladder").split(",")], int(option("--reference") or 4096))
 else:
     main()
