@@ -133,22 +133,45 @@ def wall_rects(lo, hi, hole):
     return [((u0, v0), (a0, v1)), ((a1, v0), (u1, v1)), ((a0, v0), (a1, b0)), ((a0, b1), (a1, v1))]
 
 
+# The four walls: (name, axis across which the wall lies, which end of the box, the in-wall axis u).
+WALLS = {"-x": (0, 0, 2), "+x": (0, 1, 2), "-z": (2, 0, 0), "+z": (2, 1, 0)}
+
+
+def window_of(r):
+    """The room's window as (wall, (u0, u1), (y0, y1)): "window": {"wall": "-z", "u": [u0, u1],
+    "y": [y0, y1]}, u along the wall (z on an x wall, x on a z wall); without "wall", the -x wall
+    and "z" for u."""
+    win = r.get("window")
+    if not win:
+        return None
+    return win.get("wall", "-x"), tuple(win.get("u", win.get("z"))), tuple(win["y"])
+
+
 def make_room():
     """A closed box room (walls, ceiling; the ground is the floor), facing inward, with an optional
-    window (a hole in the -x wall: "window": {"y": [y0, y1], "z": [z0, z1]}) and ceiling lamp (an
-    emitting square: "lamp": {"centre": [x, z], "size": s, "radiance": [r, g, b]})."""
+    window (a hole in one wall: window_of) and ceiling lamp (an emitting square:
+    "lamp": {"centre": [x, z], "size": s, "radiance": [r, g, b]})."""
     r = desc["room"]
-    (x0, y0, z0), (x1, y1, z1) = r["min"], r["max"]
+    lo, hi = r["min"], r["max"]
+    y1 = hi[1]
     albedo = r.get("albedo", [0.6, 0.58, 0.55])
     mat, _, _ = diffuse_material("walls", colour=tuple(albedo))
-    win = r.get("window")
-    hole = ((win["z"][0], win["y"][0]), (win["z"][1], win["y"][1])) if win else None
-    # -x wall in (z, y), facing +x: corners (x0, y, z) counter-clockwise seen from +x.
-    for k, ((za, ya), (zb, yb)) in enumerate(wall_rects((z0, y0), (z1, y1), hole)):
-        quad(f"wall_-x_{k}", [(x0, ya, zb), (x0, ya, za), (x0, yb, za), (x0, yb, zb)], mat)
-    quad("wall_+x", [(x1, y0, z0), (x1, y0, z1), (x1, y1, z1), (x1, y1, z0)], mat)
-    quad("wall_-z", [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0)], mat)
-    quad("wall_+z", [(x1, y0, z1), (x0, y0, z1), (x0, y1, z1), (x1, y1, z1)], mat)
+    win = window_of(r)
+    for name, (axis, end, u_axis) in WALLS.items():
+        plane = (lo, hi)[end][axis]
+        hole = ((win[1][0], win[2][0]), (win[1][1], win[2][1])) if win and win[0] == name else None
+        for k, ((ua, ya), (ub, yb)) in enumerate(wall_rects((lo[u_axis], lo[1]), (hi[u_axis], hi[1]), hole)):
+            def at(u, y):
+                p = [0.0, y, 0.0]
+                p[axis], p[u_axis] = plane, u
+                return tuple(p)
+            corners = [at(ua, ya), at(ub, ya), at(ub, yb), at(ua, yb)]
+            c0, c1, c3 = (Vector(c) for c in (corners[0], corners[1], corners[3]))
+            centre = 0.5 * (Vector(lo) + Vector(hi))
+            if (c1 - c0).cross(c3 - c0).dot(centre - c0) < 0:  # face inward
+                corners.reverse()
+            quad(f"wall_{name}_{k}", corners, mat)
+    (x0, _, z0), (x1, _, z1) = lo, hi
     quad("ceiling", [(x0, y1, z0), (x1, y1, z0), (x1, y1, z1), (x0, y1, z1)], mat)
     lamp = r.get("lamp")
     if lamp:
@@ -404,10 +427,14 @@ def room_box():
     if not r:
         return {}
     box = {"min": r["min"], "max": r["max"], "capture": desc["insertion"]}
-    win = r.get("window")
-    if win:  # the hole in the -x wall, as an opening (DESIGN.md: one coordinate on the wall's plane)
-        x0 = r["min"][0]
-        box["openings"] = [{"min": [x0, win["y"][0], win["z"][0]], "max": [x0, win["y"][1], win["z"][1]]}]
+    win = window_of(r)
+    if win:  # the hole, as an opening (DESIGN.md: one coordinate on the wall's plane)
+        axis, end, u_axis = WALLS[win[0]]
+        a, b = [0.0] * 3, [0.0] * 3
+        a[axis] = b[axis] = (r["min"], r["max"])[end][axis]
+        a[u_axis], b[u_axis] = win[1]
+        a[1], b[1] = win[2]
+        box["openings"] = [{"min": a, "max": b}]
     return {"room_box": box}
 
 
