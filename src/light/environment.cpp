@@ -239,9 +239,10 @@ CubeMap scale_by_estimate(const CubeMap& cube, const ImageFile& photo, const Env
   info.exposure_factor = (mp > 0 && mc > 0) ? double(mp / mc) : 1.0;
   info.exposure_source = "estimate";
   if (std::abs(info.exposure_factor - 1) > 0.02)
-    warnings.add(spec.where, fmt::format("no EXIF exposure on the photo and every shot: shots scaled by an estimated "
-                                         "{:.3g} (median of the photo / median of the cube); give environment.exposure",
-                                         info.exposure_factor));
+    warnings.add(spec.where, fmt::format("no EXIF exposure on the photo and {}: {} scaled by an estimated {:.3g} "
+                                         "(median of the photo / median of the cube); give environment.exposure",
+                                         spec.from_shots() ? "every shot" : "the panorama",
+                                         spec.from_shots() ? "shots" : "the panorama", info.exposure_factor));
   return scaled(cube, float(info.exposure_factor));
 }
 

@@ -63,6 +63,23 @@ def oiio_image(path_in_case, args):
     return data
 
 
+def gpano_attributes(full_w, full_h, crop_w, crop_h, left, top):
+    return ('GPano:ProjectionType="equirectangular" GPano:FullPanoWidthPixels="%d" GPano:FullPanoHeightPixels="%d" '
+            'GPano:CroppedAreaImageWidthPixels="%d" GPano:CroppedAreaImageHeightPixels="%d" '
+            'GPano:CroppedAreaLeftPixels="%d" GPano:CroppedAreaTopPixels="%d"' % (full_w, full_h, crop_w, crop_h, left, top))
+
+
+def with_xmp(jpeg, gpano):
+    """The JPEG with an XMP packet holding `gpano` in an APP1 segment after its SOI marker, as
+    phones write a panorama's placement."""
+    xmp = ('<?xpacket begin="" id="W5M0MpCehiHzreSzNTczkc9d"?><x:xmpmeta xmlns:x="adobe:ns:meta/">'
+           '<rdf:RDF xmlns:rdf="http://www.w3.org/1999/02/22-rdf-syntax-ns#"><rdf:Description rdf:about="" '
+           'xmlns:GPano="http://ns.google.com/photos/1.0/panorama/" ' + gpano +
+           '/></rdf:RDF></x:xmpmeta><?xpacket end="w"?>').encode()
+    payload = b"http://ns.adobe.com/xap/1.0/\0" + xmp
+    return jpeg[:2] + b"\xff\xe1" + struct.pack(">H", len(payload) + 2) + payload + jpeg[2:]
+
+
 SHOTS = {k: "s%d.png" % i for i, k in enumerate(["+x", "-x", "+z", "-z", "up", "down"])}
 
 
@@ -286,6 +303,14 @@ def more_cases():
     case("environment_garbage_exr", ["render", "scene.json"], r"env.exr", files={"env.exr": b"\x76\x2f\x31\x01garbage"})
     wide = oiio_image("e.exr", ["--pattern", "constant:color=1,1,1", "30x7", "3", "-d", "float"])
     case("environment_wrong_aspect", ["render", "scene.json"], r"env.exr", files={"env.exr": wide})
+    pano = oiio_image("p.jpg", ["--pattern", "constant:color=0.5,0.5,0.5", "32x16", "3", "-d", "uint8"])
+    for name, attributes, message in [
+            ("gpano_outside", gpano_attributes(64, 32, 32, 16, 0, 20), r"pano\.jpg: GPano's cropped area lies outside"),
+            ("gpano_not_2_to_1", gpano_attributes(64, 40, 32, 16, 0, 0), r"pano\.jpg: .*2:1"),
+            ("gpano_not_a_number", gpano_attributes(64, 32, 32, 16, 0, 0).replace('LeftPixels="0"', 'LeftPixels="left"'),
+             r"pano\.jpg: GPano:CroppedAreaLeftPixels")]:
+        case("environment_" + name, ["render", "scene.json"], message, files={"pano.jpg": with_xmp(pano, attributes)},
+             scene=scene_with(environment={"image": "pano.jpg"}))
     for name, args, message in [
             ("render_without_scene", ["render"], "scene"), ("calibrate_without_points", ["calibrate", "--size", "4", "4"], "points"),
             ("compare_one_image", ["compare", "photo.png"], "b"), ("cubemap_without_output", ["cubemap", "env.exr"], "output"),
