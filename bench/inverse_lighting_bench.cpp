@@ -8,13 +8,13 @@
 // through /proc/self/clear_refs after glibc's malloc_trim returned the setup's free memory), and
 // the fit's parts, pixels and face.
 #include <benchmark/benchmark.h>
-#include <malloc.h>
 
 #include <cmath>
 #include <fstream>
 #include <random>
 #include <string>
 
+#include "peak_memory.h"
 #include "core/camera.h"
 #include "core/colour.h"
 #include "core/image.h"
@@ -23,15 +23,6 @@
 
 namespace {
 using namespace insitu;
-
-// kB of a /proc/self/status field ("VmHWM", "VmRSS"), −1 when unreadable.
-long status_kb(const std::string& field) {
-  std::ifstream in("/proc/self/status");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind(field + ":", 0) == 0) return std::stol(line.substr(field.size() + 1));
-  return -1;
-}
 
 const RoomBox kBox{Vec3f(-2.5f, 0, -3),
                    Vec3f(2.5f, 2.6f, 3),
@@ -110,11 +101,9 @@ void BM_InverseLighting(benchmark::State& state) {
   InverseLightingResult r;
   double peak_mb = 0;
   for (auto _ : state) {
-    malloc_trim(0);                                 // what the setup freed leaves the resident set
-    std::ofstream("/proc/self/clear_refs") << "5";  // resets VmHWM to the current RSS
-    const long before = status_kb("VmRSS");
+    const bench::PeakMemory memory;
     r = recover_clipped_sources(in);
-    peak_mb = std::max(peak_mb, double(status_kb("VmHWM") - before) / 1024.0);
+    peak_mb = std::max(peak_mb, memory.peak_mb());
   }
   state.counters["peak_mb"] = peak_mb;
   state.counters["parts"] = double(r.parts.size());

@@ -1,7 +1,9 @@
 // Handheld shots for the registration's tests and benchmark (light/shot_registration.h): six
 // shots of an equirectangular world, each turned by a known misaim.
 #pragma once
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <random>
 #include <string>
 
@@ -48,6 +50,25 @@ inline std::array<Mat3d, 6> misaims(unsigned seed) {
   std::array<Mat3d, 6> R;
   for (int s = 0; s < 6; ++s) R[std::size_t(s)] = rotation(v[std::size_t(s)] - mean);
   return R;
+}
+
+// A room-sized world of features: an equirect of a dim gradient under 1500 rectangles of random
+// size, colour and brightness (over two decades), whose corners SIFT finds.
+inline Image feature_world(unsigned seed) {
+  const int w = 1536, h = 768;
+  Image img(w, h, 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) img.set_rgb(x, y, Rgb(0.2f, 0.2f, 0.25f) * (0.5f + float(y) / h));
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> px(0, w - 1), py(0, h - 1), size(3, 36);
+  std::uniform_real_distribution<float> u(0, 1);
+  for (int k = 0; k < 1500; ++k) {
+    const int x0 = px(rng), y0 = py(rng), sx = size(rng), sy = size(rng);
+    const Rgb c = Rgb(0.4f + u(rng), 0.4f + u(rng), 0.4f + u(rng)) * std::pow(10.0f, 2 * u(rng) - 1);
+    for (int y = y0; y < std::min(h, y0 + sy); ++y)
+      for (int x = x0; x < x0 + sx; ++x) img.set_rgb(x % w, y, c);
+  }
+  return img;
 }
 
 // The mean relative luminance error of cube a against cube b, over every texel.

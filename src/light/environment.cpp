@@ -295,14 +295,14 @@ CubeMap panorama_exposure(const EnvironmentSpec& spec, const ImageFile& file, co
   return photo ? scale_by_estimate(cube, *photo, spec, info, warnings) : cube;
 }
 
+// At most two images of the file's size at once (a 360° camera's 8K panorama is 350 MB as
+// float): the stored pixels and the clipped mask, then the stored pixels and the linear ones.
 CubeMap load_image_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo& info,
                                const ImageFile* photo) {
   ImageFile file;
-  Image img;
   std::optional<PanoramaPlacement> placement;
   try {
     file = read_image_file(spec.image);
-    img = linearize(file, &info.clamped_values);
     placement = image_placement(spec, file);
   } catch (const InputError& e) {
     throw e.with_context(spec.where);
@@ -310,22 +310,23 @@ CubeMap load_image_environment(const EnvironmentSpec& spec, Warnings& warnings, 
   info.panorama = file.display_referred;
   if (!info.panorama && spec.exposure == EnvironmentSpec::Exposure::kExif)
     throw InputError(spec.where + ".exposure", spec.image + ": an HDR image has no exposure to read: give a factor");
+  if (info.panorama) {
+    info.panorama_clipped = clipped_fraction(file);
+    if (info.panorama_clipped > 0) info.clipped_cube = image_cube(spec, clipped_mask(file), placement, true, nullptr);
+    if (info.panorama_clipped > 0.001)
+      warnings.add(spec.image, fmt::format("{:.1f}% of pixels clipped: radiance there is only a lower bound",
+                                           100 * info.panorama_clipped));
+  }
+  Image img = linearize(file, &info.clamped_values);
+  file.stored = Image();
   CubeMap cube = image_cube(spec, img, placement, info.panorama, &info.panorama_coverage);
+  img = Image();
   if (info.clamped_values > 0)
     warnings.add(spec.image, fmt::format("{} negative or non-finite values clamped to 0", info.clamped_values));
   if (info.panorama && info.panorama_coverage < 0.999)
     warnings.add(spec.image, fmt::format("the panorama saw {:.1f}% of the sphere; the rest is its nearest edge, "
                                          "stretched",
                                          100 * info.panorama_coverage));
-  if (info.panorama) {
-    info.panorama_clipped = clipped_fraction(file);
-    if (info.panorama_clipped > 0) {
-      info.clipped_cube = image_cube(spec, clipped_mask(file), placement, true, nullptr);
-      if (info.panorama_clipped > 0.001)
-        warnings.add(spec.image, fmt::format("{:.1f}% of pixels clipped: radiance there is only a lower bound",
-                                             100 * info.panorama_clipped));
-    }
-  }
   if (spec.exposure == EnvironmentSpec::Exposure::kFactor) {
     info.exposure_factor = spec.exposure_factor;
     info.exposure_source = "factor";
@@ -337,9 +338,30 @@ CubeMap load_image_environment(const EnvironmentSpec& spec, Warnings& warnings, 
 // Each shot's aim from the shots (shot_registration.h). A shot that could have been registered
 // (its view overlaps a neighbour's) and was not is named with the reason; it keeps its nominal
 // direction.
-void register_aims(const EnvironmentSpec& spec, LinearShots& shots, EnvironmentInfo& info, Warnings& warnings) {
+// Without a room box the light is distant, and the photo's calibrated camera anchors each group's
+// common rotation (photo_anchor.h).
+void anchor_to_the_photo(const EnvironmentSpec& spec, LinearShots& shots, Registration& r, const ImageFile& photo,
+                         const Camera& camera, EnvironmentInfo& info, Warnings& warnings) {
+  const PhotoAnchor anchor = anchor_to_photo(shots.set, r.group, linearize_photo(photo, info), camera);
+  std::string loose;
+  for (int f = 0; f < 6; ++f) {
+    r.aim[std::size_t(f)] = anchor.correction[std::size_t(f)] * r.aim[std::size_t(f)];
+    describe_aim(r.aim[std::size_t(f)], shot_basis(f, spec.faced_face), r.shots[std::size_t(f)]);
+    if (!anchor.anchored[std::size_t(f)] && anchor.matches[std::size_t(f)] > 0)
+      loose += (loose.empty() ? "" : ", ") + std::string(face_name(f));
+  }
+  if (!loose.empty())
+    warnings.add(spec.where, "shots " + loose +
+                                 ": their matches with the photo do not fix their aim; it is taken "
+                                 "as registered");
+  info.photo_anchor = anchor;
+}
+
+void register_aims(const EnvironmentSpec& spec, LinearShots& shots, EnvironmentInfo& info, Warnings& warnings,
+                   const ImageFile* photo, const Camera* camera) {
   Registration r = register_shots(shots.set);
   shots.set.aim = r.aim;
+  if (!spec.room_box && photo && camera) anchor_to_the_photo(spec, shots, r, *photo, *camera, info, warnings);
   if (spec.room_box) {
     // A room box declares the room's walls along the world's axes: its lines anchor the aims.
     const LineAnchor anchor = anchor_to_room_axes(shots.set, r.group);
@@ -366,13 +388,14 @@ void register_aims(const EnvironmentSpec& spec, LinearShots& shots, EnvironmentI
 }
 
 CubeMap load_shot_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo& info,
-                              const ImageFile* photo) {
+                              const ImageFile* photo, const Camera* camera) {
   const ShotFiles files = read_shot_files(spec);
   recover_first_response(spec, files, info);
   const ResponseCurve response = info.response.value_or(srgb_response());
   LinearShots shots = linearize_shots(spec, files, response, info, warnings);
   const bool per_shot_exif = apply_exif_exposure(spec, photo, shots, info);
-  if (spec.register_shots == EnvironmentSpec::Register::kAuto) register_aims(spec, shots, info, warnings);
+  if (spec.register_shots == EnvironmentSpec::Register::kAuto)
+    register_aims(spec, shots, info, warnings, photo, camera);
   const ShotGains gains = overlap_gains(shots.set, &shots.clipped);
   apply_gains(shots.set, gains);
   info.shot_gain = gains.gain;
@@ -385,9 +408,9 @@ CubeMap load_shot_environment(const EnvironmentSpec& spec, Warnings& warnings, E
 }  // namespace
 
 CubeMap load_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo* info_out,
-                         const ImageFile* photo) {
+                         const ImageFile* photo, const Camera* camera) {
   EnvironmentInfo info;
-  CubeMap cube = spec.from_shots() ? load_shot_environment(spec, warnings, info, photo)
+  CubeMap cube = spec.from_shots() ? load_shot_environment(spec, warnings, info, photo, camera)
                                    : load_image_environment(spec, warnings, info, photo);
   if (info_out) *info_out = info;
   return cube;

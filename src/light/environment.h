@@ -18,6 +18,7 @@
 #include "core/error.h"
 #include "light/hdr_merge.h"
 #include "light/environment_spec.h"
+#include "light/photo_anchor.h"
 #include "light/room_lines.h"
 #include "light/shot_gains.h"
 #include "light/shot_registration.h"
@@ -37,6 +38,7 @@ struct EnvironmentInfo {
   std::optional<CubeMap> clipped_cube;
   std::optional<Registration> registration;  // six shots with "register": "auto"
   std::optional<LineAnchor> line_anchor;     // ... and a room box: the aims anchored to its axes
+  std::optional<PhotoAnchor> photo_anchor;   // ... without one, given the photo's camera: to the photo
   // An image that is display-referred (8- or 16-bit: a panorama): linearized by the sRGB curve, its
   // clipped pixels in clipped_cube, brought into the photo's unit as a single shot is.
   bool panorama = false;
@@ -47,8 +49,10 @@ struct EnvironmentInfo {
 };
 
 // `photo` (as stored) gives k_photo and the estimate; without it shots keep their own unit.
+// `camera`, the photo's, anchors registered shots to the photo where no room box does
+// (photo_anchor.h).
 CubeMap load_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo* info = nullptr,
-                         const ImageFile* photo = nullptr);
+                         const ImageFile* photo = nullptr, const Camera* camera = nullptr);
 
 // The photo in linear units: through the recovered response when there is one, else sRGB-decoded.
 Image linearize_photo(const ImageFile& photo, const EnvironmentInfo& info, std::size_t* clamped = nullptr);

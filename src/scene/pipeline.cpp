@@ -213,13 +213,15 @@ void load_room(const SceneSpec& spec, LoadedScene& s, const std::atomic<bool>* s
     throw e.with_context(spec.photo_where);
   }
   throw_if_stopped(stop);
-  // The environment first: brackets may recover the camera response that linearizes the photo.
-  s.environment = load_environment(spec.environment, s.warnings, &s.environment_info, &s.photo);
+  // The camera first (it anchors handheld shots without a room box to the photo), then the
+  // environment: brackets may recover the camera response that linearizes the photo.
+  load_camera(spec, s.photo.stored.width, s.photo.stored.height, s);
+  throw_if_stopped(stop);
+  s.environment = load_environment(spec.environment, s.warnings, &s.environment_info, &s.photo, &s.camera);
   throw_if_stopped(stop);
   std::size_t clamped = 0;
   s.photo_linear = linearize_photo(s.photo, s.environment_info, &clamped);
   if (clamped > 0) s.warnings.add(spec.photo, fmt::format("{} negative or non-finite values clamped to 0", clamped));
-  load_camera(spec, s.photo.stored.width, s.photo.stored.height, s);
   check_references(spec, s.photo.stored.width, s.photo.stored.height);
   if (const auto& box = spec.environment.room_box) {
     RoomBox room{box->min.cast<float>(), box->max.cast<float>(), box->capture.cast<float>(), {}};

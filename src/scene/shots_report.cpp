@@ -23,6 +23,17 @@ nlohmann::json room_lines_json(const std::optional<LineAnchor>& a, int f) {
   return j;
 }
 
+nlohmann::json photo_anchor_json(const std::optional<PhotoAnchor>& a, int f) {
+  if (!a) return nullptr;
+  const auto s = std::size_t(f);
+  nlohmann::json j = {{"anchored", a->anchored[s]},
+                      {"matches", a->matches[s]},
+                      {"turn_deg", a->turn_deg[s]},
+                      {"residual_deg", a->residual_deg[s]}};
+  if (!a->anchored[s]) j["reason"] = a->reason[s];
+  return j;
+}
+
 nlohmann::json shot_report(const EnvironmentSpec& env, const EnvironmentInfo& info, int f) {
   const auto s = std::size_t(f);
   return {{"face", face_name(f)},
@@ -32,6 +43,7 @@ nlohmann::json shot_report(const EnvironmentSpec& env, const EnvironmentInfo& in
           {"clipped_percent", 100 * info.clipped[s]},
           {"registration", registration_json(info.registration, f)},
           {"room_lines", room_lines_json(info.line_anchor, f)},
+          {"photo_anchor", photo_anchor_json(info.photo_anchor, f)},
           {"gain", {info.shot_gain[s][0], info.shot_gain[s][1], info.shot_gain[s][2]}}};
 }
 

@@ -13,6 +13,8 @@ namespace insitu {
 nlohmann::json registration_json(const std::optional<Registration>& r, int face);
 // How the room's lines anchored a shot's aim; null without a room box.
 nlohmann::json room_lines_json(const std::optional<LineAnchor>& a, int face);
+// How the photo anchored a shot's aim; null with a room box or without the photo's camera.
+nlohmann::json photo_anchor_json(const std::optional<PhotoAnchor>& a, int face);
 // Shot `face` of the environment: its files, turn, coverage, clipping, registration, room lines
 // and gain.
 nlohmann::json shot_report(const EnvironmentSpec& env, const EnvironmentInfo& info, int face);
