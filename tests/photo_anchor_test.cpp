@@ -71,6 +71,7 @@ TEST(PhotoAnchor, APhotoOfSomethingElseAnchorsNothing) {
   for (int s = 0; s < 6; ++s) {
     EXPECT_FALSE(a.anchored[std::size_t(s)]) << face_name(s);
     EXPECT_TRUE(a.correction[std::size_t(s)].isIdentity()) << face_name(s);
+    EXPECT_EQ(a.residual_deg[std::size_t(s)], 0.0) << face_name(s);
     EXPECT_NE(a.reason[std::size_t(s)].find("needed"), std::string::npos) << a.reason[std::size_t(s)];
   }
 }

@@ -76,7 +76,7 @@ void anchor_group(const std::array<std::vector<RayPair>, 6>& matches, const std:
     out.reason[std::size_t(s)] = reason;
     out.correction[std::size_t(s)] = G;
     out.turn_deg[std::size_t(s)] = rad_to_deg(Eigen::AngleAxisd(G).angle());
-    out.residual_deg[std::size_t(s)] = rms_angle_deg(inliers, G);
+    out.residual_deg[std::size_t(s)] = reason.empty() ? rms_angle_deg(inliers, G) : 0.0;
   }
 }
 
