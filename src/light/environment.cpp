@@ -59,20 +59,17 @@ CubeMap scaled(const CubeMap& cube, float factor) {
   return out;
 }
 
-using ShotFiles = std::array<std::vector<ImageFile>, 6>;
-
-ShotFiles read_shot_files(const EnvironmentSpec& spec) {
-  ShotFiles files;
-  for (int f = 0; f < 6; ++f)
-    for (const std::string& path : spec.shots[std::size_t(f)].files) {
-      try {
-        files[std::size_t(f)].push_back(read_image_file(path));
-        ImageFile& file = files[std::size_t(f)].back();
-        file.stored = rotated_clockwise(file.stored, spec.shots[std::size_t(f)].rotate_deg);
-      } catch (const InputError& e) {
-        throw e.with_context(spec.shots[std::size_t(f)].where);
-      }
+// One shot's files (its brackets), each turned as the shot asks.
+std::vector<ImageFile> read_shot_files(const EnvironmentSpec& spec, int f) {
+  std::vector<ImageFile> files;
+  for (const std::string& path : spec.shots[std::size_t(f)].files) {
+    try {
+      files.push_back(read_image_file(path));
+      files.back().stored = rotated_clockwise(files.back().stored, spec.shots[std::size_t(f)].rotate_deg);
+    } catch (const InputError& e) {
+      throw e.with_context(spec.shots[std::size_t(f)].where);
     }
+  }
   return files;
 }
 
@@ -92,12 +89,12 @@ std::vector<double> bracket_exposures(const ShotSpec& s, const std::vector<Image
 }
 
 // The camera response, from the first bracketed shot (hdr_merge.h), when there is one.
-void recover_first_response(const EnvironmentSpec& spec, const ShotFiles& files, EnvironmentInfo& info) {
+void recover_first_response(const EnvironmentSpec& spec, EnvironmentInfo& info) {
   for (int f = 0; f < 6 && !info.response; ++f)
-    if (files[std::size_t(f)].size() >= 2) {
+    if (spec.shots[std::size_t(f)].files.size() >= 2) {
+      const std::vector<ImageFile> files = read_shot_files(spec, f);
       try {
-        info.response = recover_response(files[std::size_t(f)],
-                                         bracket_exposures(spec.shots[std::size_t(f)], files[std::size_t(f)]));
+        info.response = recover_response(files, bracket_exposures(spec.shots[std::size_t(f)], files));
       } catch (const InputError& e) {
         throw e.with_context(spec.shots[std::size_t(f)].where);
       }
@@ -113,13 +110,17 @@ struct LinearShots {
   bool all_singles_have_k = true;
 };
 
-LinearShots linearize_shots(const EnvironmentSpec& spec, const ShotFiles& files, const ResponseCurve& response,
-                            EnvironmentInfo& info, Warnings& warnings) {
+// Each shot is read, linearized and shrunk to the largest face the cube can have (shrunk_to_face)
+// before the next is read: six 12-megapixel shots would hold 864 MB as float, twice with their
+// clipped masks, for detail no face of 1024 texels keeps.
+LinearShots linearize_shots(const EnvironmentSpec& spec, const ResponseCurve& response, EnvironmentInfo& info,
+                            Warnings& warnings) {
   LinearShots out;
   out.set.faced_face = spec.faced_face;
   out.clipped.faced_face = spec.faced_face;
+  const int max_face = spec.face_size > 0 ? spec.face_size : 1024;  // natural_face_size's cap
   for (int f = 0; f < 6; ++f) {
-    const auto& fl = files[std::size_t(f)];
+    const std::vector<ImageFile> fl = read_shot_files(spec, f);
     const ShotSpec& s = spec.shots[std::size_t(f)];
     out.set.names[std::size_t(f)] = s.files.front();
     out.set.hfov_deg[std::size_t(f)] = info.hfov_deg[std::size_t(f)] = shot_hfov(s, spec, fl.front());
@@ -155,6 +156,9 @@ LinearShots linearize_shots(const EnvironmentSpec& spec, const ShotFiles& files,
     if (info.clipped[std::size_t(f)] > 0.001)
       warnings.add(s.files.front(), fmt::format("{:.1f}% of pixels clipped: radiance there is only a lower bound",
                                                 100 * info.clipped[std::size_t(f)]));
+    const double hfov = out.set.hfov_deg[std::size_t(f)];
+    out.set.shots[std::size_t(f)] = shrunk_to_face(out.set.shots[std::size_t(f)], hfov, max_face);
+    out.clipped.shots[std::size_t(f)] = shrunk_to_face(out.clipped.shots[std::size_t(f)], hfov, max_face);
   }
   return out;
 }
@@ -389,10 +393,9 @@ void register_aims(const EnvironmentSpec& spec, LinearShots& shots, EnvironmentI
 
 CubeMap load_shot_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo& info,
                               const ImageFile* photo, const Camera* camera) {
-  const ShotFiles files = read_shot_files(spec);
-  recover_first_response(spec, files, info);
+  recover_first_response(spec, info);
   const ResponseCurve response = info.response.value_or(srgb_response());
-  LinearShots shots = linearize_shots(spec, files, response, info, warnings);
+  LinearShots shots = linearize_shots(spec, response, info, warnings);
   const bool per_shot_exif = apply_exif_exposure(spec, photo, shots, info);
   if (spec.register_shots == EnvironmentSpec::Register::kAuto)
     register_aims(spec, shots, info, warnings, photo, camera);

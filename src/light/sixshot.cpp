@@ -42,6 +42,15 @@ int natural_face_size(const ShotSet& set, int max_face_size) {
   return n;
 }
 
+// Shrunk by area averaging (which keeps its integral) to one pixel per texel at the face's
+// centre: width ⌈n tan(hfov/2)⌉. The 1e-9 keeps tan 45° = 0.99999999999999989 from rounding n up.
+Image shrunk_to_face(const Image& shot, double hfov_deg, int n) {
+  const int needed_w = std::max(1, int(std::ceil(n * std::tan(0.5 * deg_to_rad(hfov_deg)) - 1e-9)));
+  if (shot.width <= needed_w) return shot;
+  const int needed_h = std::max(1, int(std::lround(double(shot.height) * needed_w / shot.width)));
+  return resize(shot, needed_w, needed_h, "box");
+}
+
 ShotBasis aimed_basis(const ShotSet& set, int s) {
   const ShotBasis b = shot_basis(s, set.faced_face);
   const Mat3d& R = set.aim[std::size_t(s)];
@@ -59,17 +68,10 @@ struct PreparedShot {
 
 PreparedShot prepare_shot(const ShotSet& set, const ShotSet* clipped, int s, int n) {
   PreparedShot p;
-  p.image = set.shots[std::size_t(s)];
-  if (clipped) p.clipped = clipped->shots[std::size_t(s)];
-  const double tan_half = std::tan(0.5 * deg_to_rad(set.hfov_deg[std::size_t(s)]));
-  // Shrink a shot larger than its face by area averaging (which keeps its integral) before
-  // sampling it. The 1e-9 keeps tan 45° = 0.99999999999999989 from rounding n up.
-  const int needed_w = std::max(1, int(std::ceil(n * tan_half - 1e-9)));
-  if (p.image.width > needed_w) {
-    const int needed_h = std::max(1, int(std::lround(double(p.image.height) * needed_w / p.image.width)));
-    p.image = resize(p.image, needed_w, needed_h, "box");
-    if (clipped) p.clipped = resize(p.clipped, needed_w, needed_h, "box");
-  }
+  const double hfov_deg = set.hfov_deg[std::size_t(s)];
+  p.image = shrunk_to_face(set.shots[std::size_t(s)], hfov_deg, n);
+  if (clipped) p.clipped = shrunk_to_face(clipped->shots[std::size_t(s)], hfov_deg, n);
+  const double tan_half = std::tan(0.5 * deg_to_rad(hfov_deg));
   p.basis = aimed_basis(set, s);
   p.f_px = 0.5 * p.image.width / tan_half;
   return p;

@@ -59,6 +59,8 @@ void fill_uncovered(CubeMap& cube, const CubeMap& weight);
 int natural_face_size(const ShotSet& set, int max_face_size = 1024);
 // Shot f's own face size at one shot pixel per texel: width · tan(45°) / tan(hfov/2), at least 1.
 int shot_face_size(const ShotSet& set, int f);
+// A shot wider than a face of n texels needs, shrunk to it (what the assembly samples).
+Image shrunk_to_face(const Image& shot, double hfov_deg, int n);
 
 // Assembles the cube; a face the shots cover less than fully is filled (AssemblyInfo::coverage).
 // `clipped`, when given, holds each shot's clipped degree (light/hdr_merge.h clipped_mask) in the
