@@ -15,7 +15,7 @@ namespace {
 using test::angle_deg;
 
 // The photo of a distant world: each pixel the world along its ray.
-Image photo_of(const Image& world, const Camera& camera) {
+Image distant_photo_of(const Image& world, const Camera& camera) {
   Image photo(camera.width, camera.height, 3);
   for (int y = 0; y < camera.height; ++y)
     for (int x = 0; x < camera.width; ++x)
@@ -47,7 +47,7 @@ struct Handheld {
 TEST(PhotoAnchor, TheShotsCommonTurnIsTakenOutByThePhoto) {
   const Handheld h;
   const Camera camera = photo_camera();
-  const PhotoAnchor a = anchor_to_photo(h.set, h.registration.group, photo_of(h.world, camera), camera);
+  const PhotoAnchor a = anchor_to_photo(h.set, h.registration.group, distant_photo_of(h.world, camera), camera);
   int anchored = 0;
   for (int s = 0; s < 6; ++s) {
     const double before = angle_deg(h.registration.aim[std::size_t(s)], h.truth[std::size_t(s)]);
@@ -67,7 +67,8 @@ TEST(PhotoAnchor, TheShotsCommonTurnIsTakenOutByThePhoto) {
 TEST(PhotoAnchor, APhotoOfSomethingElseAnchorsNothing) {
   const Handheld h;
   const Camera camera = photo_camera();
-  const PhotoAnchor a = anchor_to_photo(h.set, h.registration.group, photo_of(test::feature_world(99), camera), camera);
+  const PhotoAnchor a =
+      anchor_to_photo(h.set, h.registration.group, distant_photo_of(test::feature_world(99), camera), camera);
   for (int s = 0; s < 6; ++s) {
     EXPECT_FALSE(a.anchored[std::size_t(s)]) << face_name(s);
     EXPECT_TRUE(a.correction[std::size_t(s)].isIdentity()) << face_name(s);

@@ -90,7 +90,7 @@ ImagePoint image_point(const Vec3f& d_pano, const PanoramaPlacement& p, int widt
 }
 
 // Bilinear at pixel coordinates; x wraps when the image spans the full width, else clamps.
-Rgb bilinear(const Image& img, float x, float y, bool wrap_x) {
+Rgb bilinear_wrapped(const Image& img, float x, float y, bool wrap_x) {
   x -= 0.5f, y -= 0.5f;
   const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
   const float wx = x - float(x0), wy = y - float(y0);
@@ -138,7 +138,7 @@ CubeMap cube_from_panorama(const Image& img, const PanoramaPlacement& p, double 
           const float v = (float(j) + (float(b) + 0.5f) / float(ss)) / float(n);
           const Vec3f d_pano = turned_about_y(face_to_direction(f, u, v).normalized(), c, s);
           const ImagePoint q = image_point(d_pano, p, img.width, img.height);
-          sum += bilinear(img, q.x, q.y, wrap_x);
+          sum += bilinear_wrapped(img, q.x, q.y, wrap_x);
           seen += q.seen;
         }
       cube.set_texel(f, i, j, sum / float(ss * ss));

@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "light/rotation_prior.h"
 #include "light/shot_features.h"
 
 namespace insitu {
@@ -69,20 +70,6 @@ struct AxisResidual {
   }
 };
 
-struct PriorResidual {
-  template <typename T>
-  bool operator()(const T* w, T* r) const {
-    for (int i = 0; i < 3; ++i) r[i] = w[i] / T(deg_to_rad(10.0));
-    return true;
-  }
-};
-
-Mat3d rotation_of(const std::array<double, 3>& w) {
-  Mat3d R;
-  ceres::AngleAxisToRotationMatrix(w.data(), ceres::ColumnMajorAdapter3x3(R.data()));
-  return R;
-}
-
 struct Fit {
   std::array<double, 3> w{};
   double sigma_deg = 0;  // the standard deviation of the turn along its own axis
@@ -117,7 +104,9 @@ Fit fit_round(const std::vector<LinePlane>& lines, std::array<double, 3> w, doub
                                  l.n, k, std::sqrt(l.length_px / mean_length) / std::sin(deg_to_rad(0.5))}),
                              new ceres::CauchyLoss(1.0), w.data());
   }
-  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PriorResidual, 3, 3>(new PriorResidual), nullptr, w.data());
+  problem.AddResidualBlock(
+      new ceres::AutoDiffCostFunction<RotationPrior, 3, 3>(new RotationPrior{1.0 / deg_to_rad(10.0)}), nullptr,
+      w.data());
   ceres::Solver::Options options;
   options.max_num_iterations = 30;
   options.num_threads = 1;

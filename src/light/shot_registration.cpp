@@ -9,6 +9,7 @@
 #include <cmath>
 #include <vector>
 
+#include "light/rotation_prior.h"
 #include "light/shot_features.h"
 
 namespace insitu {
@@ -40,26 +41,10 @@ struct MatchResidual {
   }
 };
 
-// log R / σ_p: the aim's rotation vector, against the nominal direction.
-struct PriorResidual {
-  double inv_sigma;
-  template <typename T>
-  bool operator()(const T* aa, T* r) const {
-    for (int k = 0; k < 3; ++k) r[k] = aa[k] * T(inv_sigma);
-    return true;
-  }
-};
-
 struct PairMatches {
   int a, b;
   std::vector<RayPair> rays;
 };
-
-Mat3d rotation_of(const std::array<double, 3>& aa) {
-  Mat3d R;
-  ceres::AngleAxisToRotationMatrix(aa.data(), ceres::ColumnMajorAdapter3x3(R.data()));
-  return R;
-}
 
 // The pairs worth matching, and their verified matches (in parallel over pairs).
 std::vector<PairMatches> match_pairs(const ShotSet& set, const std::array<MatchImage, 6>& images, double min_overlap) {
@@ -92,7 +77,7 @@ std::array<std::array<double, 3>, 6> solve_aims(const std::vector<PairMatches>& 
   for (int s = 0; s < 6; ++s)
     if (used[std::size_t(s)])
       problem.AddResidualBlock(
-          new ceres::AutoDiffCostFunction<PriorResidual, 3, 3>(new PriorResidual{1.0 / deg_to_rad(o.prior_sigma_deg)}),
+          new ceres::AutoDiffCostFunction<RotationPrior, 3, 3>(new RotationPrior{1.0 / deg_to_rad(o.prior_sigma_deg)}),
           nullptr, aa[std::size_t(s)].data());
   if (problem.NumResidualBlocks() == 0) return aa;
   ceres::Solver::Options options;
