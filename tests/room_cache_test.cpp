@@ -1,6 +1,8 @@
 // The room's prepared light and grids, shared by the renders of one room (light/room_cache.h).
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "cube_fixture.h"
 #include "light/room_cache.h"
 
@@ -43,6 +45,23 @@ TEST(RoomCache, ServesItsOwnRoomOnly) {
   EXPECT_FALSE(cache.serves(cube, closed));
   EXPECT_FALSE(cache.serves(cube, std::nullopt));
   EXPECT_TRUE(RoomCache(cube, std::nullopt).serves(cube, std::nullopt));
+}
+
+// Once its light is built the cache no longer holds the cube, and still tells its own from a cube
+// that differs in one texel by one ulp.
+TEST(RoomCache, ServesItsRoomAfterTheLightIsBuilt) {
+  const CubeMap cube = test::random_cube(8, 3);
+  RoomCache cache(cube, kRoom);
+  ASSERT_NE(cache.light(), nullptr);
+  EXPECT_TRUE(cache.serves(cube, kRoom));
+  CubeMap nudged = cube;
+  const Rgb v = cube.texel(2, 5, 6);
+  nudged.set_texel(2, 5, 6, Rgb(std::nextafter(v[0], 1e9f), v[1], v[2]));
+  nudged.update_borders();
+  EXPECT_FALSE(nudged.same_texels(cube));
+  EXPECT_FALSE(cache.serves(nudged, kRoom));
+  EXPECT_NE(nudged.fingerprint(), cube.fingerprint());
+  EXPECT_EQ(CubeMap(cube).fingerprint(), cube.fingerprint());
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cstring>
 
 namespace insitu {
 
@@ -158,6 +159,19 @@ void CubeMap::set_face_image(int face, const Image& img) {
   assert(img.width == size_ && img.height == size_ && img.channels >= 3);
   for (int j = 0; j < size_; ++j)
     for (int i = 0; i < size_; ++i) set_texel(face, i, j, img.rgb(i, j));
+}
+
+std::uint64_t CubeMap::fingerprint() const {
+  std::uint64_t h = 14695981039346656037ull;
+  auto mix = [&h](std::uint32_t w) { h = (h ^ w) * 1099511628211ull; };
+  mix(std::uint32_t(size_));
+  for (const std::vector<float>& face : faces_)
+    for (const float v : face) {
+      std::uint32_t w = 0;
+      std::memcpy(&w, &v, sizeof w);
+      mix(w);
+    }
+  return h;
 }
 
 }  // namespace insitu

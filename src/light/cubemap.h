@@ -15,6 +15,7 @@
 #pragma once
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cmath>
 
 #include "core/image.h"
@@ -58,6 +59,10 @@ class CubeMap {
 
   // The same size and texels, bit for bit (borders included).
   bool same_texels(const CubeMap& other) const { return size_ == other.size_ && faces_ == other.faces_; }
+  // A 64-bit digest of the size and every texel (borders included): FNV-1a over 32-bit words
+  // rather than bytes (four times fewer steps; ~20 ms at a 1024 face). Equal cubes have equal
+  // fingerprints; different ones almost surely differ (an accident, not an attack, is the concern).
+  std::uint64_t fingerprint() const;
 
   // Bilinear, seamless radiance in direction `dir` (need not be unit length).
   Rgb lookup(const Vec3f& dir) const;

@@ -5,7 +5,10 @@
 namespace insitu {
 
 RoomCache::RoomCache(const CubeMap& cube, std::optional<RoomBox> box)
-    : cube_(std::make_unique<const CubeMap>(cube)), box_(std::move(box)) {}
+    : cube_(std::make_unique<const CubeMap>(cube)),
+      cube_size_(cube.size()),
+      cube_fingerprint_(cube.fingerprint()),
+      box_(std::move(box)) {}
 
 namespace {
 bool same_box(const RoomBox& a, const RoomBox& b) {
@@ -21,12 +24,15 @@ bool same_box(const RoomBox& a, const RoomBox& b) {
 
 bool RoomCache::serves(const CubeMap& cube, const std::optional<RoomBox>& box) const {
   if (box.has_value() != box_.has_value() || (box && !same_box(*box, *box_))) return false;
-  return cube.same_texels(*cube_);
+  return cube.size() == cube_size_ && cube.fingerprint() == cube_fingerprint_;
 }
 
 std::shared_ptr<const RoomLight> RoomCache::light() {
   const std::lock_guard<std::mutex> lock(mutex_);
-  if (!light_) light_ = std::make_shared<const RoomLight>(*cube_, box_);
+  if (!light_) {
+    light_ = std::make_shared<const RoomLight>(*cube_, box_);
+    cube_.reset();
+  }
   return light_;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include "core/colour.h"
@@ -72,6 +73,39 @@ Rgb RoomLight::wall_neighbours(const CubeMap& cube, const std::vector<float>& sh
 // a sun at the window's edge would give if L_out filled the texel. (For an even sky it
 // underestimates the thin ring of texels along the window's edge by s.) Each side is sampled in
 // proportion to its light and its share of the texel.
+// One side of the split: the wall's (outside = false) or the outside's radiance in every texel.
+CubeMap RoomLight::side_of(const CubeMap& cube, const std::vector<float>& outside_share, bool outside) const {
+  const int n = cube.size();
+  CubeMap side = cube;
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const float s_out = outside_share[(std::size_t(f) * n + j) * n + i];
+        if (s_out == 0.0f || s_out == 1.0f) continue;
+        const Rgb wall = wall_neighbours(cube, outside_share, f, i, j);
+        side.set_texel(f, i, j, outside ? Rgb((cube.texel(f, i, j) - (1 - s_out) * wall).max(0.0f)) : wall);
+      }
+  side.update_borders();
+  return side;
+}
+
+namespace {
+
+// Σ share·Y·ΔΩ over the texels: a side's irradiance-like power as c saw it.
+double side_power(const CubeMap& side, const std::function<double(int, int, int)>& share) {
+  const int n = side.size();
+  const std::vector<double> face_omega = face_solid_angles(n);
+  double power = 0;
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        power += share(f, i, j) * face_omega[std::size_t(j) * std::size_t(n) + std::size_t(i)] *
+                 std::max(0.0f, luminance(side.texel(f, i, j)));
+  return power;
+}
+
+}  // namespace
+
 void RoomLight::set_strategies(const CubeMap& cube, const std::vector<float>* given_share) {
   const int n = cube.size();
   const std::size_t texels = std::size_t(6) * std::size_t(n) * std::size_t(n);
@@ -79,30 +113,20 @@ void RoomLight::set_strategies(const CubeMap& cube, const std::vector<float>* gi
       given_share && given_share->size() == texels ? std::vector<float>{} : opening_shares(n);
   const std::vector<float>& outside_share = own_share.empty() ? *given_share : own_share;
   auto share_of = [&](int f, int i, int j) { return double(outside_share[(std::size_t(f) * n + j) * n + i]); };
-  wall_cube_ = cube;
-  outside_cube_ = cube;
-  for (int f = 0; f < 6; ++f)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const float s_out = float(share_of(f, i, j));
-        if (s_out == 0.0f || s_out == 1.0f) continue;
-        const Rgb wall = wall_neighbours(cube, outside_share, f, i, j);
-        wall_cube_.set_texel(f, i, j, wall);
-        outside_cube_.set_texel(f, i, j, (cube.texel(f, i, j) - (1 - s_out) * wall).max(0.0f));
-      }
-  wall_cube_.update_borders();
-  outside_cube_.update_borders();
-  double power_out = 0, power_wall = 0;
-  const std::vector<double> face_omega = face_solid_angles(n);
-  for (int f = 0; f < 6; ++f)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const double omega = face_omega[std::size_t(j) * std::size_t(n) + std::size_t(i)];
-        power_out += share_of(f, i, j) * omega * std::max(0.0f, luminance(outside_cube_.texel(f, i, j)));
-        power_wall += (1 - share_of(f, i, j)) * omega * std::max(0.0f, luminance(wall_cube_.texel(f, i, j)));
-      }
-  walls_.emplace(wall_cube_, [&](int f, int i, int j) { return 1.0 - share_of(f, i, j); });
-  outside_.emplace(outside_cube_, share_of, /*mis_compensation=*/false);
+  auto wall_share = [&](int f, int i, int j) { return 1.0 - share_of(f, i, j); };
+  // The samplers keep their own copy of the radiance: each side's cube lives only while its
+  // sampler is built (at a 1024 face a cube is 76 MB).
+  double power_wall = 0, power_out = 0;
+  {
+    const CubeMap wall_cube = side_of(cube, outside_share, false);
+    power_wall = side_power(wall_cube, wall_share);
+    walls_.emplace(wall_cube, wall_share);
+  }
+  {
+    const CubeMap outside_cube = side_of(cube, outside_share, true);
+    power_out = side_power(outside_cube, share_of);
+    outside_.emplace(outside_cube, share_of, /*mis_compensation=*/false);
+  }
   const double share = power_out + power_wall > 0 ? power_out / (power_out + power_wall) : 0.5;
   const float p_open = float(std::clamp(share, 0.2, 0.8));
   p_wall_ = 1 - p_open;

@@ -68,7 +68,7 @@ class RoomLight {
   // Without a box every call is the distant cube's. `outside_share`: opening_shares(cube.size())
   // of a light of the same box, when many are built (it depends on the box alone); else computed.
   RoomLight(const CubeMap& cube, std::optional<RoomBox> box, const std::vector<float>* outside_share = nullptr);
-  RoomLight(const RoomLight&) = delete;  // its samplers refer to its own cubes
+  RoomLight(const RoomLight&) = delete;  // hundreds of MB at a 1024 face: never copied by accident
   RoomLight& operator=(const RoomLight&) = delete;
   RoomSample sample(const Vec3f& x, float u_pick, float u_s, float u_t) const;
   float pdf(const Vec3f& x, const Vec3f& dir) const;     // of sample() producing dir at x
@@ -99,13 +99,13 @@ class RoomLight {
   RoomSample sample_portal(const Vec3f& x, float u, float u_s, float u_t) const;
   void set_strategies(const CubeMap& cube, const std::vector<float>* outside_share);
 
+  CubeMap side_of(const CubeMap& cube, const std::vector<float>& outside_share, bool outside) const;
   Rgb wall_neighbours(const CubeMap& cube, const std::vector<float>& share, int f, int i, int j) const;
 
   std::optional<RoomBox> box_;
-  EnvSampler env_;                    // the whole cube: distant light, and the walls without openings
-  CubeMap wall_cube_, outside_cube_;  // with openings: what c saw on the walls, and outside
-  std::optional<EnvSampler> walls_;   // sampling them (they refer to the cubes above)
-  std::optional<EnvSampler> outside_;
+  EnvSampler env_;                     // the whole cube: distant light, and the walls without openings
+  std::optional<EnvSampler> walls_;    // with openings: what c saw on the walls,
+  std::optional<EnvSampler> outside_;  // and outside
   float p_wall_ = 1, p_dir_ = 0, p_area_ = 0;
   std::vector<float> opening_cdf_;  // by area; opening_cdf_.back() = 1
   float opening_area_ = 0;
