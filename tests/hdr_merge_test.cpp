@@ -10,6 +10,7 @@
 #include "light/environment.h"
 #include "light/equirect.h"
 #include "light/hdr_merge.h"
+#include "light/sixshot.h"
 #include "scene/pipeline.h"
 #include "test_util.h"
 
@@ -143,6 +144,32 @@ TEST(HdrMerge, ClippedDegreeRampsToTheMasksTopCode) {
   }
   f.display_referred = false;
   for (float d : clipped_degree(f).data) EXPECT_EQ(d, 0.0f);
+}
+
+// The one-channel mask is the three-channel one's first channel, counts the same fraction, and,
+// shrunk to a face and copied to three channels, is the three-channel mask shrunk, bit for bit
+// (how the shots' masks are kept: environment.cpp).
+TEST(HdrMerge, OneChannelMaskShrinksAsTheThreeChannelOne) {
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> code(200, 255);
+  Image img(301, 227, 3);
+  for (float& v : img.data) v = float(code(rng)) / 255.0f;
+  ImageFile f;
+  f.display_referred = true;
+  f.bits = 8;
+  f.stored = img;
+  const Image grey = clipped_mask(f, 1), rgb = clipped_mask(f);
+  ASSERT_EQ(grey.channels, 1);
+  for (std::size_t i = 0; i < grey.data.size(); ++i) ASSERT_EQ(grey.data[i], rgb.data[3 * i]) << i;
+  // A pixel is clipped when any of its three codes (of 56) is 255: 1 − (55/56)³ (σ ≈ 0.0009 here).
+  EXPECT_NEAR(clipped_fraction(grey), 1 - std::pow(55.0 / 56.0, 3), 0.003);
+  EXPECT_EQ(clipped_fraction(grey), clipped_fraction(rgb));
+  EXPECT_EQ(clipped_fraction(grey), clipped_fraction(f));
+  const Image small_grey = shrunk_to_face(grey, 100, 64), small_rgb = shrunk_to_face(rgb, 100, 64);
+  ASSERT_LT(small_grey.width, grey.width);
+  ASSERT_EQ(small_grey.width, small_rgb.width);
+  for (std::size_t i = 0; i < small_grey.data.size(); ++i)
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(small_grey.data[i], small_rgb.data[3 * i + std::size_t(c)]) << i;
 }
 
 }  // namespace

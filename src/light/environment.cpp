@@ -110,9 +110,39 @@ struct LinearShots {
   bool all_singles_have_k = true;
 };
 
+// 1-channel image → 3 channels, each the same.
+Image as_rgb(const Image& grey) {
+  Image out(grey.width, grey.height, 3);
+  for (std::size_t i = 0; i < grey.data.size(); ++i)
+    out.data[3 * i] = out.data[3 * i + 1] = out.data[3 * i + 2] = grey.data[i];
+  return out;
+}
+
+// One shot's linear radiance, from its brackets or its single file, and its k when known.
+Image linear_shot(const ShotSpec& s, const std::vector<ImageFile>& fl, const ResponseCurve& response, int f,
+                  EnvironmentInfo& info, Warnings& warnings, LinearShots& out) {
+  if (fl.size() >= 2) {
+    out.k_shot[std::size_t(f)] = 1.0;
+    return merge_brackets(fl, bracket_exposures(s, fl), response);
+  }
+  std::size_t clamped = 0;
+  Image linear = (fl.front().display_referred && fl.front().bits == 8) ? linearize_with_response(fl.front(), response)
+                                                                       : linearize(fl.front(), &clamped);
+  info.clamped_values += clamped;
+  if (clamped > 0) warnings.add(s.files.front(), fmt::format("{} negative or non-finite values clamped to 0", clamped));
+  const auto rel = s.times_s.empty() ? fl.front().exposure.relative() : std::optional<double>(s.times_s.front());
+  if (rel)
+    out.k_shot[std::size_t(f)] = *rel;
+  else
+    out.all_singles_have_k = false;
+  return linear;
+}
+
 // Each shot is read, linearized and shrunk to the largest face the cube can have (shrunk_to_face)
-// before the next is read: six 12-megapixel shots would hold 864 MB as float, twice with their
-// clipped masks, for detail no face of 1024 texels keeps.
+// before the next is read, and its clipped mask made (1 channel) and shrunk after its radiance
+// is: a 12-megapixel shot is 144 MB as float, and only one such image at a time is held beside
+// the file's own pixels (the box filter treats channels apart, so the mask shrunk as one channel
+// and then copied to three is the three-channel mask shrunk).
 LinearShots linearize_shots(const EnvironmentSpec& spec, const ResponseCurve& response, EnvironmentInfo& info,
                             Warnings& warnings) {
   LinearShots out;
@@ -122,43 +152,28 @@ LinearShots linearize_shots(const EnvironmentSpec& spec, const ResponseCurve& re
   for (int f = 0; f < 6; ++f) {
     const std::vector<ImageFile> fl = read_shot_files(spec, f);
     const ShotSpec& s = spec.shots[std::size_t(f)];
-    out.set.names[std::size_t(f)] = s.files.front();
-    out.set.hfov_deg[std::size_t(f)] = info.hfov_deg[std::size_t(f)] = shot_hfov(s, spec, fl.front());
-    out.clipped.hfov_deg[std::size_t(f)] = out.set.hfov_deg[std::size_t(f)];
-    out.clipped.names[std::size_t(f)] = s.files.front();
+    const std::size_t k = std::size_t(f);
+    out.set.names[k] = out.clipped.names[k] = s.files.front();
+    const double hfov = out.set.hfov_deg[k] = out.clipped.hfov_deg[k] = info.hfov_deg[k] =
+        shot_hfov(s, spec, fl.front());
+    Image mask;
     try {
+      out.set.shots[k] = shrunk_to_face(linear_shot(s, fl, response, f, info, warnings, out), hfov, max_face);
+      // The shortest bracket's clipped pixels: clipped in every bracket (merge_brackets).
+      std::size_t shortest = 0;
       if (fl.size() >= 2) {
-        const std::vector<double> k = bracket_exposures(s, fl);
-        out.set.shots[std::size_t(f)] = merge_brackets(fl, k, response);
-        const std::size_t shortest = std::size_t(std::min_element(k.begin(), k.end()) - k.begin());
-        info.clipped[std::size_t(f)] = clipped_fraction(fl[shortest]);
-        out.clipped.shots[std::size_t(f)] = clipped_mask(fl[shortest]);
-        out.k_shot[std::size_t(f)] = 1.0;
-      } else {
-        std::size_t clamped = 0;
-        out.set.shots[std::size_t(f)] = (fl.front().display_referred && fl.front().bits == 8)
-                                            ? linearize_with_response(fl.front(), response)
-                                            : linearize(fl.front(), &clamped);
-        info.clamped_values += clamped;
-        if (clamped > 0)
-          warnings.add(s.files.front(), fmt::format("{} negative or non-finite values clamped to 0", clamped));
-        info.clipped[std::size_t(f)] = clipped_fraction(fl.front());
-        out.clipped.shots[std::size_t(f)] = clipped_mask(fl.front());
-        const auto rel = s.times_s.empty() ? fl.front().exposure.relative() : std::optional<double>(s.times_s.front());
-        if (rel)
-          out.k_shot[std::size_t(f)] = *rel;
-        else
-          out.all_singles_have_k = false;
+        const std::vector<double> times = bracket_exposures(s, fl);
+        shortest = std::size_t(std::min_element(times.begin(), times.end()) - times.begin());
       }
+      mask = clipped_mask(fl[shortest], 1);
     } catch (const InputError& e) {
       throw e.with_context(s.where);
     }
-    if (info.clipped[std::size_t(f)] > 0.001)
+    info.clipped[k] = clipped_fraction(mask);
+    if (info.clipped[k] > 0.001)
       warnings.add(s.files.front(), fmt::format("{:.1f}% of pixels clipped: radiance there is only a lower bound",
-                                                100 * info.clipped[std::size_t(f)]));
-    const double hfov = out.set.hfov_deg[std::size_t(f)];
-    out.set.shots[std::size_t(f)] = shrunk_to_face(out.set.shots[std::size_t(f)], hfov, max_face);
-    out.clipped.shots[std::size_t(f)] = shrunk_to_face(out.clipped.shots[std::size_t(f)], hfov, max_face);
+                                                100 * info.clipped[k]));
+    out.clipped.shots[k] = as_rgb(shrunk_to_face(mask, hfov, max_face));
   }
   return out;
 }

@@ -38,9 +38,10 @@ Image linearize_with_response(const ImageFile& file, const ResponseCurve& respon
 // hat weight min(z, 1 − z) (Debevec and Malik 1997) is at most 0.1 and the response curves are
 // least constrained; the weight reaches zero only at the last code.
 Image clipped_degree(const ImageFile& file);
-// 1 (in every channel) where a pixel is clipped, else 0 (clipped_degree = 1).
-Image clipped_mask(const ImageFile& file);
-// The fraction of pixels clipped.
+// 1 (in every one of its `channels`) where a pixel is clipped, else 0 (clipped_degree = 1).
+Image clipped_mask(const ImageFile& file, int channels = 3);
+// The fraction of pixels clipped: of the file, or of its clipped_mask.
 double clipped_fraction(const ImageFile& file);
+double clipped_fraction(const Image& mask);
 
 }  // namespace insitu

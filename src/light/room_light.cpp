@@ -5,6 +5,8 @@
 #include <functional>
 #include <limits>
 
+#include <tbb/parallel_for.h>
+
 #include "core/colour.h"
 #include "light/texel_geometry.h"
 
@@ -33,21 +35,23 @@ std::vector<float> RoomLight::opening_shares(int n) const {
   if (!box_ || box_->openings.empty()) return {};
   const int m = 4;
   std::vector<float> share(std::size_t(6) * n * n);
-  for (int f = 0; f < 6; ++f)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        int through = 0;
-        for (int b = 0; b < m; ++b)
-          for (int a = 0; a < m; ++a) {
-            const float s = (float(i) + (float(a) + 0.5f) / m) / float(n),
-                        t = (float(j) + (float(b) + 0.5f) / m) / float(n);
-            const Vec3f d = face_to_direction(f, s, t).normalized();
-            float t_exit = 0;
-            int axis = 0;
-            through += exit(box_->capture, d, &t_exit, &axis) && openings_at(box_->capture + t_exit * d, axis) > 0;
-          }
-        share[(std::size_t(f) * n + j) * n + i] = float(through) / float(m * m);
-      }
+  // 16 rays a texel, 100 million at a 1024 face: the face rows in parallel.
+  tbb::parallel_for(0, 6 * n, [&](int row) {
+    const int f = row / n, j = row % n;
+    for (int i = 0; i < n; ++i) {
+      int through = 0;
+      for (int b = 0; b < m; ++b)
+        for (int a = 0; a < m; ++a) {
+          const float s = (float(i) + (float(a) + 0.5f) / m) / float(n),
+                      t = (float(j) + (float(b) + 0.5f) / m) / float(n);
+          const Vec3f d = face_to_direction(f, s, t).normalized();
+          float t_exit = 0;
+          int axis = 0;
+          through += exit(box_->capture, d, &t_exit, &axis) && openings_at(box_->capture + t_exit * d, axis) > 0;
+        }
+      share[(std::size_t(f) * n + j) * n + i] = float(through) / float(m * m);
+    }
+  });
   return share;
 }
 

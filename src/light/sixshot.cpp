@@ -6,6 +6,8 @@
 #include <optional>
 #include <vector>
 
+#include <tbb/parallel_for.h>
+
 #include "core/error.h"
 
 namespace insitu {
@@ -44,8 +46,14 @@ int natural_face_size(const ShotSet& set, int max_face_size) {
 
 // Shrunk by area averaging (which keeps its integral) to one pixel per texel at the face's
 // centre: width ⌈n tan(hfov/2)⌉. The 1e-9 keeps tan 45° = 0.99999999999999989 from rounding n up.
+namespace {
+int face_width_px(double hfov_deg, int n) {
+  return std::max(1, int(std::ceil(n * std::tan(0.5 * deg_to_rad(hfov_deg)) - 1e-9)));
+}
+}  // namespace
+
 Image shrunk_to_face(const Image& shot, double hfov_deg, int n) {
-  const int needed_w = std::max(1, int(std::ceil(n * std::tan(0.5 * deg_to_rad(hfov_deg)) - 1e-9)));
+  const int needed_w = face_width_px(hfov_deg, n);
   if (shot.width <= needed_w) return shot;
   const int needed_h = std::max(1, int(std::lround(double(shot.height) * needed_w / shot.width)));
   return resize(shot, needed_w, needed_h, "box");
@@ -59,21 +67,35 @@ ShotBasis aimed_basis(const ShotSet& set, int s) {
 
 namespace {
 
+// A shot as the cube's face of n needs it: the shot itself when it is no larger
+// (shrunk_to_face), else its own shrunk copy (never a copy of a shot already small enough: six
+// shots at a 1024 face are 230 MB with their masks).
+class FaceSized {
+ public:
+  FaceSized(const Image& shot, double hfov_deg, int n) : shot_(&shot) {
+    if (shot.width > face_width_px(hfov_deg, n)) own_ = shrunk_to_face(shot, hfov_deg, n);
+  }
+  const Image& get() const { return own_ ? *own_ : *shot_; }
+
+ private:
+  const Image* shot_;
+  std::optional<Image> own_;
+};
+
 // One shot ready to be sampled: shrunk to at most one pixel per texel, with its aimed axes.
 struct PreparedShot {
-  Image image, clipped;  // clipped: empty, or the shot's clipped degree (0..1) at the same size
+  FaceSized image;
+  std::optional<FaceSized> clipped;  // the shot's clipped degree (0..1) at the same size
   ShotBasis basis;
   double f_px = 0;
 };
 
 PreparedShot prepare_shot(const ShotSet& set, const ShotSet* clipped, int s, int n) {
-  PreparedShot p;
   const double hfov_deg = set.hfov_deg[std::size_t(s)];
-  p.image = shrunk_to_face(set.shots[std::size_t(s)], hfov_deg, n);
-  if (clipped) p.clipped = shrunk_to_face(clipped->shots[std::size_t(s)], hfov_deg, n);
+  PreparedShot p{FaceSized(set.shots[std::size_t(s)], hfov_deg, n), std::nullopt, aimed_basis(set, s), 0};
+  if (clipped) p.clipped.emplace(clipped->shots[std::size_t(s)], hfov_deg, n);
   const double tan_half = std::tan(0.5 * deg_to_rad(hfov_deg));
-  p.basis = aimed_basis(set, s);
-  p.f_px = 0.5 * p.image.width / tan_half;
+  p.f_px = 0.5 * p.image.get().width / tan_half;
   return p;
 }
 
@@ -98,7 +120,8 @@ struct ShotSample {
 // clip, the neighbour's radiance is taken.
 std::optional<ShotSample> sample_shot(const PreparedShot& p, const Vec3d& d) {
   const double z = d.dot(p.basis.forward);
-  const double w = p.image.width, h = p.image.height;
+  const Image& image = p.image.get();
+  const double w = image.width, h = image.height;
   // Pixel position (corner origin) of the direction in the shot.
   const double px = 0.5 * w + p.f_px * d.dot(p.basis.right) / z;
   const double py = 0.5 * h - p.f_px * d.dot(p.basis.up) / z;
@@ -106,8 +129,8 @@ std::optional<ShotSample> sample_shot(const PreparedShot& p, const Vec3d& d) {
   if (!(z > 0) || px < -tol || px > w + tol || py < -tol || py > h + tol) return std::nullopt;
   const double x = std::clamp(px - 0.5, 0.0, w - 1.0), y = std::clamp(py - 0.5, 0.0, h - 1.0);
   ShotSample s;
-  s.radiance = bilinear(p.image, x, y);
-  s.clipped = p.clipped.width > 0 ? bilinear(p.clipped, x, y) : Rgb::Zero();
+  s.radiance = bilinear(image, x, y);
+  s.clipped = p.clipped && p.clipped->get().width > 0 ? bilinear(p.clipped->get(), x, y) : Rgb::Zero();
   const double u = std::clamp(px / w, 0.0, 1.0), v = std::clamp(py / h, 0.0, 1.0);
   s.weight = std::max(1e-12, std::min(u, 1 - u) * std::min(v, 1 - v)) * (1 - 0.999 * double(s.clipped.maxCoeff()));
   return s;
@@ -121,30 +144,42 @@ CubeMap assemble_cube(const ShotSet& set, int n, AssemblyInfo* info, const ShotS
   std::vector<PreparedShot> shots;
   for (int s = 0; s < 6; ++s) shots.push_back(prepare_shot(set, clipped, s, n));
   CubeMap cube(n), weight(n), clip(n);
+  // The face rows in parallel; each row counts the texels each shot reached ([0, 6)) and those
+  // any shot covered ([6]), summed in order after.
+  std::vector<std::array<long, 7>> row_counts(std::size_t(6) * std::size_t(n));
+  tbb::parallel_for(0, 6 * n, [&](int row) {
+    const int f = row / n, j = row % n;
+    std::array<long, 7>& counts = row_counts[std::size_t(row)];
+    counts.fill(0);
+    for (int i = 0; i < n; ++i) {
+      const Vec3d d = texel_direction(f, i, j, n).cast<double>();
+      Rgb sum = Rgb::Zero(), clip_sum = Rgb::Zero(), only = Rgb::Zero(), only_clip = Rgb::Zero();
+      double wsum = 0;
+      int count = 0;
+      for (int s = 0; s < 6; ++s)
+        if (const auto smp = sample_shot(shots[std::size_t(s)], d)) {
+          ++count, ++counts[std::size_t(s)];
+          only = smp->radiance, only_clip = smp->clipped;
+          sum += float(smp->weight) * smp->radiance, clip_sum += float(smp->weight) * smp->clipped;
+          wsum += smp->weight;
+        }
+      if (count == 0) continue;
+      ++counts[6];
+      cube.set_texel(f, i, j, count == 1 ? only : Rgb(sum / float(wsum)));
+      clip.set_texel(f, i, j, count == 1 ? only_clip : Rgb(clip_sum / float(wsum)));
+      weight.set_texel(f, i, j, Rgb::Ones());
+    }
+  });
   std::array<long, 6> used{};
   AssemblyInfo local;
   bool holes = false;
   for (int f = 0; f < 6; ++f) {
     long covered = 0;
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const Vec3d d = texel_direction(f, i, j, n).cast<double>();
-        Rgb sum = Rgb::Zero(), clip_sum = Rgb::Zero(), only = Rgb::Zero(), only_clip = Rgb::Zero();
-        double wsum = 0;
-        int count = 0;
-        for (int s = 0; s < 6; ++s)
-          if (const auto smp = sample_shot(shots[std::size_t(s)], d)) {
-            ++count, ++used[std::size_t(s)];
-            only = smp->radiance, only_clip = smp->clipped;
-            sum += float(smp->weight) * smp->radiance, clip_sum += float(smp->weight) * smp->clipped;
-            wsum += smp->weight;
-          }
-        if (count == 0) continue;
-        ++covered;
-        cube.set_texel(f, i, j, count == 1 ? only : Rgb(sum / float(wsum)));
-        clip.set_texel(f, i, j, count == 1 ? only_clip : Rgb(clip_sum / float(wsum)));
-        weight.set_texel(f, i, j, Rgb::Ones());
-      }
+    for (int j = 0; j < n; ++j) {
+      const std::array<long, 7>& counts = row_counts[std::size_t(f) * std::size_t(n) + std::size_t(j)];
+      for (int s = 0; s < 6; ++s) used[std::size_t(s)] += counts[std::size_t(s)];
+      covered += counts[6];
+    }
     local.coverage[std::size_t(f)] = double(covered) / (double(n) * n);
     holes |= covered < long(n) * n;
   }
