@@ -14,6 +14,7 @@
 #include "relight/fit_resolution.h"
 #include "relight/inverse_lighting_pixels.h"
 #include "relight/inverse_lighting_solve.h"
+#include "relight/inverse_lighting_sources.h"
 #include "relight/linear_variance.h"
 
 namespace insitu {
@@ -24,6 +25,7 @@ using inverse_lighting_detail::Albedos;
 using inverse_lighting_detail::Columns;
 using inverse_lighting_detail::estimate_irradiance;
 using inverse_lighting_detail::Fit;
+using inverse_lighting_detail::fit_sources;
 using inverse_lighting_detail::FitPixel;
 using inverse_lighting_detail::gather_pixels;
 using inverse_lighting_detail::solve;
@@ -55,184 +57,6 @@ Albedos initial_albedos(const std::vector<FitPixel>& pixels, const InverseLighti
     a.references += (a.known[s] || a.mean[s]) ? 1 : 0;
   }
   return a;
-}
-
-// How each source is fitted: its parts free, tied with the other undetermined ones to one common
-// scale, or left at the lower bound.
-enum class Mode { kFree, kWhole, kTied, kDropped };
-
-// The tied sources' column holds the parts of the one among them that delivers the most
-// irradiance to the photo's pixels per unit of power (`efficiency`): the least added light that
-// explains what the photo shows (a minimum-power solution; the others stay at the lower bound).
-Columns make_columns(const InverseLightingResult& res, const std::vector<Mode>& mode,
-                     const std::vector<double>& efficiency, const std::vector<bool>& held) {
-  Columns columns;
-  int best = -1;
-  for (std::size_t k = 0; k < mode.size(); ++k)
-    if (mode[k] == Mode::kTied && (best < 0 || efficiency[k] > efficiency[std::size_t(best)])) best = int(k);
-  std::vector<std::vector<int>> whole(mode.size());
-  std::vector<int> tied;
-  for (std::size_t j = 0; j < res.parts.size(); ++j) {
-    const int k = res.parts[j].source;
-    if (held[j]) continue;
-    if (mode[std::size_t(k)] == Mode::kFree) columns.push_back({int(j)});
-    if (mode[std::size_t(k)] == Mode::kWhole) whole[std::size_t(k)].push_back(int(j));
-    if (k == best) tied.push_back(int(j));
-  }
-  for (auto& w : whole)
-    if (!w.empty()) columns.push_back(std::move(w));
-  if (!tied.empty()) columns.push_back(tied);
-  return columns;
-}
-
-// Σ_i E_k(x_i) / power_k: how much of a source's light reaches the photo's surfaces.
-std::vector<double> efficiencies(const std::vector<FitPixel>& pixels, const InverseLightingResult& res) {
-  std::vector<double> e(res.sources.size(), 0.0);
-  for (const FitPixel& p : pixels)
-    for (std::size_t j = 0; j < res.parts.size(); ++j) e[std::size_t(res.parts[j].source)] += p.ek[j];
-  for (std::size_t k = 0; k < e.size(); ++k) e[k] /= std::max(1e-300, res.sources[k].source.power);
-  return e;
-}
-
-// The unknowns not pinned at their bound. Where a reference of known albedo is in the photo, a
-// column the fit left at a = 0 that the data inform (JᵀJ's diagonal not negligible) is known to
-// be 0 and leaves the covariance (the covariance of the active set): a ball's parts are many and
-// each is not told from its neighbours, but those at 0 are held there. Without a reference
-// nothing is pinned: a column at 0 may only trade against an albedo (over an open plane, exactly),
-// and pinned it would pass for determined.
-std::vector<int> unpinned(const Fit& fit) {
-  std::vector<int> free;
-  const double info_max = fit.jtj.diagonal().maxCoeff();
-  for (int c = 0; c < int(fit.jtj.rows()); ++c) {
-    const bool pinned =
-        fit.referenced && c < int(fit.a.size()) && fit.a[std::size_t(c)] <= 0 && fit.jtj(c, c) > 1e-10 * info_max;
-    if (!pinned) free.push_back(c);
-  }
-  return free;
-}
-
-// The scale and σ of the sources whose parts are in `which` columns (their added power over
-// their power at the lower bound); sets the parts' scales.
-std::pair<double, double> judge(const Fit& fit, const Columns& columns, const std::vector<bool>& which,
-                                InverseLightingResult& res) {
-  Eigen::VectorXd g = Eigen::VectorXd::Zero(fit.jtj.rows());
-  double added = 0, power = 0;
-  for (std::size_t c = 0; c < columns.size(); ++c)
-    for (int j : columns[c]) {
-      PartFit& part = res.parts[std::size_t(j)];
-      if (!which[std::size_t(part.source)]) continue;
-      g[Eigen::Index(c)] += part.texels.power;
-      added += fit.a[c] * part.texels.power;
-      part.scale = 1 + fit.a[c];
-    }
-  for (std::size_t k = 0; k < res.sources.size(); ++k) power += which[k] ? res.sources[k].source.power : 0;
-  power = std::max(1e-300, power);
-  const std::vector<int> free = unpinned(fit);
-  Eigen::VectorXd g_free(free.size());
-  for (std::size_t i = 0; i < free.size(); ++i) g_free[Eigen::Index(i)] = g[free[i]];
-  return {1 + added / power, std::sqrt(variance_along(fit.jtj(free, free), g_free, fit.sigma_r)) / power};
-}
-
-// Σ_i a E_c(x_i) / Σ_i E0(x_i): the light a column adds to the photo's surfaces.
-double missing_share(const std::vector<FitPixel>& pixels, const std::vector<int>& column, double a) {
-  double added = 0, base = 0;
-  for (const FitPixel& p : pixels) {
-    for (int j : column) added += a * p.ek[std::size_t(j)];
-    base += p.e0;
-  }
-  return added / std::max(1e-300, base);
-}
-
-// A free source k whose added power is undetermined: its parts whose own added power is so
-// undetermined that alone they would fail the source's test (σ_j > ½ scale · power_k) are held at
-// the lower bound, if some but not all are. Returns whether any was held.
-bool hold_unknown_parts(const Fit& fit, const Columns& columns, std::size_t k, double scale, InverseLightingResult& res,
-                        std::vector<bool>& held) {
-  const std::vector<int> free = unpinned(fit);
-  const double power = res.sources[k].source.power;
-  std::vector<int> hold;
-  int mine = 0;
-  for (std::size_t c = 0; c < columns.size(); ++c) {
-    if (columns[c].size() != 1 || res.parts[std::size_t(columns[c][0])].source != int(k)) continue;
-    ++mine;
-    const auto at = std::find(free.begin(), free.end(), int(c));
-    if (at == free.end()) continue;  // pinned at 0: held there already
-    Eigen::VectorXd g = Eigen::VectorXd::Zero(Eigen::Index(free.size()));
-    g[at - free.begin()] = res.parts[std::size_t(columns[c][0])].texels.power;
-    const double sigma = std::sqrt(variance_along(fit.jtj(free, free), g, fit.sigma_r));
-    if (!(sigma <= 0.5 * scale * power)) hold.push_back(columns[c][0]);
-  }
-  if (hold.empty() || int(hold.size()) == mine) return false;
-  for (int j : hold) held[std::size_t(j)] = true;
-  return true;
-}
-
-// The source of each column that is one part alone, −1 for the others (solve's smoothing).
-std::vector<int> column_sources(const Columns& columns, const InverseLightingResult& res) {
-  std::vector<int> out;
-  for (const auto& c : columns) out.push_back(c.size() == 1 ? res.parts[std::size_t(c[0])].source : -1);
-  return out;
-}
-
-// Fits the free sources' parts, each source judged by the σ of its added power (the sum over its
-// parts: determined even where its parts are not told apart). A source so undetermined is fitted
-// again whole, one scale for all its parts (where the photo gives only the irradiance its parts
-// add together, not their power). The still undetermined ones are fitted
-// again as one (the most efficient of them): if the photo determines that, it says how much light
-// is missing (InverseLightingResult::missing_irradiance), not from where; they stay at the lower
-// bound.
-// `warm`: each fit starts from the parts' current scales (a column's mean a), not from the lower
-// bound.
-void fit_sources(const std::vector<FitPixel>& pixels, const Albedos& albedos, InverseLightingResult& res,
-                 const std::atomic<bool>* stop, bool warm = false) {
-  std::vector<Mode> mode(res.sources.size(), Mode::kFree);
-  const std::vector<double> efficiency = efficiencies(pixels, res);
-  std::vector<bool> held(res.parts.size(), false);
-  for (bool changed = true; changed;) {
-    changed = false;
-    const Columns columns = make_columns(res, mode, efficiency, held);
-    if (columns.empty()) break;
-    std::vector<double> start;
-    for (const auto& c : columns) {
-      double a = 0;
-      for (int j : c) a += (res.parts[std::size_t(j)].scale - 1) / double(c.size());
-      start.push_back(std::max(0.0, a));
-    }
-    const std::vector<int> sources = column_sources(columns, res);
-    const Fit fit = solve(pixels, columns, albedos, stop, warm ? &start : nullptr, &sources);
-    res.residual_rms = fit.sigma_r;
-    std::vector<bool> tied(res.sources.size(), false);
-    for (std::size_t k = 0; k < res.sources.size(); ++k) {
-      tied[k] = mode[k] == Mode::kTied;
-      if (mode[k] != Mode::kFree && mode[k] != Mode::kWhole) continue;
-      std::vector<bool> one(res.sources.size(), false);
-      one[k] = true;
-      SourceFit& s = res.sources[k];
-      std::tie(s.scale, s.sigma) = judge(fit, columns, one, res);
-      s.determined = s.sigma <= 0.5 * s.scale;
-      if (!s.determined && mode[k] == Mode::kFree && hold_unknown_parts(fit, columns, k, s.scale, res, held)) {
-        changed = true;
-        continue;
-      }
-      if (!s.determined) mode[k] = mode[k] == Mode::kFree ? Mode::kWhole : Mode::kTied, changed = true;
-    }
-    if (changed || std::none_of(tied.begin(), tied.end(), [](bool t) { return t; })) continue;
-    // The tied sources' column is the most efficient one's (make_columns): the least light that
-    // explains the photo. Where it comes from is not determined, so it is only reported.
-    std::vector<bool> chosen(res.sources.size(), false);
-    chosen[std::size_t(res.parts[std::size_t(columns.back().front())].source)] = true;
-    const auto [scale, sigma] = judge(fit, columns, chosen, res);
-    if (sigma <= 0.5 * scale) res.missing_irradiance = missing_share(pixels, columns.back(), fit.a.back());
-    for (std::size_t k = 0; k < res.sources.size(); ++k)
-      if (tied[k]) mode[k] = Mode::kDropped, changed = true;
-  }
-  for (std::size_t k = 0; k < res.sources.size(); ++k) {
-    SourceFit& s = res.sources[k];
-    if (mode[k] == Mode::kDropped) s.scale = 1, s.determined = false;
-    for (std::size_t j = 0; j < res.parts.size(); ++j)
-      if (res.parts[j].source == int(k) && (!s.determined || held[j])) res.parts[j].scale = 1.0;
-    s.added_power = (s.scale - 1) * s.source.power;
-  }
 }
 
 // A channel's fit of the determined sources' colour: pixels whose E is E0_c + Σ_k m_k A_k,c, with
@@ -397,6 +221,8 @@ std::vector<PartFit> make_parts(const std::vector<ClippedSource>& sources, const
 // demo with a drawn sheet took past its 600 s wait with them.
 constexpr double kConcentrated = 3.0;
 constexpr std::size_t kMaxFineParts = 64;
+// How much larger than the coarse fit's residual the fine fit's may be (the estimates' noise).
+constexpr double kFineResidualTolerance = 1.1;
 
 // The parts to cut (ascending) and their texels as parts, each at its part's scale: the most added
 // light first, at most kMaxFineParts texels in all (each is an unknown of the dense solve and a
@@ -425,7 +251,7 @@ std::pair<std::vector<int>, std::vector<PartFit>> concentrated_parts(const Inver
 
 // Returns whether the fine fit was kept: not where it left a source undetermined that the coarse
 // fit determined (more unknowns; the closed room's window at one offset of the grid went to the
-// lower bound, 34 %), where the coarse fit stands.
+// lower bound, 34 %), nor where it explains the photo worse, where the coarse fit stands.
 // `shares`: the box's opening shares at the cube's size (RoomLight::opening_shares), computed once.
 bool refine_concentrated_parts(std::vector<FitPixel>& pixels, const Albedos& albedos, const InverseLightingInput& in,
                                const std::vector<float>& shares, InverseLightingResult& res) {
@@ -446,8 +272,12 @@ bool refine_concentrated_parts(std::vector<FitPixel>& pixels, const Albedos& alb
   for (auto r = replaced.rbegin(); r != replaced.rend(); ++r) res.parts.erase(res.parts.begin() + *r);
   for (PartFit& p : finer) res.parts.push_back(std::move(p));
   fit_sources(pixels, albedos, res, in.stop, true);
+  // The fine parts nest the coarse ones (equal scales within a cut part give the coarse fit, up
+  // to the estimates' noise), so a fine fit that explains the photo worse has run off (the sun
+  // unseen from the capture point: ×500 lamps, residual 2.5× the coarse one's) and is not kept.
+  const bool worse = res.residual_rms > kFineResidualTolerance * coarse.residual_rms;
   for (std::size_t k = 0; k < res.sources.size(); ++k)
-    if (coarse.sources[k].determined && !res.sources[k].determined) {
+    if (worse || (coarse.sources[k].determined && !res.sources[k].determined)) {
       pixels = coarse_pixels;
       res = coarse;
       return false;
