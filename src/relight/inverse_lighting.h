@@ -36,10 +36,11 @@
 // judged by the σ of its total added power (its parts need not be told apart). Clipped regions
 // closer than a part's width are one source (the fit resolves nothing finer): alone, a speck
 // beside a window's edge — JPEG ringing, texture at the clip level — was free to take what the
-// fit left (docs/validation.md, "A raised ball"). A source whose total is undetermined first pools
-// the parts whose own scale the photo does not determine, one scale for them (the sky of a window
-// around its sun; a speck out of the photo's view), keeping free those it does (the sun's, by its
-// patch), and only if that is all or none of them is fitted whole (inverse_lighting_sources.h).
+// fit left (docs/validation.md, "A raised ball"). A source whose total is undetermined first holds
+// at the lower bound the parts the photo says nothing of (a speck out of its view), then pools,
+// one scale for them, the parts it does not tell apart (the sky of a window around its sun),
+// keeping free those it does (the sun's, by its patch), and only if that is all or none of them
+// is fitted whole (inverse_lighting_sources.h).
 // Coarse to fine: a part fitted far brighter than its source (the sun in a window's sky) is then
 // cut into its texels and the sources fitted again, so that the photo, not the grid, places it;
 // a fine fit that explains the photo worse than the coarse one (its residual 1.1× or more) has

@@ -13,7 +13,8 @@ namespace insitu::inverse_lighting_detail {
 
 // Fits the free sources' parts, each source judged by the σ of its added power (the sum over its
 // parts: determined even where its parts are not told apart). A source so undetermined has the
-// parts the photo does not tell apart pooled (pool_unknown_parts) and is fitted again; one still
+// parts the photo says nothing of held at the lower bound, or those it does not tell apart pooled
+// (take_out_unknown_parts), and is fitted again; one still
 // undetermined is fitted whole, one scale for all its parts (where the photo gives only the
 // irradiance its parts add together, not their power). The still undetermined ones are fitted
 // again as one (the most efficient of them): if the photo determines that, it says how much light
