@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "cli_util.h"
+#include "gltf_fixture.h"
 #include "core/image.h"
 #include "light/preview.h"
 #include "interop/blender_export.h"
@@ -249,10 +250,21 @@ Comparison compare_with_cycles(ExportFixture& fx, int spp, bool mirror_world = f
 // Cycles's, and its slack hid that the export's own difference is nearer 2 % than 1 %.) The shadow (composite / photo
 // on the floor's darkened pixels, a mean over some 500 pixels) agrees within 0.02. The negative control: the same world
 // mirrored fails both.
+//
+// "glTF principled": the ball as a glTF sphere of a half-metallic, moderately rough material, which
+// Blender's own glTF importer turns into its Principled BSDF: insitu's principled model
+// (render/bsdf.h) against Cycles's, lobe by lobe, under the same bound.
 TEST(BlenderExport, CyclesRendersTheExportedSceneAsInsituDoes) {
   if (!have_blender()) GTEST_SKIP() << "blender is not installed (apt-get install blender)";
-  for (const std::string variant : {"distant", "room box", "mirrored world"}) {
+  for (const std::string variant : {"distant", "room box", "glTF principled", "mirrored world"}) {
     ExportFixture fx;
+    if (variant == "glTF principled") {
+      const json material = {
+          {"pbrMetallicRoughness",
+           {{"baseColorFactor", {0.8, 0.5, 0.3, 1.0}}, {"metallicFactor", 0.6}, {"roughnessFactor", 0.35}}}};
+      test::write_gltf_sphere(fx.dir, "ball", Vec3f(0, 0.2f, 0), 0.2f, material);
+      fx.scene["objects"] = {{{"mesh", "ball.gltf"}}};
+    }
     if (variant == "room box")
       fx.scene["environment"] = {{"image", "env.exr"},
                                  {"room_box",

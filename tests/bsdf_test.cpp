@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "render/bsdf.h"
+#include "render/ggx.h"
 #include "core/sampler.h"
 
 namespace insitu {
@@ -92,6 +93,124 @@ TEST(BsdfTest, EnergyIsConserved) {
         const Mc a = sampled_albedo(b, direction_at(theta), 100000, 7);
         EXPECT_LE(a.mean, 1.0 + 4 * a.se + 1e-3) << "f0 " << f0 << " alpha " << alpha << " theta " << theta;
       }
+}
+
+}  // namespace
+}  // namespace insitu
+
+namespace insitu {
+namespace {
+
+// ∫ f cos dω of one lobe set, sampled by the BSDF itself, at an angle of incidence.
+double albedo(const Bsdf& b, float theta_deg, int count = 200000) {
+  return sampled_albedo(b, direction_at(theta_deg), count, 11).mean;
+}
+
+// χ² of reflect(ωo, h), h from GGX's visible normals, against reflection_pdf: (cos θ, φ) bins,
+// each bin's expected mass by an 8 × 8 midpoint rule (dω = d cos θ dφ); bins expecting fewer than
+// 5 samples are pooled.
+TEST(BsdfTest, VisibleNormalSamplesFollowTheirPdf) {
+  constexpr int kTheta = 16, kPhi = 32, kN = 400000;
+  for (float alpha : {0.08f, 0.3f, 0.9f})
+    for (float theta : {10.0f, 50.0f, 80.0f}) {
+      const Bsdf metal = Bsdf::principled(Rgb::Ones(), 1.0f, std::sqrt(alpha), 0.5f);
+      const Vec3f wo = direction_at(theta);
+      std::vector<double> observed(kTheta * kPhi, 0.0), expected(kTheta * kPhi, 0.0);
+      for (int k = 0; k < kN; ++k) {
+        Sampler s(21, std::uint64_t(k), 0);
+        BsdfSample bs;
+        const float ul = s.next(), u1 = s.next(), u2 = s.next();
+        if (!metal.sample(wo, ul, u1, u2, &bs)) continue;
+        const int i = std::min(kTheta - 1, int(bs.wi.z() * kTheta));
+        const float phi = std::atan2(bs.wi.y(), bs.wi.x()) + kPiF;
+        observed[std::size_t(i * kPhi + std::min(kPhi - 1, int(phi / (2 * kPiF) * kPhi)))] += 1;
+      }
+      for (int i = 0; i < kTheta; ++i)
+        for (int j = 0; j < kPhi; ++j)
+          for (int a = 0; a < 8; ++a)
+            for (int c = 0; c < 8; ++c) {
+              const float z = (float(i) + (float(a) + 0.5f) / 8) / kTheta;
+              const float phi = (float(j) + (float(c) + 0.5f) / 8) / kPhi * 2 * kPiF - kPiF;
+              const float r = std::sqrt(1 - z * z);
+              const Vec3f wi(r * std::cos(phi), r * std::sin(phi), z);
+              const double d_omega = (1.0 / kTheta) * (2 * kPi / kPhi) / 64;
+              expected[std::size_t(i * kPhi + j)] += kN * ggx::reflection_pdf(wo, wi, alpha) * d_omega;
+            }
+      double chi2 = 0, pooled_o = 0, pooled_e = 0;
+      int dof = 0;
+      for (std::size_t b = 0; b < observed.size(); ++b) {
+        if (expected[b] < 5) {
+          pooled_o += observed[b], pooled_e += expected[b];
+          continue;
+        }
+        chi2 += (observed[b] - expected[b]) * (observed[b] - expected[b]) / expected[b];
+        ++dof;
+      }
+      if (pooled_e >= 5) chi2 += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e, ++dof;
+      EXPECT_LT((chi2 - dof) / std::sqrt(2.0 * dof), 4.0)
+          << "alpha " << alpha << " theta " << theta << " chi2 " << chi2;
+    }
+}
+
+TEST(BsdfTest, DielectricFresnelHasItsKnownValues) {
+  EXPECT_NEAR(fresnel_dielectric(1.0f, 1.5f), 0.04f, 1e-6f);  // ((η − 1)/(η + 1))²
+  EXPECT_NEAR(fresnel_dielectric(0.0f, 1.5f), 1.0f, 1e-6f);   // grazing
+  EXPECT_EQ(fresnel_dielectric(0.1f, 1 / 1.5f), 1.0f);        // total internal reflection
+  // Brewster's angle, tan θ_B = η: the p-polarized half vanishes, R = ½ R_s.
+  const float theta_b = std::atan(1.5f), ci = std::cos(theta_b), ct = std::cos(kPiF / 2 - theta_b);
+  const float rs = (ci - 1.5f * ct) / (ci + 1.5f * ct);
+  EXPECT_NEAR(fresnel_dielectric(ci, 1.5f), 0.5f * rs * rs, 1e-6f);
+}
+
+// The principled model draws from its own pdf (as the obj model in SamplingMatchesEvalAndPdf).
+TEST(BsdfTest, PrincipledSamplingMatchesEvalAndPdf) {
+  for (float metallic : {0.0f, 0.5f})
+    for (float roughness : {0.2f, 0.7f})
+      for (float theta : {0.0f, 70.0f}) {
+        const Bsdf b = Bsdf::principled(Rgb(0.6f, 0.4f, 0.2f), metallic, roughness, 0.5f);
+        const Vec3f wo = direction_at(theta);
+        const Mc by_sampling = sampled_albedo(b, wo, 400000, 3);
+        const Mc by_quadrature =
+            hemisphere_integral([&](const Vec3f& wi) { return double(b.eval(wo, wi)[1]) * wi.z(); }, 400000, 4);
+        EXPECT_NEAR(by_sampling.mean, by_quadrature.mean, 4 * std::hypot(by_sampling.se, by_quadrature.se))
+            << "metallic " << metallic << " roughness " << roughness << " theta " << theta;
+        const Mc pdf_integral = hemisphere_integral([&](const Vec3f& wi) { return double(b.pdf(wo, wi)); }, 400000, 5);
+        EXPECT_LE(pdf_integral.mean, 1.0 + 4 * pdf_integral.se);
+      }
+}
+
+// White furnace, lobe by lobe. A smooth white metal is lossless (F = 1 everywhere; at α = 0.0025
+// GGX's single scattering loses < 0.1 %); a rough one loses what single scattering loses, never
+// gains. The diffuse lobe of a smooth surface, seen head-on, reflects 1 − ½·∫F_L cos/π dω =
+// 1 − ½·2∫(1 − μ)^5 μ dμ = 1 − 1/42 (F_V = 0, no retro-reflection at r = 0).
+TEST(BsdfTest, PrincipledLobesPassTheWhiteFurnace) {
+  EXPECT_NEAR(albedo(Bsdf::principled(Rgb::Ones(), 1.0f, 0.05f, 0.5f), 0.0f), 1.0, 2e-3);
+  EXPECT_NEAR(albedo(Bsdf::principled(Rgb::Ones(), 1.0f, 0.05f, 0.5f), 60.0f), 1.0, 2e-3);
+  for (float r : {0.3f, 0.6f, 1.0f})
+    for (float theta : {0.0f, 45.0f, 85.0f})
+      EXPECT_LE(albedo(Bsdf::principled(Rgb::Ones(), 1.0f, r, 0.5f), theta), 1.0 + 2e-3) << r << " " << theta;
+  EXPECT_NEAR(albedo(Bsdf::principled(Rgb::Ones(), 0.0f, 0.0f, 0.0f), 0.0f, 400000), 1.0 - 1.0 / 42, 2e-3);
+  for (float theta : {0.0f, 45.0f, 85.0f})
+    EXPECT_LE(albedo(Bsdf::principled(Rgb::Ones(), 0.0f, 0.0f, 0.0f), theta), 1.0 + 2e-3) << theta;
+  // A coloured metal seen head-on reflects its colour (F_H = 0 at ωi·h = 1).
+  const Bsdf gold = Bsdf::principled(Rgb(1.0f, 0.78f, 0.34f), 1.0f, 0.05f, 0.5f);
+  EXPECT_NEAR(sampled_albedo(gold, direction_at(0), 100000, 12).mean, 0.78, 3e-3);
+}
+
+// Cycles 3.4 adds its diffuse and specular lobes: a smooth white dielectric seen at grazing
+// angles reflects nearly all of the light specularly (F → 1) and its diffuse half besides. The
+// sum equals the lobes' albedos taken apart (diffuse: specular 0; specular: the same Fresnel
+// on a black base), which is what Cycles computes.
+TEST(BsdfTest, PrincipledGainsWhatCyclesGains) {
+  for (float theta : {0.0f, 60.0f, 85.0f}) {
+    const double whole = albedo(Bsdf::principled(Rgb::Ones(), 0.0f, 0.3f, 0.5f), theta, 400000);
+    const double diffuse = albedo(Bsdf::principled(Rgb::Ones(), 0.0f, 0.3f, 0.0f), theta, 400000);
+    const double specular = albedo(Bsdf::principled(Rgb::Zero(), 0.0f, 0.3f, 0.5f), theta, 400000);
+    EXPECT_NEAR(whole, diffuse + specular, 6e-3) << theta;
+    if (theta == 85.0f) {
+      EXPECT_GT(whole, 1.05);
+    }
+  }
 }
 
 }  // namespace

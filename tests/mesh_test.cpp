@@ -142,7 +142,7 @@ TEST(Mesh, EmbreeHitsTheQuadWhereExpected) {
   EXPECT_NEAR(hit.t, 5.0f, 1e-5f);
   const SurfacePoint sp = scene.surface(ray, hit);
   EXPECT_TRUE(sp.p_world.isApprox(Vec3f(0.25f, 0, -0.75f), 1e-5f));
-  EXPECT_TRUE(sp.uv.isApprox(Vec2f(0.25f, 0.75f), 1e-5f));
+  EXPECT_TRUE(sp.uv[0].isApprox(Vec2f(0.25f, 0.75f), 1e-5f));
   EXPECT_TRUE(sp.ns_world.isApprox(Vec3f(0, 1, 0), 1e-5f));
   // From below: two-sided, both normals face the ray.
   const Ray up{{0.25f, -5.0f, -0.75f}, {0, 1, 0}};

@@ -53,7 +53,7 @@ TEST(SceneFile, TheReadmesFirstSceneIsOneInsituReads) {
   const json doc = json::parse(readme.substr(begin + 8, end - begin - 8));
   test::TempDir room;
   for (const char* f : {"room.jpg", "points.json", "east.jpg", "west.jpg", "south.jpg", "north.jpg", "ceiling.jpg",
-                        "floor.jpg", "chair.obj"})
+                        "floor.jpg", "chair.glb"})
     room.write(f, "");
   const SceneSpec spec = parse_scene_json(doc, "README.md", room.path().string());
   EXPECT_EQ(spec.camera.kind, CameraSpec::Kind::Points);
@@ -389,7 +389,8 @@ TEST(SceneFile, MessagesNameTheRealMistake) {
   j = fx.scene;
   fx.dir.write("chair.ply", "ply\nformat ascii 1.0\nend_header\n");
   j["objects"][0]["mesh"] = "chair.ply";
-  expect_error(fx, j, ":$.objects[0].mesh: " + fx.dir.file("chair.ply"), "only OBJ meshes are supported ('.ply')");
+  expect_error(fx, j, ":$.objects[0].mesh: " + fx.dir.file("chair.ply"),
+               "only OBJ and glTF meshes are supported ('.ply')");
 }
 
 // A focal length in millimetres where pixels are meant stays finite but opens the view to ~180°:

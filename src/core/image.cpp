@@ -74,8 +74,10 @@ std::string one_line(std::string s) {
   return s.empty() ? "unknown error" : s;
 }
 
-// Reads the image; read_image_file() wraps it in a StderrCapture.
-ImageFile read_image_file_quietly(const std::string& path, PixelGrid grid);
+// Reads the image (from `bytes` when given, `path` then naming it and its format by its
+// extension); read_image_file() wraps it in a StderrCapture.
+ImageFile read_image_file_quietly(const std::string& path, PixelGrid grid,
+                                  const std::vector<unsigned char>* bytes = nullptr);
 
 }  // namespace
 
@@ -84,6 +86,16 @@ ImageFile read_image_file(const std::string& path, PixelGrid grid) {
   StderrCapture capture;
   try {
     return read_image_file_quietly(path, grid);
+  } catch (...) {
+    capture.failed();
+    throw;
+  }
+}
+
+ImageFile read_image_memory(const std::string& name, const std::vector<unsigned char>& bytes, PixelGrid grid) {
+  StderrCapture capture;
+  try {
+    return read_image_file_quietly(name, grid, &bytes);
   } catch (...) {
     capture.failed();
     throw;
@@ -200,9 +212,16 @@ Image reoriented(Image img, int orientation, const std::string& path) {
   return out;
 }
 
-ImageFile read_image_file_quietly(const std::string& path, PixelGrid grid) {
-  check_exr_header(path);
-  auto in = ImageInput::open(path);
+ImageFile read_image_file_quietly(const std::string& path, PixelGrid grid, const std::vector<unsigned char>* bytes) {
+  std::optional<Filesystem::IOMemReader> memory;
+  if (bytes) {
+    const auto ext = fs::path(path).extension();
+    if (ext != ".png" && ext != ".jpg") throw InputError(path, "an embedded image must be a PNG or a JPEG");
+    memory.emplace(bytes->data(), bytes->size());
+  } else {
+    check_exr_header(path);
+  }
+  auto in = ImageInput::open(path, nullptr, memory ? &*memory : nullptr);
   if (!in) throw InputError(path, "cannot read image: " + one_line(geterror()));
   const ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) throw InputError(path, "image has no pixels");

@@ -81,6 +81,10 @@ enum class PixelGrid { kAsDisplayed, kAsStored };
 
 // Refuses (InputError naming the file) a missing, unreadable, oversized, truncated or corrupt image.
 ImageFile read_image_file(const std::string& path, PixelGrid grid = PixelGrid::kAsDisplayed);
+// The same for an image held in memory (a glTF's embedded PNG or JPEG): `name` ends in ".png" or
+// ".jpg", which chooses the decoder, and names the image in errors.
+ImageFile read_image_memory(const std::string& name, const std::vector<unsigned char>& bytes,
+                            PixelGrid grid = PixelGrid::kAsDisplayed);
 // Width and height from the header alone, as displayed (after the EXIF orientation).
 std::pair<int, int> read_image_size(const std::string& path);
 

@@ -232,7 +232,7 @@ class PathIntegrator final : public Integrator {
     Rgb throughput = Rgb::Ones(), L = Rgb::Zero();
     for (; depth < max_depth_; ++depth) {
       const SurfacePoint sp = objects_->surface(ray, hit);
-      const Bsdf bsdf = Bsdf::from_material(*sp.material, sp.material->base_colour(sp.uv));
+      const Bsdf bsdf = Bsdf::from_material(*sp.material, sp.uv);
       const Frame frame(sp.ns_world);
       const Vec3f wo = frame.to_local(-ray.dir);
       const Vec3f origin = offset_origin(sp.p_world, sp.ng_world);

@@ -7,6 +7,7 @@
 #include "core/text_file.h"
 #include "light/preview.h"
 #include "interop/blender_meshes.h"
+#include "render/gltf_mesh.h"
 #include "scene/catcher_albedo.h"
 
 namespace insitu {
@@ -80,10 +81,12 @@ std::string local_scene_lines(const LoadedScene& s, std::string& bytes) {
 std::string objects_lines(const LoadedScene& s, std::string& bytes) {
   std::string out;
   if (!s.objects) return out;
-  for (std::size_t i = 0; i < s.objects->meshes().size(); ++i)
-    out += blender_mesh(s.objects->meshes()[i],
-                        fmt::format("objects[{}] {}", i, fs::path(s.spec.objects[i].mesh).filename().string()),
-                        std::nullopt, bytes);
+  for (std::size_t i = 0; i < s.objects->meshes().size(); ++i) {
+    const ObjectSpec& o = s.spec.objects[i];
+    const std::string name = fmt::format("objects[{}] {}", i, fs::path(o.mesh).filename().string());
+    out += is_gltf_path(o.mesh) ? blender_gltf_object(o.mesh, name, o.M_world_from_object)
+                                : blender_mesh(s.objects->meshes()[i], name, std::nullopt, bytes);
+  }
   return out;
 }
 
@@ -92,7 +95,8 @@ std::string header(const LoadedScene& s, const BlenderExportPaths& paths) {
   std::string h =
       fmt::format("# Written by insitu export-blender from {} (src/interop/blender_export.h).\n", s.spec.path);
   h += "#   blender --python " + py + "                         builds the scene in a new scene \"insitu\"\n";
-  h += "#   blender -b --python " + py + " -- --render out.png [--samples N]   renders the composite over the photo\n";
+  h += "#   blender -b --python " + py +
+       " -- --render out.png [--samples N] [--seed S]   renders the composite over the photo\n";
   h += "# It reads " + fs::path(paths.meshes).filename().string() + " and " +
        fs::path(paths.world).filename().string() + " beside it.\n";
   return h;

@@ -42,7 +42,7 @@ double blender_roughness(float ns) { return std::sqrt(std::sqrt(2.0 / (std::max(
 std::string material_line(const Material& m, const std::string& object_name) {
   return fmt::format(
       "surface_material({}, {}, {}, {}, {:.9g})", py_string(object_name + ": " + m.name), py_rgb(m.kd),
-      py_string(m.map_kd_path.empty() ? "" : std::filesystem::absolute(m.map_kd_path).lexically_normal().string()),
+      py_string(m.map_kd.path.empty() ? "" : std::filesystem::absolute(m.map_kd.path).lexically_normal().string()),
       py_rgb(m.ks), blender_roughness(m.ns));
 }
 
@@ -82,6 +82,18 @@ std::string blender_mesh(const Mesh& m, const std::string& name, const std::opti
                               uvs ? "True" : "False", materials);
   if (catcher_albedo) s += "catcher(obj)\n";
   return s;
+}
+
+std::string blender_gltf_object(const std::string& path, const std::string& name, const Mat4d& M_world_from_object) {
+  Mat4d B = Mat4d::Identity();
+  B.topLeftCorner<3, 3>() = blender_from_insitu();
+  const Mat4d M = B * M_world_from_object * B.inverse();
+  std::string rows;
+  for (int r = 0; r < 4; ++r)
+    rows +=
+        fmt::format("({:.17g}, {:.17g}, {:.17g}, {:.17g}){}", M(r, 0), M(r, 1), M(r, 2), M(r, 3), r < 3 ? ", " : "");
+  return fmt::format("gltf_object(scene, {}, {}, ({}))\n", py_string(name),
+                     py_string(std::filesystem::absolute(path).lexically_normal().string()), rows);
 }
 
 }  // namespace insitu

@@ -20,4 +20,10 @@ std::string py_rgb(const Rgb& c);
 std::string blender_mesh(const Mesh& mesh, const std::string& name, const std::optional<Rgb>& catcher_albedo,
                          std::string& bytes);
 
+// The line that imports a glTF asset with Blender's own importer (its materials as Blender reads
+// them: the Principled BSDF) as object `name`, placed by insitu's M_world_from_object. The
+// importer turns glTF's +Y up to Blender's +Z up by B (blender_camera.h), so the imported asset
+// is B·p and the object's matrix is B·M·B⁻¹.
+std::string blender_gltf_object(const std::string& path, const std::string& name, const Mat4d& M_world_from_object);
+
 }  // namespace insitu

@@ -28,7 +28,8 @@ def new_scene(name):
 def cycles_common(scene, samples, seed):
     """Cycles as insitu renders, in every render made to compare with insitu (the export's and the
     validation's): the CPU, a fixed number of samples, a 1-pixel box filter, no adaptive sampling,
-    no denoising, no clamping, and the plain sRGB view."""
+    no denoising, no clamping, no glossy filter (Cycles roughens glossy lobes after a diffuse
+    bounce by default, a bias insitu does not make), and the plain sRGB view."""
     scene.render.engine = "CYCLES"
     scene.cycles.device = "CPU"
     scene.cycles.samples = samples
@@ -39,6 +40,7 @@ def cycles_common(scene, samples, seed):
     scene.cycles.seed = seed
     scene.cycles.sample_clamp_direct = 0.0
     scene.cycles.sample_clamp_indirect = 0.0
+    scene.cycles.blur_glossy = 0.0
     scene.view_settings.view_transform = "Standard"
 
 
@@ -232,6 +234,32 @@ def load_mesh(scene, name, path, offset, nv, nt_, has_normals, has_uvs, material
     return obj
 
 
+def gltf_object(scene, name, path, matrix):
+    """A glTF asset imported by Blender's own importer (io_scene_gltf2: the materials as Blender
+    reads the file), its objects under one empty placed by insitu's transform (matrix, in
+    Blender's frame). Its Principled BSDFs scatter once, GGX, as insitu's (src/render/bsdf.h)."""
+    import numpy
+    if "bool" not in numpy.__dict__:  # Debian's Blender 3.4 importer still says np.bool, gone in NumPy 1.24
+        numpy.bool = bool
+    before = set(bpy.data.objects)
+    bpy.ops.import_scene.gltf(filepath=path)
+    imported = [o for o in bpy.data.objects if o not in before]
+    root = bpy.data.objects.new(name, None)
+    scene.collection.objects.link(root)
+    root.matrix_world = Matrix(matrix)
+    for o in imported:
+        for c in list(o.users_collection):
+            c.objects.unlink(o)
+        scene.collection.objects.link(o)
+        if o.parent is None:
+            o.parent = root
+    for mat in {s.material for o in imported for s in o.material_slots if s.material}:
+        for node in mat.node_tree.nodes:
+            if node.type == "BSDF_PRINCIPLED":
+                node.distribution = "GGX"
+    return root
+
+
 def composite_over_photo(scene, photo_path, linear):
     """The render over the photo (Alpha Over of the premultiplied render): the objects, and the
     shadow catchers' darkening and light, on the user's photo."""
@@ -251,11 +279,13 @@ def composite_over_photo(scene, photo_path, linear):
 
 
 def run_from_command_line(scene):
-    """blender -b --python scene.py -- --render out.png [--samples N]: renders the composite."""
+    """blender -b --python scene.py -- --render out.png [--samples N] [--seed S]: renders the composite."""
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     args = dict(zip(argv[0::2], argv[1::2]))
     if "--samples" in args:
         scene.cycles.samples = int(args["--samples"])
+    if "--seed" in args:
+        scene.cycles.seed = int(args["--seed"])
     if "--render" not in args:
         return
     path = os.path.abspath(args["--render"])

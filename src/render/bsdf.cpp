@@ -2,33 +2,36 @@
 
 #include <algorithm>
 
+#include "render/ggx.h"
 #include "render/mesh.h"
 
 namespace insitu {
 
 namespace {
 
-Rgb schlick(const Rgb& f0, float cos_theta) {
-  const float m = std::clamp(1.0f - cos_theta, 0.0f, 1.0f), m5 = m * m * m * m * m;
-  return f0 + (Rgb::Ones() - f0) * m5;
+// Schlick's weight (1 − cos θ)^5.
+float schlick_weight(float cos_theta) {
+  const float m = std::clamp(1.0f - cos_theta, 0.0f, 1.0f);
+  return m * m * m * m * m;
 }
 
-// GGX normal distribution D(h) for a local half-vector with cos θ_h = h.z.
-float ggx_d(float cos_h, float alpha) {
-  if (cos_h <= 0) return 0;
-  const float a2 = alpha * alpha, c2 = cos_h * cos_h;
-  const float d = c2 * (a2 - 1) + 1;
-  return a2 / (kPiF * d * d);
-}
+Rgb schlick(const Rgb& f0, float cos_theta) { return f0 + (Rgb::Ones() - f0) * schlick_weight(cos_theta); }
 
-// Smith's G1 for GGX: 2 / (1 + √(1 + α² tan² θ)).
-float ggx_g1(float cos_v, float alpha) {
-  if (cos_v <= 0) return 0;
-  const float c2 = cos_v * cos_v, tan2 = std::max(0.0f, 1 - c2) / c2;
-  return 2.0f / (1.0f + std::sqrt(1.0f + alpha * alpha * tan2));
-}
+// Cycles drops a closure whose weight is below CLOSURE_WEIGHT_CUTOFF.
+constexpr float kWeightCutoff = 1e-5f;
 
 }  // namespace
+
+// Fresnel's equations for unpolarized light, without the refracted direction:
+// g = √(η² − 1 + c²), R = ½ ((g − c)/(g + c))² (1 + ((c (g + c) − 1)/(c (g − c) + 1))²).
+float fresnel_dielectric(float cos_theta, float eta) {
+  const float c = std::abs(cos_theta);
+  float g = eta * eta - 1 + c * c;
+  if (g <= 0) return 1.0f;
+  g = std::sqrt(g);
+  const float a = (g - c) / (g + c), b = (c * (g + c) - 1) / (c * (g - c) + 1);
+  return 0.5f * a * a * (1 + b * b);
+}
 
 Bsdf::Bsdf(const Rgb& diffuse, const Rgb& f0, float alpha)
     : diffuse_(diffuse),
@@ -36,46 +39,76 @@ Bsdf::Bsdf(const Rgb& diffuse, const Rgb& f0, float alpha)
       alpha_(std::clamp(alpha, 1e-3f, 1.0f)),
       glossy_(f0.maxCoeff() > 0) {}
 
-Bsdf Bsdf::from_material(const Material& m, const Rgb& base_colour) {
+Bsdf Bsdf::principled(const Rgb& base_in, float metallic, float roughness, float specular) {
+  const Rgb base = base_in.max(0.0f);
+  const float m = std::clamp(metallic, 0.0f, 1.0f), r = std::clamp(roughness, 0.0f, 1.0f);
+  const float s = std::clamp(specular, 0.0f, 1.0f);
+  Bsdf b;
+  b.principled_ = true;
+  b.diffuse_ = base * (1 - m);
+  b.f0_ = (0.08f * s * (1 - m) + base * m).min(1.0f);
+  b.roughness_ = r;
+  b.alpha_ = std::max(1e-3f, r * r);
+  b.glossy_ = s > kWeightCutoff || m > kWeightCutoff;
+  b.f0_dielectric_ = std::min(0.08f * s, 0.999f);
+  b.eta_ = 2 / (1 - std::sqrt(b.f0_dielectric_)) - 1;
+  return b;
+}
+
+Bsdf Bsdf::from_material(const Material& m, const UvSets& uv) {
+  const Rgb base = m.base_colour(uv);
+  if (m.principled) {
+    const Rgb mr = m.map_metallic_roughness.sample(uv);  // glTF: G roughness, B metallic
+    return principled(base, m.metallic * mr[2], m.roughness * mr[1], m.specular);
+  }
   // Walter et al. 2007: α = √(2/(Ns + 2)).
   const float alpha = std::sqrt(2.0f / (std::max(0.0f, m.ns) + 2.0f));
-  return Bsdf(base_colour, m.ks, alpha);
+  return Bsdf(base, m.ks, alpha);
+}
+
+Rgb Bsdf::fresnel(float cos_ih) const {
+  if (!principled_) return schlick(f0_, cos_ih);
+  const float f_h = (fresnel_dielectric(cos_ih, eta_) - f0_dielectric_) / (1 - f0_dielectric_);
+  return f0_ * (1 - f_h) + f_h;
+}
+
+Rgb Bsdf::diffuse(const Vec3f& wo, const Vec3f& wi) const {
+  if (!principled_) return glossy_ ? Rgb((Rgb::Ones() - schlick(f0_, wo.z())) * diffuse_ / kPiF) : diffuse_ / kPiF;
+  const float fv = schlick_weight(wo.z()), fl = schlick_weight(wi.z());
+  const float rr = roughness_ * (1 + wo.dot(wi));
+  return diffuse_ * (((1 - 0.5f * fv) * (1 - 0.5f * fl) + rr * (fl + fv + fl * fv * (rr - 1))) / kPiF);
 }
 
 float Bsdf::specular_probability(float cos_o) const {
-  return glossy_ ? std::clamp(schlick(f0_, cos_o).maxCoeff(), 0.05f, 0.95f) : 0.0f;
+  if (!glossy_) return 0.0f;
+  if (!principled_) return std::clamp(schlick(f0_, cos_o).maxCoeff(), 0.05f, 0.95f);
+  const float w_s = fresnel(cos_o).mean(), w_d = diffuse_.mean();
+  return w_d > kWeightCutoff ? w_s / (w_s + w_d) : 1.0f;
 }
 
 Rgb Bsdf::eval(const Vec3f& wo, const Vec3f& wi) const {
   const float co = wo.z(), ci = wi.z();
   if (co <= 0 || ci <= 0) return Rgb::Zero();
-  if (!glossy_) return diffuse_ / kPiF;
-  const Rgb diffuse = (Rgb::Ones() - schlick(f0_, co)) * diffuse_ / kPiF;
+  const Rgb f_d = diffuse(wo, wi);
+  if (!glossy_) return f_d;
   const Vec3f h = (wo + wi).normalized();
-  const float D = ggx_d(h.z(), alpha_), G = ggx_g1(co, alpha_) * ggx_g1(ci, alpha_);
-  const Rgb F = schlick(f0_, std::max(0.0f, wi.dot(h)));
-  return diffuse + F * (D * G / (4 * co * ci));
+  const float D = ggx::d(h.z(), alpha_), G = ggx::g1(co, alpha_) * ggx::g1(ci, alpha_);
+  return f_d + fresnel(std::max(0.0f, wi.dot(h))) * (D * G / (4 * co * ci));
 }
 
 float Bsdf::pdf(const Vec3f& wo, const Vec3f& wi) const {
   if (wo.z() <= 0 || wi.z() <= 0) return 0;
   const float p_cos = wi.z() / kPiF;
   if (!glossy_) return p_cos;
-  const Vec3f h = (wo + wi).normalized();
-  const float p_spec = ggx_d(h.z(), alpha_) * h.z() / (4 * std::abs(wo.dot(h)));
   const float ps = specular_probability(wo.z());
-  return ps * p_spec + (1 - ps) * p_cos;
+  return ps * ggx::reflection_pdf(wo, wi, alpha_) + (1 - ps) * p_cos;
 }
 
 bool Bsdf::sample(const Vec3f& wo, float u_lobe, float u1, float u2, BsdfSample* out) const {
   if (wo.z() <= 0) return false;
   Vec3f wi;
   if (glossy_ && u_lobe < specular_probability(wo.z())) {
-    // Half-vector from D(h) cos θ_h: tan² θ_h = α² u1 / (1 − u1).
-    const float tan2 = alpha_ * alpha_ * u1 / std::max(1e-7f, 1 - u1);
-    const float cos_h = 1 / std::sqrt(1 + tan2), sin_h = std::sqrt(std::max(0.0f, 1 - cos_h * cos_h));
-    const float phi = 2 * kPiF * u2;
-    const Vec3f h(sin_h * std::cos(phi), sin_h * std::sin(phi), cos_h);
+    const Vec3f h = ggx::sample_visible_normal(wo, alpha_, u1, u2);
     wi = 2 * wo.dot(h) * h - wo;
   } else {
     wi = cosine_sample_local(u1, u2);

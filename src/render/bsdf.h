@@ -1,20 +1,36 @@
-// The surface model of the objects: Lambertian diffuse plus a glossy GGX microfacet lobe.
+// The surface models of the objects, in a local frame with the normal along +z.
 //
+// `obj` (OBJ's MTL): Lambertian diffuse plus a glossy GGX lobe.
 //   f(ωo, ωi) = (1 − F(ωo·n))·ρ_d/π  +  D(h) G(ωo, ωi) F(ωi·h) / (4 |ωo·n| |ωi·n|)
-//
 // ρ_d = Kd × map_Kd; the specular reflectance at normal incidence F0 = Ks (Schlick's Fresnel,
 // F = F0 + (1 − F0)(1 − cos)^5); roughness α = √(2/(Ns + 2)), Walter et al. 2007's match of a
-// Phong exponent to a microfacet width. D is GGX (Trowbridge–Reitz), G Smith's separable
-// shadowing-masking. The diffuse term is weighted by what the specular Fresnel reflection leaves,
-// so the total never reflects more than arrives (checked by BsdfTest.EnergyIsConserved).
+// Phong exponent to a microfacet width. The diffuse term is weighted by what the specular Fresnel
+// reflection leaves, so the total never reflects more than arrives (BsdfTest.EnergyIsConserved).
 // With Ks = 0 the model is exactly Lambertian.
 //
-// Sampling: the glossy lobe with probability p_s = max(F(ωo·n)) when Ks > 0 (half-vectors from
-// D(h)·cos θ_h, so pdf(ωi) = D cos θ_h / (4 |ωo·h|)), else cosine-weighted; pdf() is the mixture.
-// Directions are in a local frame with the normal along +z.
+// `principled` (glTF, MTL's PBR statements): Cycles 3.4's Principled BSDF, lobe by lobe as its
+// kernel sets it up (intern/cycles/kernel/svm/closure.h, CLOSURE_BSDF_PRINCIPLED_ID), for the
+// parameters insitu reads (no transmission, clear coat, sheen or subsurface):
+//   diffuse   base·(1 − m) · f_pd, the principled diffuse of bsdf_principled_diffuse.h:
+//             f_pd = 1/π [(1 − ½F_V)(1 − ½F_L) + R (F_L + F_V + F_L F_V (R − 1))],
+//             F_x = (1 − cos θ_x)^5, R = r (1 + ωo·ωi)  (Burley 2012's retro-reflection);
+//   specular  GGX, α = r², single-scattering (the node's "GGX" distribution), with Cycles's
+//             interpolated Fresnel (bsdf_util.h, interpolate_fresnel_color):
+//             F = c0 (1 − F_H) + F_H,  F_H = (F_d(ωi·h, η) − F0) / (1 − F0),
+//             c0 = 0.08·s·(1 − m) + base·m,  F0 = 0.08·s,  η = 2/(1 − √(0.08·s)) − 1,
+//             F_d the dielectric Fresnel reflectance (fresnel_dielectric_cos).
+// m: metallic, r: roughness, s: specular. Cycles adds the two lobes: the diffuse is not weighted
+// by what the specular reflects, so a white base reflects up to ~1.5 × what arrives at grazing
+// angles (BsdfTest.PrincipledGainsWhatCyclesGains); each lobe alone conserves energy.
+//
+// Sampling: the specular lobe by GGX's visible normals (render/ggx.h), the diffuse one
+// cosine-weighted; the lobe with probability p_s: obj, max F(ωo·n) clamped to [0.05, 0.95];
+// principled, Cycles's sample weights, p_s = w_s/(w_s + w_d) with w_s the mean of F at ωo·n and
+// w_d the mean diffuse weight. pdf() is the mixture.
 #pragma once
 #include "core/math.h"
 #include "core/sampling.h"
+#include "render/texture.h"
 
 namespace insitu {
 
@@ -28,8 +44,12 @@ struct BsdfSample {
 
 class Bsdf {
  public:
+  // The obj model.
   Bsdf(const Rgb& diffuse, const Rgb& f0, float alpha);
-  static Bsdf from_material(const Material& m, const Rgb& base_colour);
+  // The principled model; parameters clamped to [0, 1].
+  static Bsdf principled(const Rgb& base, float metallic, float roughness, float specular);
+  // The material's model at a surface point, its textures sampled there.
+  static Bsdf from_material(const Material& m, const UvSets& uv);
 
   Rgb eval(const Vec3f& wo, const Vec3f& wi) const;   // f, local directions, both above
   float pdf(const Vec3f& wo, const Vec3f& wi) const;  // solid-angle density of sample()
@@ -37,10 +57,19 @@ class Bsdf {
   bool glossy() const { return glossy_; }
 
  private:
+  Bsdf() = default;
+  Rgb fresnel(float cos_ih) const;                      // the specular lobe's F at ωi·h
+  Rgb diffuse(const Vec3f& wo, const Vec3f& wi) const;  // the diffuse lobe's f
   float specular_probability(float cos_o) const;
-  Rgb diffuse_, f0_;
-  float alpha_;
-  bool glossy_;
+  bool principled_ = false;
+  Rgb diffuse_ = Rgb::Zero(), f0_ = Rgb::Zero();  // principled: base·(1 − m) and c0
+  float alpha_ = 1.0f;
+  bool glossy_ = false;
+  float roughness_ = 0.0f, eta_ = 1.5f, f0_dielectric_ = 0.04f;  // principled only
 };
+
+// The reflectance of a smooth dielectric of relative index η at cos θ (Cycles's
+// fresnel_dielectric_cos; 1 under total internal reflection).
+float fresnel_dielectric(float cos_theta, float eta);
 
 }  // namespace insitu

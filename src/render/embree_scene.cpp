@@ -139,8 +139,11 @@ SurfacePoint EmbreeScene::surface(const Ray& ray, const Hit& hit) const {
       sp.ns_world = ns.dot(sp.ng_world) < 0 ? Vec3f(-ns) : ns;
     }
   }
-  if (tri.t[0] >= 0 && tri.t[1] >= 0 && tri.t[2] >= 0)
-    sp.uv = w0 * mesh.uvs[tri.t[0]] + hit.b1 * mesh.uvs[tri.t[1]] + hit.b2 * mesh.uvs[tri.t[2]];
+  if (tri.t[0] >= 0 && tri.t[1] >= 0 && tri.t[2] >= 0) {
+    sp.uv[0] = w0 * mesh.uvs[tri.t[0]] + hit.b1 * mesh.uvs[tri.t[1]] + hit.b2 * mesh.uvs[tri.t[2]];
+    if (!mesh.uvs1.empty())
+      sp.uv[1] = w0 * mesh.uvs1[tri.t[0]] + hit.b1 * mesh.uvs1[tri.t[1]] + hit.b2 * mesh.uvs1[tri.t[2]];
+  }
   // Two-sided: both normals face the incoming ray.
   if (sp.ng_world.dot(ray.dir) > 0) {
     sp.ng_world = -sp.ng_world;

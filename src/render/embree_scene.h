@@ -25,7 +25,7 @@ struct SurfacePoint {
   Vec3f p_world;
   Vec3f ng_world;  // geometric normal
   Vec3f ns_world;  // interpolated shading normal (the geometric one where the OBJ has none)
-  Vec2f uv = Vec2f::Zero();
+  UvSets uv = {Vec2f::Zero(), Vec2f::Zero()};
   const Material* material = nullptr;
 };
 

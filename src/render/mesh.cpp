@@ -18,21 +18,6 @@
 namespace insitu {
 namespace fs = std::filesystem;
 
-Rgb Material::base_colour(const Vec2f& uv) const {
-  if (!map_kd) return kd;
-  // Bilinear, repeating; v = 0 at the bottom row (OBJ convention), texel centres at +0.5.
-  const Image& img = *map_kd;
-  const float x = (uv.x() - std::floor(uv.x())) * float(img.width) - 0.5f;
-  const float y = (1.0f - (uv.y() - std::floor(uv.y()))) * float(img.height) - 0.5f;
-  const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
-  const float wx = x - float(x0), wy = y - float(y0);
-  auto wx_ = [&](int i) { return ((i % img.width) + img.width) % img.width; };
-  auto wy_ = [&](int j) { return ((j % img.height) + img.height) % img.height; };
-  const Rgb c = (1 - wy) * ((1 - wx) * img.rgb(wx_(x0), wy_(y0)) + wx * img.rgb(wx_(x0 + 1), wy_(y0))) +
-                wy * ((1 - wx) * img.rgb(wx_(x0), wy_(y0 + 1)) + wx * img.rgb(wx_(x0 + 1), wy_(y0 + 1)));
-  return kd * c;
-}
-
 namespace {
 
 // ---- The validating pass -------------------------------------------------------------------
@@ -178,8 +163,8 @@ Material convert_material(const tinyobj::material_t& m, const fs::path& base_dir
   if (!m.diffuse_texname.empty()) {
     const std::string tex = beside_obj(base_dir, m.diffuse_texname);
     try {
-      out.map_kd = std::make_shared<Image>(linearize(read_image_file(tex, PixelGrid::kAsStored)));
-      out.map_kd_path = tex;
+      set_colour_image(out.map_kd, read_image_file(tex, PixelGrid::kAsStored));
+      out.map_kd.path = tex;
     } catch (const InputError& e) {
       throw e.with_context(where + ": map_Kd");
     }
@@ -316,7 +301,8 @@ std::vector<std::string> obj_dependencies(const std::string& obj_path) {
 Mesh load_obj(const std::string& path, Warnings& warnings) {
   const std::string ext = lower_extension(path);
   if (ext != ".obj")
-    throw InputError(path, fmt::format("only OBJ meshes are supported ('{}'): convert it to .obj, e.g. in Blender",
+    throw InputError(path, fmt::format("only OBJ and glTF meshes are supported ('{}'): convert it to .glb, "
+                                       "e.g. in Blender",
                                        ext.empty() ? "no extension" : ext));
   const ObjScan scan = scan_obj(path);
   const fs::path base_dir = fs::path(path).parent_path();

@@ -16,18 +16,27 @@
 #include "core/error.h"
 #include "core/image.h"
 #include "core/math.h"
+#include "render/texture.h"
 
 namespace insitu {
 
+// A surface's material. OBJ's MTL gives the first block (the `obj` model of render/bsdf.h); glTF
+// and MTL's PBR statements give the principled model (Cycles 3.4's Principled BSDF, render/bsdf.h),
+// whose parameters are Cycles's own: base colour, metallic, roughness r (α = r²), specular
+// (F0 = 0.08 · specular for a dielectric; 0.5 is glTF's ior 1.5).
 struct Material {
   std::string name = "default";
-  Rgb kd = Rgb(0.8f, 0.8f, 0.8f);          // diffuse reflectance (linear)
-  Rgb ks = Rgb::Zero();                    // specular reflectance, kept for the glossy lobe
-  float ns = 0.0f;                         // Phong exponent
-  float d = 1.0f;                          // dissolve (opacity)
-  std::shared_ptr<const Image> map_kd;     // linear RGB, multiplies kd; sampled by the UVs
-  std::string map_kd_path;                 // the file it was read from (for exporters), or ""
-  Rgb base_colour(const Vec2f& uv) const;  // kd × texture(uv), texture repeating
+  Rgb kd = Rgb(0.8f, 0.8f, 0.8f);  // diffuse reflectance, the base colour (linear)
+  Rgb ks = Rgb::Zero();            // specular reflectance, kept for the glossy lobe
+  float ns = 0.0f;                 // Phong exponent
+  float d = 1.0f;                  // dissolve (opacity)
+  Texture map_kd;                  // linear RGB, multiplies kd
+
+  bool principled = false;  // the principled model, with the parameters below
+  float metallic = 0.0f, roughness = 0.5f, specular = 0.5f;
+  Texture map_metallic_roughness;  // glTF's: G multiplies roughness, B metallic
+
+  Rgb base_colour(const UvSets& uv) const { return kd * map_kd.sample(uv); }
 };
 
 struct Triangle {
@@ -43,6 +52,7 @@ struct Mesh {
   std::vector<Vec3f> positions;
   std::vector<Vec3f> normals;
   std::vector<Vec2f> uvs;
+  std::vector<Vec2f> uvs1;  // a second UV set, indexed as uvs (glTF's TEXCOORD_1), or empty
   std::vector<Triangle> triangles;
   std::vector<Material> materials;  // never empty: a default material is added when needed
 };

@@ -33,7 +33,7 @@ Material material_of(const MeshArrays& a, const std::string& name) {
     const std::size_t n = texture->data.size();
     check_finite(a.map_kd, n, name, "map_kd");
     texture->data.assign(a.map_kd, a.map_kd + n);
-    m.map_kd = texture;
+    m.map_kd.image = texture;
   }
   return m;
 }

@@ -17,6 +17,7 @@
 #include "output/composite.h"
 #include "output/tonemap.h"
 #include "render/checkpoint.h"
+#include "render/gltf_mesh.h"
 #include "render/mesh.h"
 #include "scene/light_recovery.h"
 #include "scene/shots_report.h"
@@ -102,7 +103,7 @@ std::vector<NamedPath> scene_input_files_with_meshes(const SceneSpec& spec) {
   for (const auto& p : spec.local_scene)
     if (p.mesh) meshes.push_back(p.mesh->mesh);
   for (const std::string& mesh : meshes)
-    for (std::string& file : obj_dependencies(mesh)) in.push_back({std::move(file), "read by " + mesh});
+    for (std::string& file : mesh_dependencies(mesh)) in.push_back({std::move(file), "read by " + mesh});
   return in;
 }
 
@@ -168,7 +169,7 @@ void objects_uncertainty(const SceneSpec& spec, const std::vector<Mesh>& meshes,
 Mesh load_placed_mesh(const ObjectSpec& obj, Warnings& warnings) {
   Mesh mesh;
   try {
-    mesh = load_obj(obj.mesh, warnings);
+    mesh = load_mesh(obj.mesh, warnings);
   } catch (const InputError& e) {
     throw e.with_context(obj.where + ".mesh");
   }
@@ -242,6 +243,22 @@ void copy_room(const LoadedScene& from, LoadedScene& s) {
   s.warnings.items.insert(s.warnings.items.end(), from.room_warnings.items.begin(), from.room_warnings.items.end());
 }
 
+// The principled model (glTF) is the path integrator's: the others say which materials they shade by
+// base colour alone. (OBJ's Ks, which the legacy renderer never drew either, goes unremarked.)
+void warn_base_colour_only(const std::vector<Mesh>& meshes, const std::string& integrator, Warnings& w) {
+  if (integrator == "path") return;
+  std::string names;
+  for (const Mesh& m : meshes)
+    for (const Material& mat : m.materials)
+      if (mat.principled && names.find("'" + mat.name + "'") == std::string::npos)
+        names += (names.empty() ? "'" : ", '") + mat.name + "'";
+  if (!names.empty())
+    w.add("render.integrator", "the " + integrator +
+                                   " integrator shades the objects by their base colour only; metallic, roughness "
+                                   "and specular are the path integrator's (materials " +
+                                   names + ")");
+}
+
 // The objects (from the spec, then from memory) and the local scene's meshes.
 void load_objects(const SceneSpec& spec, std::vector<Mesh> memory_objects, LoadedScene& s,
                   const std::atomic<bool>* stop) {
@@ -264,6 +281,7 @@ void load_objects(const SceneSpec& spec, std::vector<Mesh> memory_objects, Loade
     meshes.push_back(std::move(m));
   }
   throw_if_stopped(stop);
+  warn_base_colour_only(meshes, spec.render.integrator, s.warnings);
   objects_uncertainty(spec, meshes, s);
   s.objects = std::make_unique<EmbreeScene>(std::move(meshes));
   std::vector<Mesh> catcher_meshes;

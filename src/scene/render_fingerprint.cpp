@@ -13,13 +13,21 @@ void add_camera(Fnv1a& h, const Camera& c) {
   h.bytes(c.R_cam_from_world.data(), 9 * sizeof(double)), h.bytes(c.t_cam_from_world.data(), 3 * sizeof(double));
 }
 
+void add_texture(Fnv1a& h, const Texture& t) {
+  h.value(bool(t));
+  if (!t) return;
+  h.array(t.image->data), h.value(t.texcoord), h.bytes(t.image_from_uv.data(), 6 * sizeof(float));
+}
+
 void add_meshes(Fnv1a& h, const EmbreeScene* scene) {
   if (!scene) return;
   for (const Mesh& m : scene->meshes()) {
-    h.array(m.positions), h.array(m.normals), h.array(m.uvs), h.array(m.triangles);
+    h.array(m.positions), h.array(m.normals), h.array(m.uvs), h.array(m.uvs1), h.array(m.triangles);
     for (const Material& mat : m.materials) {
       h.bytes(mat.kd.data(), sizeof(Rgb)), h.bytes(mat.ks.data(), sizeof(Rgb)), h.value(mat.ns);
-      if (mat.map_kd) h.array(mat.map_kd->data);
+      add_texture(h, mat.map_kd);
+      h.value(mat.principled), h.value(mat.metallic), h.value(mat.roughness), h.value(mat.specular);
+      add_texture(h, mat.map_metallic_roughness);
     }
   }
 }

@@ -4,7 +4,7 @@ _base/ and case.json = {"args": [...insitu arguments...], "exit": 2, "message": 
 stderr line>", "unchanged": [files that must be byte-identical afterwards]}. The runner
 (tests/bad_input_test.cpp) copies _base/, then the case, into a temporary folder and runs insitu
 there. Rerun this script after changing it; it rewrites every case folder it knows."""
-import json, os, re, shutil, struct, subprocess, zlib
+import base64, json, os, re, shutil, struct, subprocess, zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 BASE_SCENE = json.load(open(os.path.join(HERE, "_base", "scene.json")))
@@ -182,7 +182,7 @@ def main():
          scene=scene_with(objects__0__rotate=[0, 20, 0]))
     case("scale_as_a_string", ["render", "scene.json"], r"\$\.objects\[0\]\.scale: expected a number",
          scene=scene_with(objects__0__scale="0.3"))
-    case("mesh_is_ply", ["render", "scene.json"], r"only OBJ meshes are supported \('\.ply'\)",
+    case("mesh_is_ply", ["render", "scene.json"], r"only OBJ and glTF meshes are supported \('\.ply'\)",
          files={"chair.ply": "ply\nformat ascii 1.0\nend_header\n"}, scene=scene_with(objects__0__mesh="chair.ply"))
     case("rotation_not_orthonormal", ["render", "scene.json"], r"\$\.camera\.pose\.R: not a rotation",
          scene=scene_with(camera={"intrinsics": {"fx": 40}, "pose": {"R": [[1.01, 0, 0], [0, -1, 0], [0, 0, -1]], "t": [0, 0, 3]}}))
@@ -192,6 +192,7 @@ def main():
          files={"tex.png": png[: len(png) // 2], "quad.mtl": "newmtl red\nKd 1 1 1\nmap_Kd tex.png\n"})
     systematic_cases()
     more_cases()
+    gltf_cases()
     message_cases()
     print("wrote", sum(1 for d in os.listdir(HERE) if os.path.isfile(os.path.join(HERE, d, "case.json"))), "cases")
 
@@ -269,6 +270,36 @@ def systematic_cases():
                  ("environment", "shots", "down"), ("objects", 0, "mesh"), ("local_scene", 0, "plane", "point"),
                  ("references", 0, "albedo")]:
         variant("missing_key_" + "_".join(str(k) for k in path), path, None, r"scene.json.*(missing|required)", delete=True)
+
+
+def gltf_quad(indices=(0, 1, 2, 0, 2, 3), count=4, required=(), buffer_uri=None):
+    """A unit quad as a .gltf, its buffer in a data URI (or at buffer_uri, not written)."""
+    pos = struct.pack("<12f", 0, 0, 0, 1, 0, 0, 1, 0, 1, 0, 0, 1)
+    idx = struct.pack("<%dH" % len(indices), *indices)
+    data = pos + idx
+    uri = buffer_uri or "data:application/octet-stream;base64," + base64.b64encode(data).decode()
+    g = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+         "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+         "accessors": [{"bufferView": 0, "componentType": 5126, "count": count, "type": "VEC3"},
+                       {"bufferView": 1, "componentType": 5123, "count": len(indices), "type": "SCALAR"}],
+         "bufferViews": [{"buffer": 0, "byteLength": len(pos)}, {"buffer": 0, "byteOffset": len(pos), "byteLength": len(idx)}],
+         "buffers": [{"uri": uri, "byteLength": len(data)}]}
+    if required:
+        g["extensionsRequired"] = g["extensionsUsed"] = list(required)
+    return json.dumps(g)
+
+
+def gltf_cases():
+    """glTF furniture: each refusal names the file and the JSON path or accessor."""
+    at = scene_with(objects__0__mesh="chair.gltf")
+    for name, text, message in [
+            ("required_draco", gltf_quad(required=["KHR_draco_mesh_compression"]),
+             r"chair.gltf: \$\.extensionsRequired\[0\]: .*KHR_draco_mesh_compression"),
+            ("index_range", gltf_quad(indices=(0, 1, 7)), r"chair.gltf: \$\.accessors\[1\] \(indices\): index 7"),
+            ("past_buffer", gltf_quad(count=40), r"chair.gltf: \$\.accessors\[0\] \(POSITION\): .*past the end"),
+            ("missing_bin", gltf_quad(buffer_uri="chair.bin"), r"chair.gltf: .*chair.bin"),
+            ("not_json", "{\"asset\": ", r"chair.gltf: ")]:
+        case("gltf_" + name, ["render", "scene.json"], message, files={"chair.gltf": text}, scene=at)
 
 
 def more_cases():

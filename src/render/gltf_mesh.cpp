@@ -1,0 +1,340 @@
+#include "render/gltf_mesh.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fmt/format.h>
+#include <cstring>
+#include <set>
+
+#include "core/file_check.h"
+#include "render/gltf_materials.h"
+
+namespace insitu {
+namespace fs = std::filesystem;
+namespace {
+
+// Extensions a file may require that insitu renders as the file means them.
+const std::set<std::string> kSupportedRequired = {"KHR_texture_transform"};
+
+// tinygltf's image hook: keep the encoded bytes, decoded later by OpenImageIO (gltf_materials.cpp)
+// with insitu's checks on size and corruption.
+bool keep_encoded(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
+                  int size, void*) {
+  image->image.assign(bytes, bytes + std::max(0, size));
+  image->as_is = true;
+  return true;
+}
+
+std::string first_line(const std::string& s) {
+  const std::string line = s.substr(0, s.find('\n'));
+  return line.empty() ? "cannot be parsed" : line;
+}
+
+tinygltf::Model parse(const std::string& path, Warnings& warnings) {
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(keep_encoded, nullptr);
+  tinygltf::Model model;
+  std::string err, warn;
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const bool binary = ext == ".glb";
+  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
+                         : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  if (!ok || !err.empty()) throw InputError(path, first_line(err));
+  if (!warn.empty()) warnings.add(path, first_line(warn));
+  for (std::size_t i = 0; i < model.extensionsRequired.size(); ++i)
+    if (!kSupportedRequired.count(model.extensionsRequired[i]))
+      throw InputError(fmt::format("{}: $.extensionsRequired[{}]", path, i),
+                       fmt::format("the file requires {}, which insitu does not support", model.extensionsRequired[i]));
+  return model;
+}
+
+// Reads accessors with their bounds checked against their buffer view and buffer.
+class Accessors {
+ public:
+  Accessors(const tinygltf::Model& model, const std::string& path) : model_(model), path_(path) {}
+
+  // `components` floats per element: float, or normalized unsigned byte or short.
+  std::vector<float> floats(int index, int components, const char* semantic) const {
+    const tinygltf::Accessor& a = checked(index, semantic, components);
+    const int ct = a.componentType;
+    if (ct != TINYGLTF_COMPONENT_TYPE_FLOAT && !(a.normalized && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                                                  ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)))
+      throw InputError(where(index, semantic), "component type must be float, or normalized unsigned byte or short");
+    std::vector<float> out(a.count * std::size_t(components));
+    for_each(a, [&](std::size_t i, const unsigned char* p) {
+      for (int c = 0; c < components; ++c) out[i * components + c] = component(p, ct, c);
+    });
+    for (float v : out)
+      if (!std::isfinite(v)) throw InputError(where(index, semantic), "a value is not finite");
+    return out;
+  }
+
+  std::vector<std::uint32_t> indices(int index) const {
+    const tinygltf::Accessor& a = checked(index, "indices", 1);
+    const int ct = a.componentType;
+    if (ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+      throw InputError(where(index, "indices"), "component type must be unsigned byte, short or int");
+    std::vector<std::uint32_t> out(a.count);
+    for_each(a, [&](std::size_t i, const unsigned char* p) {
+      if (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) out[i] = *p;
+      if (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) out[i] = read<std::uint16_t>(p);
+      if (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) out[i] = read<std::uint32_t>(p);
+    });
+    return out;
+  }
+
+  std::string where(int index, const char* semantic) const {
+    return fmt::format("{}: $.accessors[{}] ({})", path_, index, semantic);
+  }
+
+ private:
+  template <class T>
+  static T read(const unsigned char* p) {
+    T v;
+    std::memcpy(&v, p, sizeof(T));
+    return v;
+  }
+  static float component(const unsigned char* p, int ct, int c) {
+    if (ct == TINYGLTF_COMPONENT_TYPE_FLOAT) return read<float>(p + 4 * c);
+    if (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) return float(p[c]) / 255.0f;
+    return float(read<std::uint16_t>(p + 2 * c)) / 65535.0f;
+  }
+
+  // The accessor, its type (SCALAR, VEC2, VEC3 by `components`) and its bytes within its view and buffer.
+  const tinygltf::Accessor& checked(int index, const char* semantic, int components) const {
+    if (index < 0 || index >= int(model_.accessors.size()))
+      throw InputError(fmt::format("{}: {}", path_, semantic),
+                       fmt::format("accessor {} out of range ({} accessors)", index, model_.accessors.size()));
+    const tinygltf::Accessor& a = model_.accessors[std::size_t(index)];
+    if (a.sparse.isSparse) throw InputError(where(index, semantic), "sparse accessors are not supported");
+    if (tinygltf::GetNumComponentsInType(std::uint32_t(a.type)) != components)
+      throw InputError(where(index, semantic), fmt::format("expected {} components per element", components));
+    if (a.bufferView < 0 || a.bufferView >= int(model_.bufferViews.size()))
+      throw InputError(where(index, semantic), "no buffer view holds its data");
+    const tinygltf::BufferView& view = model_.bufferViews[std::size_t(a.bufferView)];
+    if (view.buffer < 0 || view.buffer >= int(model_.buffers.size()))
+      throw InputError(where(index, semantic), fmt::format("buffer view {} names no buffer", a.bufferView));
+    const int stride = a.ByteStride(view);
+    const std::uint64_t element =
+        std::uint64_t(tinygltf::GetComponentSizeInBytes(std::uint32_t(a.componentType))) * std::uint64_t(components);
+    if (stride <= 0 || a.count == 0) throw InputError(where(index, semantic), "no elements, or a bad stride");
+    const std::uint64_t end = std::uint64_t(a.byteOffset) + std::uint64_t(stride) * (a.count - 1) + element;
+    if (end > view.byteLength ||
+        view.byteOffset + view.byteLength > model_.buffers[std::size_t(view.buffer)].data.size())
+      throw InputError(where(index, semantic), "its data runs past the end of its buffer view or buffer");
+    return a;
+  }
+
+  template <class F>
+  void for_each(const tinygltf::Accessor& a, F&& f) const {
+    const tinygltf::BufferView& view = model_.bufferViews[std::size_t(a.bufferView)];
+    const unsigned char* base = model_.buffers[std::size_t(view.buffer)].data.data() + view.byteOffset + a.byteOffset;
+    const std::size_t stride = std::size_t(a.ByteStride(view));
+    for (std::size_t i = 0; i < a.count; ++i) f(i, base + i * stride);
+  }
+
+  const tinygltf::Model& model_;
+  const std::string& path_;
+};
+
+// A node's own transform: its matrix (column-major), or T · R · S.
+Mat4d local_transform(const tinygltf::Node& node) {
+  Mat4d m = Mat4d::Identity();
+  if (node.matrix.size() == 16) {
+    for (int i = 0; i < 16; ++i) m(i % 4, i / 4) = node.matrix[std::size_t(i)];
+    return m;
+  }
+  if (node.scale.size() == 3) m.topLeftCorner<3, 3>() = Vec3d(node.scale[0], node.scale[1], node.scale[2]).asDiagonal();
+  if (node.rotation.size() == 4) {
+    const Eigen::Quaterniond q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+    m.topLeftCorner<3, 3>() = q.normalized().toRotationMatrix() * m.topLeftCorner<3, 3>();
+  }
+  if (node.translation.size() == 3)
+    m.topRightCorner<3, 1>() = Vec3d(node.translation[0], node.translation[1], node.translation[2]);
+  return m;
+}
+
+class MeshBuilder {
+ public:
+  static constexpr int kMaxDepth = 1000;
+  MeshBuilder(const tinygltf::Model& model, const std::string& path, Warnings& warnings)
+      : model_(model), path_(path), warnings_(warnings), accessors_(model, path) {
+    for (const auto& mesh : model.meshes)
+      for (const auto& prim : mesh.primitives) {
+        uv0_ |= prim.attributes.count("TEXCOORD_0") > 0;
+        uv1_ |= prim.attributes.count("TEXCOORD_1") > 0;
+      }
+    out_.source = path;
+    out_.files.push_back(path);
+    out_.materials = gltf_materials(model, path, warnings);
+  }
+
+  // A node and its subtree; `depth` bounds the recursion (a chain of nodes as deep as the file is long).
+  void node(int index, const Mat4d& parent, std::vector<char>& visited, int depth = 0) {
+    if (depth > kMaxDepth)
+      throw InputError(fmt::format("{}: $.nodes[{}]", path_, index),
+                       fmt::format("nested deeper than {} levels", kMaxDepth));
+    if (index < 0 || index >= int(model_.nodes.size()))
+      throw InputError(fmt::format("{}: $.nodes", path_), fmt::format("node {} out of range", index));
+    if (visited[std::size_t(index)])
+      throw InputError(fmt::format("{}: $.nodes[{}]", path_, index),
+                       "the node hierarchy is not a tree (a cycle, or two parents)");
+    visited[std::size_t(index)] = 1;
+    const tinygltf::Node& n = model_.nodes[std::size_t(index)];
+    const Mat4d world = parent * local_transform(n);
+    if (!world.allFinite())
+      throw InputError(fmt::format("{}: $.nodes[{}]", path_, index), "its transform is not finite");
+    if (n.mesh >= int(model_.meshes.size()))
+      throw InputError(fmt::format("{}: $.nodes[{}].mesh", path_, index), fmt::format("mesh {} out of range", n.mesh));
+    if (n.mesh >= 0)
+      for (std::size_t p = 0; p < model_.meshes[std::size_t(n.mesh)].primitives.size(); ++p)
+        primitive(n.mesh, p, world);
+    for (int child : n.children) node(child, world, visited, depth + 1);
+  }
+
+  Mesh finish() {
+    if (out_.triangles.empty()) throw InputError(path_, "the default scene holds no triangles");
+    if (dropped_ > 0) warnings_.add(path_, fmt::format("{} degenerate triangles dropped", dropped_));
+    if (!uses_default_) out_.materials.pop_back();
+    return std::move(out_);
+  }
+
+ private:
+  void primitive(int mesh, std::size_t p, const Mat4d& world) {
+    const tinygltf::Primitive& prim = model_.meshes[std::size_t(mesh)].primitives[p];
+    const std::string where = fmt::format("{}: $.meshes[{}].primitives[{}]", path_, mesh, p);
+    if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES) {
+      warnings_.add(where, fmt::format("mode {} skipped: insitu renders triangles (mode 4)", prim.mode));
+      return;
+    }
+    const auto attribute = [&](const char* name) {
+      const auto it = prim.attributes.find(name);
+      return it == prim.attributes.end() ? -1 : it->second;
+    };
+    if (attribute("POSITION") < 0) throw InputError(where, "no POSITION attribute");
+    const std::vector<float> pos = accessors_.floats(attribute("POSITION"), 3, "POSITION");
+    const std::size_t n = pos.size() / 3, base = out_.positions.size();
+    const Eigen::Matrix3d normal_matrix = world.topLeftCorner<3, 3>().inverse().transpose();
+    for (std::size_t i = 0; i < n; ++i)
+      out_.positions.push_back(
+          (world * Eigen::Vector4d(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2], 1)).head<3>().cast<float>());
+    const bool normals = attribute("NORMAL") >= 0;
+    if (normals) {
+      const std::vector<float> nor = vertex_floats(attribute("NORMAL"), 3, "NORMAL", n);
+      for (std::size_t i = 0; i < n; ++i) {
+        const Vec3d v = normal_matrix * Vec3d(nor[3 * i], nor[3 * i + 1], nor[3 * i + 2]);
+        out_.normals.push_back((v.norm() > 0 ? v.normalized() : v).cast<float>());
+      }
+    }
+    uvs(attribute("TEXCOORD_0"), "TEXCOORD_0", n, uv0_, out_.uvs);
+    uvs(attribute("TEXCOORD_1"), "TEXCOORD_1", n, uv1_, out_.uvs1);
+    int material = prim.material;
+    if (material < -1 || material >= int(model_.materials.size()))
+      throw InputError(where + ".material", fmt::format("material {} out of range", material));
+    if (material < 0) {
+      material = int(out_.materials.size()) - 1;  // glTF's default material
+      uses_default_ = true;
+    }
+    triangles(prim, where, n, base, normals ? std::int64_t(out_.normals.size() - n) : -1, material);
+  }
+
+  std::vector<float> vertex_floats(int accessor, int components, const char* semantic, std::size_t n) const {
+    std::vector<float> v = accessors_.floats(accessor, components, semantic);
+    if (v.size() != n * std::size_t(components))
+      throw InputError(accessors_.where(accessor, semantic),
+                       fmt::format("{} elements for {} positions", v.size() / components, n));
+    return v;
+  }
+
+  // A UV set: present in some primitive, it is stored for every vertex (zero where a primitive lacks it).
+  void uvs(int accessor, const char* semantic, std::size_t n, bool any, std::vector<Vec2f>& out) const {
+    if (!any) return;
+    if (accessor < 0) {
+      out.insert(out.end(), n, Vec2f::Zero());
+      return;
+    }
+    const std::vector<float> uv = vertex_floats(accessor, 2, semantic, n);
+    for (std::size_t i = 0; i < n; ++i) out.emplace_back(uv[2 * i], 1.0f - uv[2 * i + 1]);
+  }
+
+  void triangles(const tinygltf::Primitive& prim, const std::string& where, std::size_t n, std::size_t base,
+                 std::int64_t normal_base, int material) {
+    std::vector<std::uint32_t> idx;
+    if (prim.indices >= 0) {
+      idx = accessors_.indices(prim.indices);
+    } else {
+      idx.resize(n);
+      for (std::size_t i = 0; i < n; ++i) idx[i] = std::uint32_t(i);
+    }
+    if (idx.size() % 3 != 0) throw InputError(where, fmt::format("{} indices: not a multiple of 3", idx.size()));
+    for (std::size_t i = 0; i < idx.size(); ++i)
+      if (idx[i] >= n)
+        throw InputError(accessors_.where(prim.indices, "indices"),
+                         fmt::format("index {} at {} out of range ({} vertices)", idx[i], i, n));
+    for (std::size_t i = 0; i < idx.size(); i += 3) {
+      Triangle t{};
+      for (int k = 0; k < 3; ++k) {
+        t.v[std::size_t(k)] = std::uint32_t(base + idx[i + std::size_t(k)]);
+        t.n[std::size_t(k)] = normal_base >= 0 ? std::int32_t(normal_base + idx[i + std::size_t(k)]) : -1;
+        t.t[std::size_t(k)] = uv0_ || uv1_ ? std::int32_t(t.v[std::size_t(k)]) : -1;
+      }
+      t.material = material;
+      if (degenerate_triangle(out_, t)) {
+        ++dropped_;
+        continue;
+      }
+      out_.triangles.push_back(t);
+    }
+  }
+
+  const tinygltf::Model& model_;
+  const std::string& path_;
+  Warnings& warnings_;
+  Accessors accessors_;
+  bool uv0_ = false, uv1_ = false, uses_default_ = false;
+  std::size_t dropped_ = 0;
+  Mesh out_;
+};
+
+}  // namespace
+
+bool is_gltf_path(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext == ".gltf" || ext == ".glb";
+}
+
+Mesh load_gltf(const std::string& path, Warnings& warnings) {
+  require_existing(path);
+  const tinygltf::Model model = parse(path, warnings);
+  MeshBuilder builder(model, path, warnings);
+  std::vector<char> visited(model.nodes.size(), 0);
+  std::vector<int> roots;
+  if (!model.scenes.empty()) {
+    const int scene = model.defaultScene >= 0 && model.defaultScene < int(model.scenes.size()) ? model.defaultScene : 0;
+    roots = model.scenes[std::size_t(scene)].nodes;
+  } else {  // no scene: every node that is nobody's child
+    std::vector<char> child(model.nodes.size(), 0);
+    for (const auto& node : model.nodes)
+      for (int c : node.children)
+        if (c >= 0 && c < int(child.size())) child[std::size_t(c)] = 1;
+    for (std::size_t i = 0; i < child.size(); ++i)
+      if (!child[i]) roots.push_back(int(i));
+  }
+  for (int root : roots) builder.node(root, Mat4d::Identity(), visited);
+  Mesh mesh = builder.finish();
+  for (std::string& file : gltf_dependencies(path)) mesh.files.push_back(std::move(file));
+  return mesh;
+}
+
+Mesh load_mesh(const std::string& path, Warnings& warnings) {
+  return is_gltf_path(path) ? load_gltf(path, warnings) : load_obj(path, warnings);
+}
+
+std::vector<std::string> mesh_dependencies(const std::string& path) {
+  return is_gltf_path(path) ? gltf_dependencies(path) : obj_dependencies(path);
+}
+
+}  // namespace insitu

@@ -1,0 +1,34 @@
+// Triangle meshes from glTF 2.0 (.gltf with its .bin and images, .glb, data URIs; tinygltf parses,
+// OpenImageIO decodes the images).
+//
+// Every mesh of the default scene's node tree, placed by its node's world transform (the
+// product of the node matrices, or T·R·S, from the root; normals by the inverse transpose), is
+// one Mesh: glTF's metres and +Y up are insitu's. Primitives of mode TRIANGLES (4, the default);
+// other modes are skipped with a warning. POSITION, NORMAL, TEXCOORD_0 and TEXCOORD_1 (float, or
+// normalized unsigned byte or short) and the indices (unsigned byte, short or int) are read with
+// their bounds checked; UVs are turned to OBJ's convention (v = 1 − v, render/texture.h).
+// Materials: render/gltf_materials.h.
+//
+// Refused, as InputError naming the file and the JSON path or the accessor: a file tinygltf
+// cannot parse (a missing buffer, bad JSON), an extension in extensionsRequired that insitu does
+// not support, an accessor out of its buffer, an index out of range, a non-finite position, a
+// node cycle, a file without triangles. Degenerate triangles are dropped and counted.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "render/mesh.h"
+
+namespace insitu {
+
+Mesh load_gltf(const std::string& path, Warnings& warnings);
+
+// A .gltf or .glb by its extension.
+bool is_gltf_path(const std::string& path);
+
+// load_gltf or load_obj by the file's extension; and the files each reads besides itself.
+Mesh load_mesh(const std::string& path, Warnings& warnings);
+std::vector<std::string> mesh_dependencies(const std::string& path);
+
+}  // namespace insitu

@@ -1,0 +1,54 @@
+// A texture of a material: linear texels sampled bilinearly and repeating, through the UV set and
+// the affine map its file gives (glTF's texCoord and KHR_texture_transform).
+//
+// Coordinates. A mesh's UVs are stored in OBJ's convention, v = 0 at the bottom of the image
+// (glTF's, v = 0 at the top, are turned at load: v_obj = 1 − v_gltf). A texture maps them to
+// normalized image coordinates (s to the right, t down, one repeat per unit, texel centres at
+// (i + ½)/W):
+//   (s, t)ᵀ = A · (u, v, 1)ᵀ,   A = image_from_uv (2 × 3)
+// For OBJ's map_Kd, A = [1 0 0; 0 −1 1]. For glTF, A = T · F with F(u, v) = (u, 1 − v) back to
+// glTF's UVs and T = translation · rotation · scale of KHR_texture_transform (the extension's
+// own order: its matrix is offset · rotation(−θ about the origin, as the spec writes it) · scale).
+//
+// An 8-bit colour texture keeps its sRGB-encoded values and is decoded after interpolation, as
+// Cycles does with byte images (it stores them as bytes and converts the interpolated value):
+// between a dark and a light texel the linear value is then below their linear mean, and the two
+// renderers agree texel for texel (docs/validation.md, Materials).
+#pragma once
+#include <array>
+#include <memory>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "core/image.h"
+#include "core/math.h"
+
+namespace insitu {
+
+// The UV sets at a surface point: glTF's TEXCOORD_0 and TEXCOORD_1 (OBJ has only the first).
+using UvSets = std::array<Vec2f, 2>;
+
+struct Texture {
+  std::shared_ptr<const Image> image;  // linear values, 3 channels; null: no texture
+  std::string path;                    // the file it was read from (for exporters), or "" (embedded)
+  int texcoord = 0;                    // which UV set
+  bool srgb = false;                   // values sRGB-encoded: decoded after interpolation
+  Eigen::Matrix<float, 2, 3> image_from_uv = obj_convention();
+
+  explicit operator bool() const { return image != nullptr; }
+  // Bilinear and repeating; a texture without an image is white.
+  Rgb sample(const UvSets& uv) const;
+
+  static Eigen::Matrix<float, 2, 3> obj_convention() {
+    Eigen::Matrix<float, 2, 3> a;
+    a << 1, 0, 0, 0, -1, 1;
+    return a;
+  }
+};
+
+// A colour texture's image from its file: an integer file keeps its sRGB-encoded values (srgb set),
+// a float file is linear. Negative and non-finite values become 0.
+void set_colour_image(Texture& t, const ImageFile& file);
+
+}  // namespace insitu

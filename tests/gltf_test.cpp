@@ -1,0 +1,251 @@
+// glTF 2.0 input (render/gltf_mesh.h, render/gltf_materials.h): the node hierarchy, .gltf with a
+// .bin and .glb alike, data URIs, materials and textures with KHR_texture_transform, glTF's default
+// material, the refusals; and a principled object in the white furnace.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "integrators/registry.h"
+#include "core/colour.h"
+#include "cube_fixture.h"
+#include "render/embree_scene.h"
+#include "render/gltf_mesh.h"
+#include "scene/pipeline.h"
+#include "scene/scene_file.h"
+#include "scene_fixture.h"
+#include "gltf_fixture.h"
+#include "test_util.h"
+
+namespace insitu {
+namespace {
+
+using nlohmann::json;
+using test::append;
+using test::base64;
+
+// One triangle with normals and UVs (glTF's convention, v down), under a parent node translated
+// by (1, 2, 3) whose child turns it 90° about +y and scales it by 2. `material` and `extra`
+// (merged into the document) make the variants.
+struct GltfTriangle {
+  std::string bin;
+  json doc;
+  GltfTriangle() {
+    append(bin, std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0});  // POSITION
+    append(bin, std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1});  // NORMAL
+    append(bin, std::vector<float>{0, 0, 1, 0, 0, 1});           // TEXCOORD_0
+    append(bin, std::vector<std::uint16_t>{0, 1, 2, 0});         // indices (padded to 4 bytes)
+    const float s = std::sqrt(0.5f);
+    doc = {
+        {"asset", {{"version", "2.0"}}},
+        {"scene", 0},
+        {"scenes", {{{"nodes", {0}}}}},
+        {"nodes",
+         {{{"translation", {1, 2, 3}}, {"children", {1}}},
+          {{"rotation", {0, s, 0, s}}, {"scale", {2, 2, 2}}, {"mesh", 0}}}},
+        {"meshes",
+         {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}}, {"indices", 3}}}}}}},
+        {"accessors",
+         {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}},
+          {{"bufferView", 0}, {"byteOffset", 36}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}},
+          {{"bufferView", 0}, {"byteOffset", 72}, {"componentType", 5126}, {"count", 3}, {"type", "VEC2"}},
+          {{"bufferView", 1}, {"componentType", 5123}, {"count", 3}, {"type", "SCALAR"}}}},
+        {"bufferViews", {{{"buffer", 0}, {"byteLength", 96}}, {{"buffer", 0}, {"byteOffset", 96}, {"byteLength", 8}}}},
+        {"buffers", {{{"byteLength", bin.size()}}}}};
+  }
+  std::string write_gltf(const test::TempDir& dir, const std::string& name) {
+    doc["buffers"][0]["uri"] = name + ".bin";
+    std::ofstream(dir.file(name + ".bin"), std::ios::binary) << bin;
+    return dir.write(name + ".gltf", doc.dump());
+  }
+  std::string write_data_uri(const test::TempDir& dir, const std::string& name) {
+    doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64(bin);
+    return dir.write(name + ".gltf", doc.dump());
+  }
+  // GLB: a 12-byte header, a JSON chunk and a BIN chunk, each padded to 4 bytes.
+  std::string write_glb(const test::TempDir& dir, const std::string& name) {
+    json d = doc;
+    d["buffers"][0].erase("uri");
+    std::string text = d.dump();
+    while (text.size() % 4) text += ' ';
+    std::string b = bin;
+    while (b.size() % 4) b += '\0';
+    std::string out = "glTF";
+    auto u32 = [&](std::uint32_t v) { out.append(reinterpret_cast<const char*>(&v), 4); };
+    u32(2), u32(std::uint32_t(12 + 8 + text.size() + 8 + b.size()));
+    u32(std::uint32_t(text.size())), u32(0x4E4F534A), out += text;
+    u32(std::uint32_t(b.size())), u32(0x004E4942), out += b;
+    std::ofstream(dir.file(name + ".glb"), std::ios::binary) << out;
+    return dir.file(name + ".glb");
+  }
+};
+
+void expect_placed(const Mesh& m) {
+  ASSERT_EQ(m.triangles.size(), 1u);
+  ASSERT_EQ(m.positions.size(), 3u);
+  // p_world = T (R_y(90°) (2 p)): (1, 0, 0) ↦ (0, 0, −2) ↦ (1, 2, 1); (0, 1, 0) ↦ (1, 4, 3).
+  EXPECT_TRUE(m.positions[0].isApprox(Vec3f(1, 2, 3), 1e-6f));
+  EXPECT_TRUE(m.positions[1].isApprox(Vec3f(1, 2, 1), 1e-6f));
+  EXPECT_TRUE(m.positions[2].isApprox(Vec3f(1, 4, 3), 1e-6f));
+  EXPECT_TRUE(m.normals[0].isApprox(Vec3f(1, 0, 0), 1e-6f));  // +z turned about +y
+  // UVs in OBJ's convention: v = 1 − v_gltf.
+  EXPECT_TRUE(m.uvs[1].isApprox(Vec2f(1, 1)));
+  EXPECT_TRUE(m.uvs[2].isApprox(Vec2f(0, 0)));
+  ASSERT_EQ(m.materials.size(), 1u);  // glTF's default material alone
+  EXPECT_TRUE(m.materials[0].principled);
+  EXPECT_EQ(m.materials[0].metallic, 1.0f);
+  EXPECT_EQ(m.materials[0].roughness, 1.0f);
+}
+
+TEST(Gltf, NodesPlaceTheirMeshesInEveryContainer) {
+  test::TempDir dir;
+  GltfTriangle g;
+  Warnings w;
+  const std::string gltf = g.write_gltf(dir, "a");
+  expect_placed(load_mesh(gltf, w));
+  EXPECT_EQ(mesh_dependencies(gltf), std::vector<std::string>{dir.file("a.bin")});
+  expect_placed(load_mesh(g.write_glb(dir, "b"), w));
+  expect_placed(load_mesh(g.write_data_uri(dir, "c"), w));
+  EXPECT_TRUE(mesh_dependencies(dir.file("c.gltf")).empty());
+  EXPECT_TRUE(w.items.empty()) << w.items.front();
+}
+
+// A 2 × 1 PNG, stored values k/255: left texel (255, 0, 0), right (0, 128, 255).
+std::string two_texel_png(const test::TempDir& dir) {
+  Image img(2, 1, 3, 0.0f);
+  img.set_rgb(0, 0, Rgb(1, 0, 0));
+  img.set_rgb(1, 0, Rgb(0, 128.0f / 255, 1));
+  const std::string path = dir.file("t.png");
+  write_image(path, img);
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(Gltf, MaterialsReadTheirFactorsAndTextures) {
+  test::TempDir dir;
+  GltfTriangle g;
+  g.doc["images"] = {{{"uri", "data:image/png;base64," + base64(two_texel_png(dir))}}};
+  g.doc["textures"] = {{{"source", 0}}};
+  // The base colour through KHR_texture_transform offset (0.5, 0): u = 0.25 reads the right texel.
+  g.doc["materials"] = {
+      {{"name", "lacquer"},
+       {"pbrMetallicRoughness",
+        {{"baseColorFactor", {0.5, 0.25, 1, 1}},
+         {"metallicFactor", 0.5},
+         {"roughnessFactor", 0.8},
+         {"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"offset", {0.5, 0}}}}}}}},
+         {"metallicRoughnessTexture", {{"index", 0}}}}}}};
+  g.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  Warnings w;
+  const Mesh m = load_mesh(g.write_gltf(dir, "m"), w);
+  ASSERT_EQ(m.materials.size(), 1u);  // glTF's default material only where a primitive uses it
+  const Material& mat = m.materials[0];
+  EXPECT_EQ(mat.name, "lacquer");
+  EXPECT_TRUE(mat.principled);
+  EXPECT_EQ(mat.metallic, 0.5f);
+  EXPECT_EQ(mat.roughness, 0.8f);
+  // Texel centres at s = 0.25 and 0.75. Base colour: sRGB-decoded, times the factor.
+  const UvSets at_left = {Vec2f(0.25f, 0.5f), Vec2f::Zero()};
+  const Rgb base = mat.base_colour(at_left);
+  EXPECT_NEAR(base[0], 0.0f, 1e-6f);
+  EXPECT_NEAR(base[1], 0.25f * srgb_to_linear(128.0f / 255), 1e-5f);
+  EXPECT_NEAR(base[2], 1.0f, 1e-6f);
+  // Metallic-roughness: linear, untransformed, left texel: G = 0, B = 0.
+  EXPECT_TRUE(mat.map_metallic_roughness.sample(at_left).isApprox(Rgb(1, 0, 0)));
+  const UvSets at_right = {Vec2f(0.75f, 0.5f), Vec2f::Zero()};
+  EXPECT_NEAR(mat.map_metallic_roughness.sample(at_right)[1], 128.0f / 255, 1e-6f);
+}
+
+TEST(Gltf, RefusalsNameTheJsonPath) {
+  test::TempDir dir;
+  Warnings w;
+  auto error_of = [&](GltfTriangle g) {
+    try {
+      load_mesh(g.write_gltf(dir, "bad"), w);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  GltfTriangle cycle;
+  cycle.doc["nodes"][1]["children"] = {0};
+  EXPECT_NE(error_of(cycle).find("bad.gltf: $.nodes[0]: the node hierarchy is not a tree"), std::string::npos)
+      << error_of(cycle);
+  GltfTriangle strip;
+  strip.doc["meshes"][0]["primitives"][0]["mode"] = 5;
+  EXPECT_NE(error_of(strip).find("bad.gltf: the default scene holds no triangles"), std::string::npos);
+  GltfTriangle nan;
+  std::memcpy(nan.bin.data() + 4, "\x00\x00\xc0\x7f", 4);  // a NaN in POSITION
+  EXPECT_NE(error_of(nan).find("bad.gltf: $.accessors[0] (POSITION): a value is not finite"), std::string::npos);
+  GltfTriangle texcoord;
+  texcoord.doc["accessors"][2]["type"] = "VEC3";
+  EXPECT_NE(error_of(texcoord).find("$.accessors[2] (TEXCOORD_0): expected 2 components"), std::string::npos);
+}
+
+// A closed box of smooth white metal (glTF's principled material) in a constant environment
+// reflects the environment: L = 0.7 within the standard error, the single-scattering loss at
+// α = 0.0025 being far below it.
+TEST(Gltf, SmoothWhiteMetalPassesTheWhiteFurnace) {
+  test::TempDir dir;
+  GltfTriangle g;
+  g.bin.clear();
+  append(g.bin, std::vector<float>{-1, -1, -1, 1, -1, -1, 1, 1, -1, -1, 1, -1, -1, -1, 1, 1, -1, 1, 1, 1, 1, -1, 1, 1});
+  append(g.bin, std::vector<std::uint16_t>{0, 3, 2, 0, 2, 1, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4,
+                                           3, 7, 6, 3, 6, 2, 0, 4, 7, 0, 7, 3, 1, 2, 6, 1, 6, 5});
+  g.doc["nodes"] = {{{"mesh", 0}}};
+  g.doc["meshes"][0]["primitives"][0] = {{"attributes", {{"POSITION", 0}}}, {"indices", 1}, {"material", 0}};
+  g.doc["accessors"] = {{{"bufferView", 0}, {"componentType", 5126}, {"count", 8}, {"type", "VEC3"}},
+                        {{"bufferView", 1}, {"componentType", 5123}, {"count", 36}, {"type", "SCALAR"}}};
+  g.doc["bufferViews"] = {{{"buffer", 0}, {"byteLength", 96}}, {{"buffer", 0}, {"byteOffset", 96}, {"byteLength", 72}}};
+  g.doc["buffers"][0]["byteLength"] = g.bin.size();
+  g.doc["materials"] = {{{"pbrMetallicRoughness", {{"metallicFactor", 1.0}, {"roughnessFactor", 0.05}}}}};
+  Warnings w;
+  std::vector<Mesh> meshes;
+  meshes.push_back(load_mesh(g.write_gltf(dir, "box"), w));
+  const EmbreeScene box(std::move(meshes));
+  const CubeMap env = test::constant_cube(8, Rgb(0.7f, 0.7f, 0.7f));
+  RenderInputs in;
+  in.objects = &box;
+  in.environment = &env;
+  const auto path = make_integrator("path", in);
+  const Ray ray{Vec3f(0.3f, 0.5f, 5), Vec3f(-0.05f, -0.1f, -1).normalized()};
+  double sum = 0, sum2 = 0;
+  const int n = 2000;
+  for (int k = 0; k < n; ++k) {
+    Sampler s(5, 0, std::uint64_t(k));
+    const double x = path->sample(ray, s).radiance[1];
+    sum += x, sum2 += x * x;
+  }
+  const double mean = sum / n, se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+  EXPECT_NEAR(mean, 0.7, 4 * se + 1e-3);
+}
+
+// A scene file names a glTF object as an OBJ one; the integrators that shade by the base colour
+// alone say which materials they flatten, and `path` says nothing.
+TEST(Gltf, TheSceneFileLoadsItAndOtherIntegratorsSayWhatTheyFlatten) {
+  test::SceneFixture fx;
+  const json metal = {{"name", "brushed steel"},
+                      {"pbrMetallicRoughness", {{"metallicFactor", 1.0}, {"roughnessFactor", 0.3}}}};
+  test::write_gltf_sphere(fx.dir, "ball", Vec3f(0.5f, 0.2f, -0.5f), 0.2f, metal, 8);
+  fx.scene["objects"] = {{{"mesh", "ball.gltf"}, {"translate", {0.0, 0.1, 0.0}}}};
+  auto warnings_with = [&](const std::string& integrator) {
+    fx.scene["render"]["integrator"] = integrator;
+    const LoadedScene s = load_scene(parse_scene_file(fx.write()));
+    EXPECT_NEAR(mesh_bounds(s.objects->meshes()[0]).lo.y(), 0.1f, 1e-5f);
+    std::string all;
+    for (const std::string& w : s.warnings.items) all += w + "\n";
+    return all;
+  };
+  EXPECT_EQ(warnings_with("path").find("base colour only"), std::string::npos);
+  for (const char* integrator : {"realtime", "irradiance"}) {
+    const std::string all = warnings_with(integrator);
+    EXPECT_NE(all.find("shades the objects by their base colour only; metallic, roughness and specular are the path "
+                       "integrator's (materials 'brushed steel')"),
+              std::string::npos)
+        << integrator << ": " << all;
+  }
+}
+
+}  // namespace
+}  // namespace insitu
