@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The material validation scenes (issue 49; docs/validation.md "Materials"): a sphere in each
 material class as a glTF 2.0 file, under one of ../shared/data's HDRIs given directly as the
-environment, seen by a 30° camera over a black photo: the composite's object pixels are the
+environment (on a cube of 1024² faces), seen by a 30° camera over a black photo: the composite's object pixels are the
 render alone, and only the material differs between insitu and Cycles.
 
     python3 tools/validate/materials/make.py OUT_DIR [HDRI]
@@ -100,7 +100,9 @@ def main():
         write_gltf(out, name, base, metallic, roughness, texture)
         scene = {"photo": "black.png",
                  "camera": {"eye": [0.0, 0.45, 3.4], "look": [0.0, 0.0, 0.0], "hfov_deg": 30},
-                 "environment": hdri,
+                 # 1024² faces (the HDRI's 1024 × 512 upsampled): finer than the polished lobes, so that
+                 # insitu's nearest-texel cube and Cycles's bilinear world differ below the materials.
+                 "environment": {"image": hdri, "face_size": 1024},
                  "objects": [{"mesh": name + ".gltf", "rotate": 30}],
                  "render": {"integrator": "path", "spp": 1024, "max_depth": 8},
                  "output": {"image": "insitu_" + name + ".exr", "layers": "none"}}
