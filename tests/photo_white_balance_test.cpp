@@ -113,7 +113,7 @@ TEST(PhotoWhiteBalance, NothingComparableDeterminesNothing) {
   const WhiteBalance b =
       white_balance_to_photo(truth, &all_clipped, kWbBox, kWbCamera, photo, Image(photo.width, photo.height, 3, 0.0f));
   EXPECT_FALSE(b.determined);
-  EXPECT_EQ(white_balanced(truth, a.gain).texel(kPosX, 3, 4)[0], truth.texel(kPosX, 3, 4)[0]);
+  EXPECT_EQ(scaled(truth, a.gain).texel(kPosX, 3, 4)[0], truth.texel(kPosX, 3, 4)[0]);
 }
 
 }  // namespace

@@ -174,4 +174,12 @@ std::uint64_t CubeMap::fingerprint() const {
   return h;
 }
 
+CubeMap scaled(const CubeMap& cube, const Rgb& factor) {
+  CubeMap out(cube.size());
+  for (int f = 0; f < 6; ++f)
+    for (int j = -1; j <= cube.size(); ++j)
+      for (int i = -1; i <= cube.size(); ++i) out.set_texel(f, i, j, cube.texel(f, i, j) * factor);
+  return out;
+}
+
 }  // namespace insitu

@@ -81,4 +81,7 @@ class CubeMap {
   const float* ptr(int face, int i, int j) const { return &faces_[face][(std::size_t(j + 1) * stride_ + (i + 1)) * 3]; }
 };
 
+// Every texel (borders too) multiplied by a factor per channel: an exposure, a white balance.
+CubeMap scaled(const CubeMap& cube, const Rgb& factor);
+
 }  // namespace insitu

@@ -51,14 +51,6 @@ double shot_hfov(const ShotSpec& shot, const EnvironmentSpec& spec, const ImageF
   return 90.0;
 }
 
-CubeMap scaled(const CubeMap& cube, float factor) {
-  CubeMap out(cube.size());
-  for (int f = 0; f < 6; ++f)
-    for (int j = -1; j <= cube.size(); ++j)
-      for (int i = -1; i <= cube.size(); ++i) out.set_texel(f, i, j, cube.texel(f, i, j) * factor);
-  return out;
-}
-
 // One shot's files (its brackets), each turned as the shot asks.
 std::vector<ImageFile> read_shot_files(const EnvironmentSpec& spec, int f) {
   std::vector<ImageFile> files;
@@ -262,7 +254,7 @@ CubeMap scale_by_estimate(const CubeMap& cube, const ImageFile& photo, const Env
                                          "(median of the photo / median of the cube); give environment.exposure",
                                          spec.from_shots() ? "every shot" : "the panorama",
                                          spec.from_shots() ? "shots" : "the panorama", info.exposure_factor));
-  return scaled(cube, float(info.exposure_factor));
+  return scaled(cube, Rgb::Constant(float(info.exposure_factor)));
 }
 
 // The image's placement in the sphere: a cube strip's faces, a whole 2:1 image, or a partial
@@ -304,7 +296,7 @@ CubeMap panorama_exposure(const EnvironmentSpec& spec, const ImageFile& file, co
   if (k_pano && k_photo) {
     info.exposure_source = "exif";
     info.exposure_factor = *k_photo / *k_pano;
-    return scaled(cube, float(info.exposure_factor));
+    return scaled(cube, Rgb::Constant(float(info.exposure_factor)));
   }
   if (spec.exposure == EnvironmentSpec::Exposure::kExif)
     throw InputError(spec.where + ".exposure", (!k_pano ? spec.image
@@ -349,7 +341,7 @@ CubeMap load_image_environment(const EnvironmentSpec& spec, Warnings& warnings, 
   if (spec.exposure == EnvironmentSpec::Exposure::kFactor) {
     info.exposure_factor = spec.exposure_factor;
     info.exposure_source = "factor";
-    return scaled(cube, float(spec.exposure_factor));
+    return scaled(cube, Rgb::Constant(float(spec.exposure_factor)));
   }
   return info.panorama ? panorama_exposure(spec, file, cube, photo, info, warnings) : cube;
 }
@@ -418,7 +410,8 @@ CubeMap load_shot_environment(const EnvironmentSpec& spec, Warnings& warnings, E
   apply_gains(shots.set, gains);
   info.shot_gain = gains.gain;
   CubeMap cube = assemble(spec, shots, info, warnings);
-  if (spec.exposure == EnvironmentSpec::Exposure::kFactor) return scaled(cube, float(spec.exposure_factor));
+  if (spec.exposure == EnvironmentSpec::Exposure::kFactor)
+    return scaled(cube, Rgb::Constant(float(spec.exposure_factor)));
   if (!per_shot_exif && photo) return scale_by_estimate(cube, *photo, spec, info, warnings);
   return cube;
 }

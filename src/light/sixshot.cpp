@@ -44,14 +44,15 @@ int natural_face_size(const ShotSet& set, int max_face_size) {
   return n;
 }
 
-// Shrunk by area averaging (which keeps its integral) to one pixel per texel at the face's
-// centre: width ⌈n tan(hfov/2)⌉. The 1e-9 keeps tan 45° = 0.99999999999999989 from rounding n up.
 namespace {
+// One pixel per texel at the face's centre: width ⌈n tan(hfov/2)⌉. The 1e-9 keeps
+// tan 45° = 0.99999999999999989 from rounding n up.
 int face_width_px(double hfov_deg, int n) {
   return std::max(1, int(std::ceil(n * std::tan(0.5 * deg_to_rad(hfov_deg)) - 1e-9)));
 }
 }  // namespace
 
+// Shrunk by area averaging (which keeps its integral) to face_width_px.
 Image shrunk_to_face(const Image& shot, double hfov_deg, int n) {
   const int needed_w = face_width_px(hfov_deg, n);
   if (shot.width <= needed_w) return shot;

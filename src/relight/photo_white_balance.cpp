@@ -88,12 +88,4 @@ WhiteBalance white_balance_to_photo(const CubeMap& radiance, const CubeMap* clip
   return wb;
 }
 
-CubeMap white_balanced(const CubeMap& cube, const Rgb& gain) {
-  CubeMap out(cube.size());
-  for (int f = 0; f < 6; ++f)
-    for (int j = -1; j <= cube.size(); ++j)
-      for (int i = -1; i <= cube.size(); ++i) out.set_texel(f, i, j, cube.texel(f, i, j) * gain);
-  return out;
-}
-
 }  // namespace insitu

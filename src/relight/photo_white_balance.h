@@ -43,7 +43,4 @@ struct WhiteBalance {
 WhiteBalance white_balance_to_photo(const CubeMap& radiance, const CubeMap* clipped, const std::optional<RoomBox>& box,
                                     const Camera& camera, const Image& photo_linear, const Image& photo_clipped);
 
-// Every texel (borders too) multiplied by the gain.
-CubeMap white_balanced(const CubeMap& cube, const Rgb& gain);
-
 }  // namespace insitu

@@ -99,7 +99,7 @@ void match_white_balance(LoadedScene& s) {
     s.warnings.add(e.where, "the light's white balance is not matched to the photo: " + wb.reason);
     return;
   }
-  s.environment = white_balanced(s.environment, wb.gain);
+  s.environment = scaled(s.environment, wb.gain);
   if ((wb.gain - Rgb::Ones()).cwiseAbs().maxCoeff() > 0.05f)
     s.warnings.add(e.where, fmt::format("the shots' white balance differs from the photo's: the light is multiplied by "
                                         "({:.3f}, {:.3f}, {:.3f}) to match it; lock white balance when you shoot",
