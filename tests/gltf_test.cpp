@@ -157,6 +157,25 @@ TEST(Gltf, MaterialsReadTheirFactorsAndTextures) {
   EXPECT_NEAR(mat.map_metallic_roughness.sample(at_right)[1], 128.0f / 255, 1e-6f);
 }
 
+// An embedded JPEG is known by its bytes: a data URI that does not say image/jpeg decodes as JPEG.
+TEST(Gltf, AnEmbeddedJpegIsKnownByItsBytes) {
+  test::TempDir dir;
+  write_image(dir.file("grey.jpg"), Image(8, 8, 3, 0.5f));
+  std::ifstream in(dir.file("grey.jpg"), std::ios::binary);
+  const std::string jpeg{std::istreambuf_iterator<char>(in), {}};
+  GltfTriangle g;
+  g.doc["images"] = {{{"uri", "data:application/octet-stream;base64," + base64(jpeg)}}};
+  g.doc["textures"] = {{{"source", 0}}};
+  g.doc["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
+  g.doc["meshes"][0]["primitives"][0]["material"] = 0;
+  Warnings w;
+  const Mesh m = load_mesh(g.write_gltf(dir, "j"), w);
+  ASSERT_TRUE(m.materials[0].map_kd);
+  EXPECT_TRUE(m.materials[0].map_kd.srgb);
+  // 0.5 stored as 128/255 (JPEG's rounding of a flat grey is exact to a level), decoded after.
+  EXPECT_NEAR(m.materials[0].base_colour({Vec2f(0.5f, 0.5f), Vec2f::Zero()})[1], srgb_to_linear(128.0f / 255), 0.01f);
+}
+
 TEST(Gltf, RefusalsNameTheJsonPath) {
   test::TempDir dir;
   Warnings w;

@@ -8,7 +8,7 @@
 // reflection leaves, so the total never reflects more than arrives (BsdfTest.EnergyIsConserved).
 // With Ks = 0 the model is exactly Lambertian.
 //
-// `principled` (glTF, MTL's PBR statements): Cycles 3.4's Principled BSDF, lobe by lobe as its
+// `principled` (glTF): Cycles 3.4's Principled BSDF, lobe by lobe as its
 // kernel sets it up (intern/cycles/kernel/svm/closure.h, CLOSURE_BSDF_PRINCIPLED_ID), for the
 // parameters insitu reads (no transmission, clear coat, sheen or subsurface):
 //   diffuse   base·(1 − m) · f_pd, the principled diffuse of bsdf_principled_diffuse.h:

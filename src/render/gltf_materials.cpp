@@ -40,8 +40,8 @@ class GltfImages {
  private:
   Decoded decode(int index) const {
     const tinygltf::Image& img = model_.images[std::size_t(index)];
-    const bool jpeg = img.mimeType == "image/jpeg" || fs::path(img.uri).extension() == ".jpg" ||
-                      fs::path(img.uri).extension() == ".jpeg";
+    // JPEG by its first bytes (FF D8), whatever the mimeType or URI say or omit; else PNG.
+    const bool jpeg = img.image.size() >= 2 && img.image[0] == 0xFF && img.image[1] == 0xD8;
     try {
       // The encoded bytes, kept by the loader (gltf_mesh.cpp), decoded by OpenImageIO.
       ImageFile file = read_image_memory(jpeg ? "embedded.jpg" : "embedded.png", img.image, PixelGrid::kAsStored);

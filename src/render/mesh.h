@@ -21,7 +21,7 @@
 namespace insitu {
 
 // A surface's material. OBJ's MTL gives the first block (the `obj` model of render/bsdf.h); glTF
-// and MTL's PBR statements give the principled model (Cycles 3.4's Principled BSDF, render/bsdf.h),
+// gives the principled model (Cycles 3.4's Principled BSDF, render/bsdf.h),
 // whose parameters are Cycles's own: base colour, metallic, roughness r (α = r²), specular
 // (F0 = 0.08 · specular for a dielectric; 0.5 is glTF's ior 1.5).
 struct Material {
@@ -30,7 +30,7 @@ struct Material {
   Rgb ks = Rgb::Zero();            // specular reflectance, kept for the glossy lobe
   float ns = 0.0f;                 // Phong exponent
   float d = 1.0f;                  // dissolve (opacity)
-  Texture map_kd;                  // linear RGB, multiplies kd
+  Texture map_kd;                  // multiplies kd
 
   bool principled = false;  // the principled model, with the parameters below
   float metallic = 0.0f, roughness = 0.5f, specular = 0.5f;

@@ -30,7 +30,7 @@ namespace insitu {
 using UvSets = std::array<Vec2f, 2>;
 
 struct Texture {
-  std::shared_ptr<const Image> image;  // linear values, 3 channels; null: no texture
+  std::shared_ptr<const Image> image;  // 3 channels, linear or (srgb) sRGB-encoded; null: no texture
   std::string path;                    // the file it was read from (for exporters), or "" (embedded)
   int texcoord = 0;                    // which UV set
   bool srgb = false;                   // values sRGB-encoded: decoded after interpolation
