@@ -76,7 +76,7 @@ std::string one_line(std::string s) {
 
 // Reads the image (from `bytes` when given, `path` then naming it and its format by its
 // extension); read_image_file() wraps it in a StderrCapture.
-ImageFile read_image_file_quietly(const std::string& path, PixelGrid grid,
+ImageFile read_image_file_quietly(const std::string& path, PixelGrid grid, AlphaChannel alpha,
                                   const std::vector<unsigned char>* bytes = nullptr);
 
 }  // namespace
@@ -85,17 +85,18 @@ ImageFile read_image_file(const std::string& path, PixelGrid grid) {
   require_existing(path);
   StderrCapture capture;
   try {
-    return read_image_file_quietly(path, grid);
+    return read_image_file_quietly(path, grid, AlphaChannel::kDrop);
   } catch (...) {
     capture.failed();
     throw;
   }
 }
 
-ImageFile read_image_memory(const std::string& name, const std::vector<unsigned char>& bytes, PixelGrid grid) {
+ImageFile read_image_memory(const std::string& name, const std::vector<unsigned char>& bytes, PixelGrid grid,
+                            AlphaChannel alpha) {
   StderrCapture capture;
   try {
-    return read_image_file_quietly(name, grid, &bytes);
+    return read_image_file_quietly(name, grid, alpha, &bytes);
   } catch (...) {
     capture.failed();
     throw;
@@ -107,17 +108,22 @@ namespace {
 // Reads the image's first three channels (one channel, repeated, for grey) as float RGB, a band
 // of rows at a time: memory grows only with rows that really decode, so a truncated file whose
 // header declares 100 megapixels fails at its first missing band instead of after allocating and
-// filling gigabytes (what the image fuzzer found).
-Image decode_rgb(ImageInput& in, const std::string& path) {
+// filling gigabytes (what the image fuzzer found). With `alpha`, also the alpha channel, where
+// the header names one among the first four.
+Image decode_rgb(ImageInput& in, const std::string& path, Image* alpha = nullptr) {
   const ImageSpec& spec = in.spec();
-  const int channels_read = spec.nchannels >= 3 ? 3 : 1;
+  const int colour_channels = spec.nchannels >= 3 ? 3 : 1;
+  const int alpha_channel =
+      alpha && spec.alpha_channel >= colour_channels && spec.alpha_channel < 4 ? spec.alpha_channel : -1;
+  const int channels_read = std::max(colour_channels, alpha_channel + 1);
   const bool tiled = spec.tile_width > 0;
   const int tile_rows = std::max(1, spec.tile_height);
   const int band_rows = tiled ? tile_rows * std::max(1, 64 / tile_rows) : 64;
   const std::size_t row_values = std::size_t(spec.width) * channels_read;
   std::vector<float> rgb;
   rgb.reserve(std::size_t(spec.width) * spec.height * 3);
-  std::vector<float> band;
+  std::vector<float> band, opacity;
+  if (alpha_channel >= 0) opacity.reserve(std::size_t(spec.width) * spec.height);
   for (int y0 = 0; y0 < spec.height; y0 += band_rows) {
     const int y1 = std::min(spec.height, y0 + band_rows);
     band.resize(row_values * std::size_t(y1 - y0));
@@ -131,8 +137,14 @@ Image decode_rgb(ImageInput& in, const std::string& path) {
     if (in.has_error()) throw InputError(path, "truncated or corrupt image: " + one_line(in.geterror()));
     const std::size_t first = rgb.size();
     rgb.resize(first + band.size() / channels_read * 3);
-    for (std::size_t i = 0, o = first; i < band.size(); i += channels_read, o += 3)
-      for (int c = 0; c < 3; ++c) rgb[o + c] = band[i + (channels_read == 3 ? c : 0)];
+    for (std::size_t i = 0, o = first; i < band.size(); i += channels_read, o += 3) {
+      for (int c = 0; c < 3; ++c) rgb[o + c] = band[i + (colour_channels == 3 ? c : 0)];
+      if (alpha_channel >= 0) opacity.push_back(band[i + std::size_t(alpha_channel)]);
+    }
+  }
+  if (alpha_channel >= 0) {
+    *alpha = Image(spec.width, spec.height, 1);
+    alpha->data = std::move(opacity);
   }
   Image img(0, 0, 3);
   img.width = spec.width;
@@ -212,7 +224,8 @@ Image reoriented(Image img, int orientation, const std::string& path) {
   return out;
 }
 
-ImageFile read_image_file_quietly(const std::string& path, PixelGrid grid, const std::vector<unsigned char>* bytes) {
+ImageFile read_image_file_quietly(const std::string& path, PixelGrid grid, AlphaChannel alpha,
+                                  const std::vector<unsigned char>* bytes) {
   std::optional<Filesystem::IOMemReader> memory;
   if (bytes) {
     const auto ext = fs::path(path).extension();
@@ -221,7 +234,13 @@ ImageFile read_image_file_quietly(const std::string& path, PixelGrid grid, const
   } else {
     check_exr_header(path);
   }
-  auto in = ImageInput::open(path, nullptr, memory ? &*memory : nullptr);
+  // Colour as stored: OpenImageIO would otherwise premultiply a PNG's colour by its alpha, where
+  // glTF, OBJ viewers and Blender read it straight.
+  ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  Filesystem::IOProxy* proxy = memory ? &*memory : nullptr;
+  if (proxy) config.attribute("oiio:ioproxy", TypeDesc::PTR, &proxy);  // with a config, read from there
+  auto in = ImageInput::open(path, &config, proxy);
   if (!in) throw InputError(path, "cannot read image: " + one_line(geterror()));
   const ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) throw InputError(path, "image has no pixels");
@@ -242,7 +261,8 @@ ImageFile read_image_file_quietly(const std::string& path, PixelGrid grid, const
   if (const int f35 = spec.get_int_attribute("Exif:FocalLengthIn35mmFilm", 0); f35 > 0)
     file.exposure.focal_35mm_mm = f35;
   file.orientation = grid == PixelGrid::kAsDisplayed ? exif_orientation(spec) : 1;
-  file.stored = reoriented(decode_rgb(*in, path), file.orientation, path);
+  const bool keep_alpha = alpha == AlphaChannel::kKeep && grid == PixelGrid::kAsStored;
+  file.stored = reoriented(decode_rgb(*in, path, keep_alpha ? &file.alpha : nullptr), file.orientation, path);
   in->close();
   return file;
 }

@@ -57,6 +57,9 @@ struct ImageFile {
   // and mirrored as a phone that writes the tag instead of turning its pixels means it. 1: none,
   // or read as stored (PixelGrid::kAsStored).
   int orientation = 1;
+  // The file's alpha channel (one channel, as stored), where it was asked for (AlphaChannel::kKeep)
+  // and the file has one; else empty.
+  Image alpha;
 };
 
 // Images larger than this are refused from their header, before decoding (a 16384 × 8192 HDRI is
@@ -82,9 +85,11 @@ enum class PixelGrid { kAsDisplayed, kAsStored };
 // Refuses (InputError naming the file) a missing, unreadable, oversized, truncated or corrupt image.
 ImageFile read_image_file(const std::string& path, PixelGrid grid = PixelGrid::kAsDisplayed);
 // The same for an image held in memory (a glTF's embedded PNG or JPEG): `name` ends in ".png" or
-// ".jpg", which chooses the decoder, and names the image in errors.
+// ".jpg", which chooses the decoder, and names the image in errors. kKeep also reads the alpha
+// channel into ImageFile::alpha (a texture's opacity; with PixelGrid::kAsStored only).
+enum class AlphaChannel { kDrop, kKeep };
 ImageFile read_image_memory(const std::string& name, const std::vector<unsigned char>& bytes,
-                            PixelGrid grid = PixelGrid::kAsDisplayed);
+                            PixelGrid grid = PixelGrid::kAsDisplayed, AlphaChannel alpha = AlphaChannel::kDrop);
 // Width and height from the header alone, as displayed (after the EXIF orientation).
 std::pair<int, int> read_image_size(const std::string& path);
 

@@ -31,14 +31,18 @@ using UvSets = std::array<Vec2f, 2>;
 
 struct Texture {
   std::shared_ptr<const Image> image;  // 3 channels, linear or (srgb) sRGB-encoded; null: no texture
+  std::shared_ptr<const Image> alpha;  // 1 channel, linear, the file's alpha; null: opaque
   std::string path;                    // the file it was read from (for exporters), or "" (embedded)
   int texcoord = 0;                    // which UV set
   bool srgb = false;                   // values sRGB-encoded: decoded after interpolation
   Eigen::Matrix<float, 2, 3> image_from_uv = obj_convention();
 
   explicit operator bool() const { return image != nullptr; }
-  // Bilinear and repeating; a texture without an image is white.
+  // Bilinear and repeating; a texture without an image is white. With an alpha channel, the colour
+  // of what is there: Σ w a c / Σ w a over the four texels.
   Rgb sample(const UvSets& uv) const;
+  // The alpha channel, bilinear and repeating as sample(); 1 without one.
+  float sample_alpha(const UvSets& uv) const;
 
   static Eigen::Matrix<float, 2, 3> obj_convention() {
     Eigen::Matrix<float, 2, 3> a;
