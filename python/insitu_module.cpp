@@ -324,7 +324,8 @@ PYBIND11_MODULE(insitu, m) {
                   py::arg("name") = py::none(), "a scene from JSON text or a dict")
       .def("set", &Scene::set, py::arg("key"), py::arg("value"),
            "set a scene-file value by dotted key: set('render.spp', 64)")
-      .def("add_obj", &Scene::add_obj, py::arg("path"), py::arg("matrix") = py::none())
+      .def("add_obj", &Scene::add_obj, py::arg("path"), py::arg("matrix") = py::none(),
+           "add a mesh file, OBJ or glTF 2.0 (.gltf, .glb), placed by a 4 x 4 matrix")
       .def("add_mesh", &Scene::add_mesh, py::arg("positions"), py::arg("indices"), py::arg("normals") = py::none(),
            py::arg("uvs") = py::none(), py::arg("kd") = std::array<float, 3>{0.8f, 0.8f, 0.8f},
            py::arg("ks") = std::array<float, 3>{0, 0, 0}, py::arg("ns") = 0.0f, py::arg("map_kd") = py::none(),

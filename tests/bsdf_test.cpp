@@ -2,6 +2,7 @@
 
 #include "render/bsdf.h"
 #include "render/ggx.h"
+#include "render/gtr1.h"
 #include "core/sampler.h"
 
 namespace insitu {
@@ -106,48 +107,58 @@ double albedo(const Bsdf& b, float theta_deg, int count = 200000) {
   return sampled_albedo(b, direction_at(theta_deg), count, 11).mean;
 }
 
-// χ² of reflect(ωo, h), h from GGX's visible normals, against reflection_pdf: (cos θ, φ) bins,
-// each bin's expected mass by an 8 × 8 midpoint rule (dω = d cos θ dφ); bins expecting fewer than
-// 5 samples are pooled.
-TEST(BsdfTest, VisibleNormalSamplesFollowTheirPdf) {
+// The χ² score (χ² − dof)/√(2 dof) of a BSDF's samples against a density `pdf(wi)`: (cos θ, φ)
+// bins, each bin's expected mass by an 8 × 8 midpoint rule (dω = d cos θ dφ); bins expecting fewer
+// than 5 samples are pooled. Below 4 for a sampler that draws from `pdf`.
+template <class Pdf>
+double chi2_score(const Bsdf& b, const Vec3f& wo, Pdf pdf, double* chi2_out = nullptr) {
   constexpr int kTheta = 16, kPhi = 32, kN = 400000;
+  std::vector<double> observed(kTheta * kPhi, 0.0), expected(kTheta * kPhi, 0.0);
+  for (int k = 0; k < kN; ++k) {
+    Sampler s(21, std::uint64_t(k), 0);
+    BsdfSample bs;
+    const float ul = s.next(), u1 = s.next(), u2 = s.next();
+    if (!b.sample(wo, ul, u1, u2, &bs)) continue;
+    const int i = std::min(kTheta - 1, int(bs.wi.z() * kTheta));
+    const float phi = std::atan2(bs.wi.y(), bs.wi.x()) + kPiF;
+    observed[std::size_t(i * kPhi + std::min(kPhi - 1, int(phi / (2 * kPiF) * kPhi)))] += 1;
+  }
+  for (int i = 0; i < kTheta; ++i)
+    for (int j = 0; j < kPhi; ++j)
+      for (int a = 0; a < 8; ++a)
+        for (int c = 0; c < 8; ++c) {
+          const float z = (float(i) + (float(a) + 0.5f) / 8) / kTheta;
+          const float phi = (float(j) + (float(c) + 0.5f) / 8) / kPhi * 2 * kPiF - kPiF;
+          const float r = std::sqrt(1 - z * z);
+          const Vec3f wi(r * std::cos(phi), r * std::sin(phi), z);
+          const double d_omega = (1.0 / kTheta) * (2 * kPi / kPhi) / 64;
+          expected[std::size_t(i * kPhi + j)] += kN * pdf(wi) * d_omega;
+        }
+  double chi2 = 0, pooled_o = 0, pooled_e = 0;
+  int dof = 0;
+  for (std::size_t k = 0; k < observed.size(); ++k) {
+    if (expected[k] < 5) {
+      pooled_o += observed[k], pooled_e += expected[k];
+      continue;
+    }
+    chi2 += (observed[k] - expected[k]) * (observed[k] - expected[k]) / expected[k];
+    ++dof;
+  }
+  if (pooled_e >= 5) chi2 += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e, ++dof;
+  if (chi2_out) *chi2_out = chi2;
+  return (chi2 - dof) / std::sqrt(2.0 * dof);
+}
+
+// reflect(ωo, h), h from GGX's visible normals, follows ggx::reflection_pdf.
+TEST(BsdfTest, VisibleNormalSamplesFollowTheirPdf) {
   for (float alpha : {0.08f, 0.3f, 0.9f})
     for (float theta : {10.0f, 50.0f, 80.0f}) {
       const Bsdf metal = Bsdf::principled(Rgb::Ones(), 1.0f, std::sqrt(alpha), 0.5f);
       const Vec3f wo = direction_at(theta);
-      std::vector<double> observed(kTheta * kPhi, 0.0), expected(kTheta * kPhi, 0.0);
-      for (int k = 0; k < kN; ++k) {
-        Sampler s(21, std::uint64_t(k), 0);
-        BsdfSample bs;
-        const float ul = s.next(), u1 = s.next(), u2 = s.next();
-        if (!metal.sample(wo, ul, u1, u2, &bs)) continue;
-        const int i = std::min(kTheta - 1, int(bs.wi.z() * kTheta));
-        const float phi = std::atan2(bs.wi.y(), bs.wi.x()) + kPiF;
-        observed[std::size_t(i * kPhi + std::min(kPhi - 1, int(phi / (2 * kPiF) * kPhi)))] += 1;
-      }
-      for (int i = 0; i < kTheta; ++i)
-        for (int j = 0; j < kPhi; ++j)
-          for (int a = 0; a < 8; ++a)
-            for (int c = 0; c < 8; ++c) {
-              const float z = (float(i) + (float(a) + 0.5f) / 8) / kTheta;
-              const float phi = (float(j) + (float(c) + 0.5f) / 8) / kPhi * 2 * kPiF - kPiF;
-              const float r = std::sqrt(1 - z * z);
-              const Vec3f wi(r * std::cos(phi), r * std::sin(phi), z);
-              const double d_omega = (1.0 / kTheta) * (2 * kPi / kPhi) / 64;
-              expected[std::size_t(i * kPhi + j)] += kN * ggx::reflection_pdf(wo, wi, alpha) * d_omega;
-            }
-      double chi2 = 0, pooled_o = 0, pooled_e = 0;
-      int dof = 0;
-      for (std::size_t b = 0; b < observed.size(); ++b) {
-        if (expected[b] < 5) {
-          pooled_o += observed[b], pooled_e += expected[b];
-          continue;
-        }
-        chi2 += (observed[b] - expected[b]) * (observed[b] - expected[b]) / expected[b];
-        ++dof;
-      }
-      if (pooled_e >= 5) chi2 += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e, ++dof;
-      EXPECT_LT((chi2 - dof) / std::sqrt(2.0 * dof), 4.0)
+      double chi2 = 0;
+      EXPECT_LT(chi2_score(
+                    metal, wo, [&](const Vec3f& wi) { return ggx::reflection_pdf(wo, wi, alpha); }, &chi2),
+                4.0)
           << "alpha " << alpha << " theta " << theta << " chi2 " << chi2;
     }
 }
@@ -211,6 +222,106 @@ TEST(BsdfTest, PrincipledGainsWhatCyclesGains) {
       EXPECT_GT(whole, 1.05);
     }
   }
+}
+
+}  // namespace
+}  // namespace insitu
+
+namespace insitu {
+namespace {
+
+// A clear coat alone: black base, no specular (Cycles's F0 = 0.08·specular), coat c of roughness rc.
+Bsdf coat_only(float c, float rc) {
+  PrincipledParams p;
+  p.base = Rgb::Zero(), p.specular = 0.0f, p.clearcoat = c, p.clearcoat_roughness = rc;
+  return Bsdf::principled(p);
+}
+
+// GTR1 is normalized: ∫ D(h) cos θ_h dω_h = 2π ∫₀¹ D(μ) μ dμ = 1, by a midpoint rule fine enough
+// for the narrowest peak (half width ~α² in 1 − μ).
+TEST(BsdfTest, Gtr1IsNormalized) {
+  for (float alpha : {0.01f, 0.1f, 0.5f, 1.0f}) {
+    const int n = 2000000;
+    double sum = 0;
+    for (int k = 0; k < n; ++k) {
+      const double mu = (k + 0.5) / n;
+      sum += double(gtr1::d(float(mu), alpha)) * mu;
+    }
+    EXPECT_NEAR(2 * kPi * sum / n, 1.0, 2e-3) << alpha;
+  }
+}
+
+// The coat's directions are drawn, as Cycles draws them, from GGX's visible normals at α = rc²
+// (α ≥ 0.09: narrower peaks are not resolved by the bins' midpoint rule).
+TEST(BsdfTest, ClearCoatSamplesFollowGgxVisibleNormals) {
+  for (float rc : {0.3f, 0.6f, 0.9f})
+    for (float theta : {10.0f, 50.0f, 80.0f}) {
+      const Bsdf coat = coat_only(1.0f, rc);
+      const Vec3f wo = direction_at(theta);
+      double chi2 = 0;
+      EXPECT_LT(chi2_score(
+                    coat, wo, [&](const Vec3f& wi) { return ggx::reflection_pdf(wo, wi, rc * rc); }, &chi2),
+                4.0)
+          << "rc " << rc << " theta " << theta << " chi2 " << chi2;
+    }
+}
+
+// Each coat sample weighs what Cycles's does: eval / pdf = ¼·c·F_d(ωi·h, 1.5)·G1(ωi; 0.25), the
+// GTR1 density and G1(ωo) cancelling between its eval and its reported pdf.
+TEST(BsdfTest, ClearCoatWeighsItsSamplesAsCycles) {
+  const Bsdf coat = coat_only(0.8f, 0.2f);
+  for (int k = 0; k < 1000; ++k) {
+    Sampler s(31, std::uint64_t(k), 0);
+    const Vec3f wo = direction_at(85.0f * s.next());
+    BsdfSample bs;
+    const float ul = s.next(), u1 = s.next(), u2 = s.next();
+    if (!coat.sample(wo, ul, u1, u2, &bs)) continue;
+    const Vec3f h = (wo + bs.wi).normalized();
+    const float expected = 0.25f * 0.8f * fresnel_dielectric(bs.wi.dot(h), 1.5f) * ggx::g1(bs.wi.z(), 0.25f);
+    EXPECT_NEAR(bs.weight[0], expected, 1e-4f * expected + 1e-7f) << k;
+  }
+}
+
+// A smooth coat is Cycles's mirror: it reflects ¼·c·F_d(cos θ, 1.5) (Fresnel's equations; G ≈ 1
+// at α = 10⁻³), e.g. 0.01 head-on for c = 1.
+TEST(BsdfTest, SmoothClearCoatReflectsAQuarterOfFresnel) {
+  for (float theta : {0.0f, 45.0f, 75.0f}) {
+    const double expected = 0.25 * 0.8 * fresnel_dielectric(std::cos(float(deg_to_rad(theta))), 1.5f);
+    EXPECT_NEAR(albedo(coat_only(0.8f, 0.0f), theta), expected, 2e-3 * expected) << theta;
+  }
+}
+
+// With a diffuse base, the model's sampled albedo is the mean of Cycles's estimator: ∫ q(ωi)
+// f(ωi) cos θ_i / pdf(ωi) dω, q the density the samples come from (p_c × GGX's visible normals +
+// p_d × cos/π, p the lobes' odds) and pdf the one reported, by quadrature. The coat adds its f to
+// the rest (Cycles adds its lobes).
+TEST(BsdfTest, ClearCoatSamplingIsCyclesEstimatorAndAdds) {
+  for (float rc : {0.3f, 0.6f})
+    for (float theta : {0.0f, 70.0f}) {
+      PrincipledParams p;
+      p.base = Rgb(0.6f, 0.4f, 0.2f), p.specular = 0.0f, p.roughness = 0.5f;
+      p.clearcoat = 1.0f, p.clearcoat_roughness = rc;
+      const Bsdf b = Bsdf::principled(p);
+      const Vec3f wo = direction_at(theta);
+      const double w_c = 0.25 * fresnel_dielectric(wo.z(), 1.5f), w_d = p.base.mean();
+      const double p_c = w_c / (w_c + w_d);
+      const Mc by_sampling = sampled_albedo(b, wo, 400000, 3);
+      const Mc by_quadrature = hemisphere_integral(
+          [&](const Vec3f& wi) {
+            const double q = p_c * ggx::reflection_pdf(wo, wi, rc * rc) + (1 - p_c) * wi.z() / kPi;
+            return q * b.eval(wo, wi)[1] * wi.z() / b.pdf(wo, wi);
+          },
+          400000, 4);
+      EXPECT_NEAR(by_sampling.mean, by_quadrature.mean, 4 * std::hypot(by_sampling.se, by_quadrature.se))
+          << "rc " << rc << " theta " << theta;
+      PrincipledParams bare = p;
+      bare.clearcoat = 0;
+      const Bsdf without = Bsdf::principled(bare), coat = coat_only(1.0f, rc);
+      for (float t : {5.0f, 40.0f, -60.0f}) {
+        const Vec3f wi = direction_at(t);
+        EXPECT_TRUE(b.eval(wo, wi).isApprox(without.eval(wo, wi) + coat.eval(wo, wi), 1e-5f)) << rc << " " << t;
+      }
+    }
 }
 
 }  // namespace

@@ -39,10 +39,10 @@ extern "C" {
 
 typedef enum insitu_status {
   INSITU_OK = 0,
-  INSITU_ERROR_INTERNAL = 1,  /* a bug or an exhausted resource: the CLI's exit code 1 */
-  INSITU_ERROR_INPUT = 2,     /* bad input (file, JSON, mesh, image, points): the CLI's exit code 2 */
-  INSITU_ERROR_ARGUMENT = 3,  /* a null handle, an unknown layer, a buffer too small */
-  INSITU_CANCELLED = 4        /* the render was cancelled; its partial result is still returned */
+  INSITU_ERROR_INTERNAL = 1, /* a bug or an exhausted resource: the CLI's exit code 1 */
+  INSITU_ERROR_INPUT = 2,    /* bad input (file, JSON, mesh, image, points): the CLI's exit code 2 */
+  INSITU_ERROR_ARGUMENT = 3, /* a null handle, an unknown layer, a buffer too small */
+  INSITU_CANCELLED = 4       /* the render was cancelled; its partial result is still returned */
 } insitu_status;
 
 typedef struct insitu_scene insitu_scene;
@@ -69,7 +69,9 @@ INSITU_API void insitu_scene_free(insitu_scene* scene);
  * ("output.tonemap", "{\"op\": \"adaptive_log\"}"). Checked at once, like the file. */
 INSITU_API insitu_status insitu_scene_set(insitu_scene* scene, const char* key, const char* json_value);
 
-/* An OBJ file placed by world_from_object (4x4, row-major, last row 0 0 0 1; NULL: identity). */
+/* A mesh file placed by world_from_object (4x4, row-major, last row 0 0 0 1; NULL: identity):
+ * OBJ with MTL, or glTF 2.0 (.gltf, .glb) with its principled materials, as the scene file's
+ * "mesh" reads them. */
 INSITU_API insitu_status insitu_scene_add_obj(insitu_scene* scene, const char* obj_path,
                                               const double world_from_object[16]);
 
@@ -77,14 +79,14 @@ INSITU_API insitu_status insitu_scene_add_obj(insitu_scene* scene, const char* o
 typedef struct insitu_mesh {
   const float* positions; /* 3 per vertex, object frame, metres */
   size_t vertex_count;
-  const float* normals;   /* 3 per vertex, or NULL: the geometric normal */
-  const float* uvs;       /* 2 per vertex, or NULL */
+  const float* normals;    /* 3 per vertex, or NULL: the geometric normal */
+  const float* uvs;        /* 2 per vertex, or NULL */
   const uint32_t* indices; /* 3 per triangle */
   size_t triangle_count;
-  float kd[3];            /* diffuse reflectance, linear */
-  float ks[3];            /* specular reflectance (0: none) */
-  float ns;               /* Phong exponent of the glossy lobe */
-  const float* map_kd;    /* NULL, or linear RGB texels (3 floats each, top row first) that multiply kd */
+  float kd[3];         /* diffuse reflectance, linear */
+  float ks[3];         /* specular reflectance (0: none) */
+  float ns;            /* Phong exponent of the glossy lobe */
+  const float* map_kd; /* NULL, or linear RGB texels (3 floats each, top row first) that multiply kd */
   int map_kd_width, map_kd_height;
 } insitu_mesh;
 /* Fills a mesh with no arrays, kd 0.8 grey, no specular: set the arrays, then add it. */
@@ -96,15 +98,15 @@ INSITU_API insitu_status insitu_scene_add_mesh(insitu_scene* scene, const insitu
 /* ---- Cameras and calibration ---------------------------------------------------------------- */
 
 typedef struct insitu_camera {
-  int width, height;             /* pixels; must be the photo's */
-  double fx, fy, cx, cy;         /* pixels */
-  double R_cam_from_world[9];    /* row-major; camera axes x right, y down, z forward (OpenCV) */
-  double t_cam_from_world[3];    /* metres: p_cam = R p_world + t */
+  int width, height;          /* pixels; must be the photo's */
+  double fx, fy, cx, cy;      /* pixels */
+  double R_cam_from_world[9]; /* row-major; camera axes x right, y down, z forward (OpenCV) */
+  double t_cam_from_world[3]; /* metres: p_cam = R p_world + t */
 } insitu_camera;
 
 typedef struct insitu_control_point {
-  double u_px, v_px;          /* from the photo's top-left corner */
-  double x_m, y_m, z_m;       /* world */
+  double u_px, v_px;    /* from the photo's top-left corner */
+  double x_m, y_m, z_m; /* world */
 } insitu_control_point;
 
 /* Calibrates a camera for a width x height photo from n >= 5 control points, as
@@ -144,12 +146,12 @@ INSITU_API insitu_status insitu_scene_warnings(insitu_scene* scene, const char**
 /* ---- Rendering ------------------------------------------------------------------------------ */
 
 typedef struct insitu_progress {
-  int spp_done;           /* samples per pixel every pixel has */
+  int spp_done; /* samples per pixel every pixel has */
   int spp_planned;
-  double fraction;        /* of the whole render, 0..1 */
-  double noise;           /* mean relative standard error over changed pixels; < 0 between passes */
-  double seconds;         /* since the render began */
-  double seconds_left;    /* estimated; < 0 before there is an estimate */
+  double fraction;     /* of the whole render, 0..1 */
+  double noise;        /* mean relative standard error over changed pixels; < 0 between passes */
+  double seconds;      /* since the render began */
+  double seconds_left; /* estimated; < 0 before there is an estimate */
 } insitu_progress;
 /* Return nonzero to cancel the render. */
 typedef int (*insitu_progress_fn)(const insitu_progress* progress, void* user);

@@ -232,6 +232,9 @@ class PathIntegrator final : public Integrator {
     Rgb throughput = Rgb::Ones(), L = Rgb::Zero();
     for (; depth < max_depth_; ++depth) {
       const SurfacePoint sp = objects_->surface(ray, hit);
+      // Emission (glTF's emissive), found by the camera or a BSDF sample only: emitting objects
+      // are not sampled as lights.
+      L += throughput * sp.material->emitted(sp.uv);
       const Bsdf bsdf = Bsdf::from_material(*sp.material, sp.uv);
       const Frame frame(sp.ns_world);
       const Vec3f wo = frame.to_local(-ray.dir);

@@ -237,7 +237,8 @@ def load_mesh(scene, name, path, offset, nv, nt_, has_normals, has_uvs, material
 def gltf_object(scene, name, path, matrix):
     """A glTF asset imported by Blender's own importer (io_scene_gltf2: the materials as Blender
     reads the file), its objects under one empty placed by insitu's transform (matrix, in
-    Blender's frame). Its Principled BSDFs scatter once, GGX, as insitu's (src/render/bsdf.h)."""
+    Blender's frame). Its Principled BSDFs scatter once, GGX, as insitu's (src/render/bsdf.h), and
+    an alpha MASK cuts as glTF says (the importer sets it for Eevee only: Cycles would blend)."""
     import numpy
     if "bool" not in numpy.__dict__:  # Debian's Blender 3.4 importer still says np.bool, gone in NumPy 1.24
         numpy.bool = bool
@@ -257,7 +258,25 @@ def gltf_object(scene, name, path, matrix):
         for node in mat.node_tree.nodes:
             if node.type == "BSDF_PRINCIPLED":
                 node.distribution = "GGX"
+                if mat.blend_method == "CLIP":
+                    alpha_mask(mat.node_tree, node.inputs["Alpha"], mat.alpha_threshold)
     return root
+
+
+def alpha_mask(tree, alpha, cutoff):
+    """alpha <- 1 - (alpha < cutoff): opaque where alpha >= cutoff, absent elsewhere."""
+    less = tree.nodes.new("ShaderNodeMath")
+    less.operation = "LESS_THAN"
+    less.inputs[1].default_value = cutoff
+    if alpha.is_linked:
+        tree.links.new(alpha.links[0].from_socket, less.inputs[0])
+    else:
+        less.inputs[0].default_value = alpha.default_value
+    keep = tree.nodes.new("ShaderNodeMath")
+    keep.operation = "SUBTRACT"
+    keep.inputs[0].default_value = 1.0
+    tree.links.new(less.outputs[0], keep.inputs[1])
+    tree.links.new(keep.outputs[0], alpha)
 
 
 def composite_over_photo(scene, photo_path, linear):

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "render/ggx.h"
+#include "render/gtr1.h"
 #include "render/mesh.h"
 
 namespace insitu {
@@ -19,6 +20,9 @@ Rgb schlick(const Rgb& f0, float cos_theta) { return f0 + (Rgb::Ones() - f0) * s
 
 // Cycles drops a closure whose weight is below CLOSURE_WEIGHT_CUTOFF.
 constexpr float kWeightCutoff = 1e-5f;
+// The clear coat: index of refraction 1.5, Smith masking at a fixed α (Disney 2012); a mirror
+// where α² ≤ 10⁻⁷ (bsdf_microfacet.h: "alpha_x * alpha_y <= 1e-7f").
+constexpr float kCoatEta = 1.5f, kCoatMaskingAlpha = 0.25f, kCoatMirrorAlpha2 = 1e-7f, kMirrorAlpha = 1e-3f;
 
 }  // namespace
 
@@ -39,19 +43,25 @@ Bsdf::Bsdf(const Rgb& diffuse, const Rgb& f0, float alpha)
       alpha_(std::clamp(alpha, 1e-3f, 1.0f)),
       glossy_(f0.maxCoeff() > 0) {}
 
-Bsdf Bsdf::principled(const Rgb& base_in, float metallic, float roughness, float specular) {
-  const Rgb base = base_in.max(0.0f);
-  const float m = std::clamp(metallic, 0.0f, 1.0f), r = std::clamp(roughness, 0.0f, 1.0f);
-  const float s = std::clamp(specular, 0.0f, 1.0f);
+Bsdf Bsdf::principled(const PrincipledParams& p) {
+  const Rgb base = p.base.max(0.0f);
+  const float m = std::clamp(p.metallic, 0.0f, 1.0f), r = std::clamp(p.roughness, 0.0f, 1.0f);
+  const float s = std::clamp(p.specular, 0.0f, 1.0f), c = std::clamp(p.clearcoat, 0.0f, 1.0f);
+  const float rc = std::clamp(p.clearcoat_roughness, 0.0f, 1.0f);
   Bsdf b;
   b.principled_ = true;
   b.diffuse_ = base * (1 - m);
   b.f0_ = (0.08f * s * (1 - m) + base * m).min(1.0f);
   b.roughness_ = r;
-  b.alpha_ = std::max(1e-3f, r * r);
-  b.glossy_ = s > kWeightCutoff || m > kWeightCutoff;
+  b.alpha_ = std::max(kMirrorAlpha, r * r);
   b.f0_dielectric_ = std::min(0.08f * s, 0.999f);
   b.eta_ = 2 / (1 - std::sqrt(b.f0_dielectric_)) - 1;
+  if (c > kWeightCutoff) {
+    b.coat_ = 0.25f * c;
+    b.coat_ggx_ = rc * rc * rc * rc <= kCoatMirrorAlpha2;
+    b.coat_alpha_ = b.coat_ggx_ ? kMirrorAlpha : rc * rc;
+  }
+  b.glossy_ = s > kWeightCutoff || m > kWeightCutoff || b.coat_ > 0;
   return b;
 }
 
@@ -59,7 +69,9 @@ Bsdf Bsdf::from_material(const Material& m, const UvSets& uv) {
   const Rgb base = m.base_colour(uv);
   if (m.principled) {
     const Rgb mr = m.map_metallic_roughness.sample(uv);  // glTF: G roughness, B metallic
-    return principled(base, m.metallic * mr[2], m.roughness * mr[1], m.specular);
+    const Rgb cc = m.map_clearcoat.sample(uv), ccr = m.map_clearcoat_roughness.sample(uv);  // R, G
+    return principled({base, m.metallic * mr[2], m.roughness * mr[1], m.specular, m.clearcoat * cc[0],
+                       m.clearcoat_roughness * ccr[1]});
   }
   // Walter et al. 2007: α = √(2/(Ns + 2)).
   const float alpha = std::sqrt(2.0f / (std::max(0.0f, m.ns) + 2.0f));
@@ -79,11 +91,37 @@ Rgb Bsdf::diffuse(const Vec3f& wo, const Vec3f& wi) const {
   return diffuse_ * (((1 - 0.5f * fv) * (1 - 0.5f * fl) + rr * (fl + fv + fl * fv * (rr - 1))) / kPiF);
 }
 
-float Bsdf::specular_probability(float cos_o) const {
-  if (!glossy_) return 0.0f;
-  if (!principled_) return std::clamp(schlick(f0_, cos_o).maxCoeff(), 0.05f, 0.95f);
-  const float w_s = fresnel(cos_o).mean(), w_d = diffuse_.mean();
-  return w_d > kWeightCutoff ? w_s / (w_s + w_d) : 1.0f;
+Rgb Bsdf::coat(const Vec3f& wo, const Vec3f& wi) const {
+  const Vec3f h = (wo + wi).normalized();
+  const float co = wo.z(), ci = wi.z();
+  const float D = coat_ggx_ ? ggx::d(h.z(), coat_alpha_) : gtr1::d(h.z(), coat_alpha_);
+  const float a_g = coat_ggx_ ? coat_alpha_ : kCoatMaskingAlpha;
+  const float G = ggx::g1(co, a_g) * ggx::g1(ci, a_g);
+  return Rgb::Constant(coat_ * fresnel_dielectric(std::max(0.0f, wi.dot(h)), kCoatEta) * D * G / (4 * co * ci));
+}
+
+// Cycles's density for the coat, pdf = G1(ωo; 0.25) D₁(h) / (4 |ωo·n|), which is not the density
+// its samples are drawn from (GGX's visible normals at α_c; render/gtr1.h).
+float Bsdf::coat_pdf(const Vec3f& wo, const Vec3f& wi) const {
+  if (coat_ggx_) return ggx::reflection_pdf(wo, wi, coat_alpha_);
+  if (wo.z() <= 0 || wi.z() <= 0) return 0;
+  const Vec3f h = (wo + wi).normalized();
+  return ggx::g1(wo.z(), kCoatMaskingAlpha) * gtr1::d(h.z(), coat_alpha_) / (4 * wo.z());
+}
+
+Bsdf::LobeOdds Bsdf::lobe_odds(float cos_o) const {
+  LobeOdds odds;
+  if (!glossy_) return odds;
+  if (!principled_) {
+    odds.specular = std::clamp(schlick(f0_, cos_o).maxCoeff(), 0.05f, 0.95f);
+    return odds;
+  }
+  const float w_s = fresnel(cos_o).mean(), w_c = coat_ * fresnel_dielectric(cos_o, kCoatEta);
+  const float w_d = diffuse_.mean() > kWeightCutoff ? diffuse_.mean() : 0.0f, sum = w_s + w_c + w_d;
+  if (!(sum > 0)) return odds;
+  odds.specular = w_s / sum;
+  odds.coat = w_c / sum;
+  return odds;
 }
 
 Rgb Bsdf::eval(const Vec3f& wo, const Vec3f& wi) const {
@@ -93,22 +131,26 @@ Rgb Bsdf::eval(const Vec3f& wo, const Vec3f& wi) const {
   if (!glossy_) return f_d;
   const Vec3f h = (wo + wi).normalized();
   const float D = ggx::d(h.z(), alpha_), G = ggx::g1(co, alpha_) * ggx::g1(ci, alpha_);
-  return f_d + fresnel(std::max(0.0f, wi.dot(h))) * (D * G / (4 * co * ci));
+  const Rgb f = f_d + fresnel(std::max(0.0f, wi.dot(h))) * (D * G / (4 * co * ci));
+  return coat_ > 0 ? Rgb(f + coat(wo, wi)) : f;
 }
 
 float Bsdf::pdf(const Vec3f& wo, const Vec3f& wi) const {
   if (wo.z() <= 0 || wi.z() <= 0) return 0;
   const float p_cos = wi.z() / kPiF;
   if (!glossy_) return p_cos;
-  const float ps = specular_probability(wo.z());
-  return ps * ggx::reflection_pdf(wo, wi, alpha_) + (1 - ps) * p_cos;
+  const LobeOdds odds = lobe_odds(wo.z());
+  const float p_coat = odds.coat > 0 ? odds.coat * coat_pdf(wo, wi) : 0.0f;
+  return odds.specular * ggx::reflection_pdf(wo, wi, alpha_) + p_coat + (1 - odds.specular - odds.coat) * p_cos;
 }
 
 bool Bsdf::sample(const Vec3f& wo, float u_lobe, float u1, float u2, BsdfSample* out) const {
   if (wo.z() <= 0) return false;
   Vec3f wi;
-  if (glossy_ && u_lobe < specular_probability(wo.z())) {
-    const Vec3f h = ggx::sample_visible_normal(wo, alpha_, u1, u2);
+  const LobeOdds odds = lobe_odds(wo.z());
+  if (u_lobe < odds.specular || u_lobe < odds.specular + odds.coat) {
+    const bool coat_lobe = u_lobe >= odds.specular;
+    const Vec3f h = ggx::sample_visible_normal(wo, coat_lobe ? coat_alpha_ : alpha_, u1, u2);
     wi = 2 * wo.dot(h) * h - wo;
   } else {
     wi = cosine_sample_local(u1, u2);

@@ -10,7 +10,7 @@
 //
 // `principled` (glTF): Cycles 3.4's Principled BSDF, lobe by lobe as its
 // kernel sets it up (intern/cycles/kernel/svm/closure.h, CLOSURE_BSDF_PRINCIPLED_ID), for the
-// parameters insitu reads (no transmission, clear coat, sheen or subsurface):
+// parameters insitu reads (no transmission, sheen or subsurface):
 //   diffuse   base·(1 − m) · f_pd, the principled diffuse of bsdf_principled_diffuse.h:
 //             f_pd = 1/π [(1 − ½F_V)(1 − ½F_L) + R (F_L + F_V + F_L F_V (R − 1))],
 //             F_x = (1 − cos θ_x)^5, R = r (1 + ωo·ωi)  (Burley 2012's retro-reflection);
@@ -19,14 +19,27 @@
 //             F = c0 (1 − F_H) + F_H,  F_H = (F_d(ωi·h, η) − F0) / (1 − F0),
 //             c0 = 0.08·s·(1 − m) + base·m,  F0 = 0.08·s,  η = 2/(1 − √(0.08·s)) − 1,
 //             F_d the dielectric Fresnel reflectance (fresnel_dielectric_cos).
-// m: metallic, r: roughness, s: specular. Cycles adds the two lobes: the diffuse is not weighted
-// by what the specular reflects, so a white base reflects up to ~1.5 × what arrives at grazing
-// angles (BsdfTest.PrincipledGainsWhatCyclesGains); each lobe alone conserves energy.
+//   clear coat ¼·c · F_d(ωi·h, 1.5) D₁(h) G1(ωo) G1(ωi) / (4 |ωo·n| |ωi·n|), D₁ GTR1 of
+//             α = r_c² (render/gtr1.h), G1 GGX's Smith term at a fixed α = 0.25
+//             (bsdf_microfacet.h, CLOSURE_BSDF_MICROFACET_GGX_CLEARCOAT_ID); where Cycles makes
+//             the coat a mirror (α² ≤ 10⁻⁷), GGX at α = 10⁻³.
+// m: metallic, r: roughness, s: specular, c: clear coat, r_c: its roughness. Cycles adds the
+// lobes: none is weighted by what another reflects, so a white base reflects up to ~1.5 × what
+// arrives at grazing angles (BsdfTest.PrincipledGainsWhatCyclesGains); each lobe alone conserves
+// energy.
 //
 // Sampling: the specular lobe by GGX's visible normals (render/ggx.h), the diffuse one
-// cosine-weighted; the lobe with probability p_s: obj, max F(ωo·n) clamped to [0.05, 0.95];
-// principled, Cycles's sample weights, p_s = w_s/(w_s + w_d) with w_s the mean of F at ωo·n and
-// w_d the mean diffuse weight. pdf() is the mixture.
+// cosine-weighted; the lobe with probability: obj, p_s = max F(ωo·n) clamped to [0.05, 0.95];
+// principled, Cycles's sample weights, each lobe's w over their sum: w_s the mean of F at ωo·n,
+// w_c = ¼·c·F_d(ωo·n, 1.5), w_d the mean diffuse weight. pdf() is the mixture.
+//
+// The clear coat is sampled as Cycles 3.4 samples it (bsdf_microfacet_ggx_sample): directions from
+// GGX's visible normals at α_c, their density reported as Cycles reports it,
+// G1(ωo; 0.25) D₁(h) / (4 |ωo·n|), which is GTR1's, not theirs. The estimator is Cycles's, and so is
+// its mean: where the BSDF's samples carry a path (a glossy coat's highlight), the coat is GGX-sharp
+// with weight ¼·c·F·G1(ωi; 0.25) per sample; where the light's samples do (the coat's wide tails),
+// it is GTR1. Drawing from D₁ itself, as consistency would ask, blurred a lacquer's reflections of
+// the windows against Cycles's by 8 % (docs/materials.md, "The coat's samples").
 #pragma once
 #include "core/math.h"
 #include "core/sampling.h"
@@ -35,6 +48,13 @@
 namespace insitu {
 
 struct Material;
+
+// The principled model's parameters (Cycles's Principled BSDF inputs of the same names).
+struct PrincipledParams {
+  Rgb base = Rgb::Constant(0.8f);
+  float metallic = 0.0f, roughness = 0.5f, specular = 0.5f;
+  float clearcoat = 0.0f, clearcoat_roughness = 0.03f;
+};
 
 struct BsdfSample {
   Vec3f wi;    // local
@@ -47,7 +67,10 @@ class Bsdf {
   // The obj model.
   Bsdf(const Rgb& diffuse, const Rgb& f0, float alpha);
   // The principled model; parameters clamped to [0, 1].
-  static Bsdf principled(const Rgb& base, float metallic, float roughness, float specular);
+  static Bsdf principled(const PrincipledParams& p);
+  static Bsdf principled(const Rgb& base, float metallic, float roughness, float specular) {
+    return principled(PrincipledParams{base, metallic, roughness, specular});
+  }
   // The material's model at a surface point, its textures sampled there.
   static Bsdf from_material(const Material& m, const UvSets& uv);
 
@@ -60,12 +83,19 @@ class Bsdf {
   Bsdf() = default;
   Rgb fresnel(float cos_ih) const;                      // the specular lobe's F at ωi·h
   Rgb diffuse(const Vec3f& wo, const Vec3f& wi) const;  // the diffuse lobe's f
-  float specular_probability(float cos_o) const;
+  Rgb coat(const Vec3f& wo, const Vec3f& wi) const;     // the clear coat's f
+  float coat_pdf(const Vec3f& wo, const Vec3f& wi) const;
+  struct LobeOdds {
+    float specular = 0, coat = 0;  // the rest: diffuse
+  };
+  LobeOdds lobe_odds(float cos_o) const;
   bool principled_ = false;
   Rgb diffuse_ = Rgb::Zero(), f0_ = Rgb::Zero();  // principled: base·(1 − m) and c0
   float alpha_ = 1.0f;
   bool glossy_ = false;
   float roughness_ = 0.0f, eta_ = 1.5f, f0_dielectric_ = 0.04f;  // principled only
+  float coat_ = 0.0f, coat_alpha_ = 1.0f;                        // ¼·c, α_c
+  bool coat_ggx_ = false;                                        // a mirror coat: GGX at α = 10⁻³
 };
 
 // The reflectance of a smooth dielectric of relative index η at cos θ (Cycles's

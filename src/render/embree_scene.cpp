@@ -2,10 +2,12 @@
 
 #include <embree3/rtcore.h>
 
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <fmt/format.h>
 
+#include "core/sampler.h"
 #include "render/ray_log.h"
 
 namespace insitu {
@@ -24,7 +26,53 @@ void embree_error(void* user, RTCError code, const char* str) {
   auto* impl = static_cast<EmbreeScene::Impl*>(user);
   if (impl->error.empty()) impl->error = fmt::format("Embree error {}: {}", int(code), str ? str : "");
 }
+
+std::uint64_t float_bits(float a, float b) {
+  std::uint32_t x = 0, y = 0;
+  std::memcpy(&x, &a, 4);
+  std::memcpy(&y, &b, 4);
+  return (std::uint64_t(y) << 32) | x;
+}
+
+// Cut-out surfaces (glTF's alpha MASK and BLEND, Material::opacity), as pbrt-v4 does them: a hit
+// is ignored where the surface is absent: always at opacity 0, and with probability 1 − opacity
+// by a hash of the ray and the triangle, so that a shadow ray and a traced ray along the same
+// line agree, and every sample of a pixel decides anew. Embree calls this for each candidate hit
+// of a geometry that has a cut-out material, for traced and shadow rays alike.
+void alpha_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* mesh = static_cast<const Mesh*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+    const Triangle& tri = mesh->triangles[prim];
+    const Material& mat = mesh->materials[std::size_t(tri.material)];
+    if (!mat.cutout()) continue;
+    const float a = mat.opacity(uv_at(*mesh, tri, RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i)));
+    if (a >= 1) continue;
+    RTCRayN* r = args->ray;
+    const unsigned n = args->N;
+    const std::uint64_t h = hash4(float_bits(RTCRayN_org_x(r, n, i), RTCRayN_org_y(r, n, i)),
+                                  float_bits(RTCRayN_org_z(r, n, i), RTCRayN_dir_x(r, n, i)),
+                                  float_bits(RTCRayN_dir_y(r, n, i), RTCRayN_dir_z(r, n, i)), prim);
+    if (!(a > 0) || hash_to_unit(h) >= a) args->valid[i] = 0;
+  }
+}
+
+bool has_cutout(const Mesh& mesh) {
+  for (const Material& m : mesh.materials)
+    if (m.cutout()) return true;
+  return false;
+}
 }  // namespace
+
+UvSets uv_at(const Mesh& mesh, const Triangle& tri, float b1, float b2) {
+  UvSets uv = {Vec2f::Zero(), Vec2f::Zero()};
+  if (tri.t[0] < 0 || tri.t[1] < 0 || tri.t[2] < 0) return uv;
+  const float b0 = 1.0f - b1 - b2;
+  uv[0] = b0 * mesh.uvs[tri.t[0]] + b1 * mesh.uvs[tri.t[1]] + b2 * mesh.uvs[tri.t[2]];
+  if (!mesh.uvs1.empty()) uv[1] = b0 * mesh.uvs1[tri.t[0]] + b1 * mesh.uvs1[tri.t[1]] + b2 * mesh.uvs1[tri.t[2]];
+  return uv;
+}
 
 EmbreeScene::EmbreeScene(std::vector<Mesh> meshes) : impl_(std::make_unique<Impl>()), meshes_(std::move(meshes)) {
   impl_->device = rtcNewDevice(nullptr);
@@ -45,6 +93,11 @@ EmbreeScene::EmbreeScene(std::vector<Mesh> meshes) : impl_(std::make_unique<Impl
     if (!ib) throw std::runtime_error(impl_->error.empty() ? "Embree: no index buffer" : impl_->error);
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
       for (int k = 0; k < 3; ++k) ib[3 * i + k] = mesh.triangles[i].v[k];
+    if (has_cutout(mesh)) {
+      rtcSetGeometryUserData(geom, const_cast<Mesh*>(&mesh));
+      rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
+      rtcSetGeometryOccludedFilterFunction(geom, alpha_filter);
+    }
     rtcCommitGeometry(geom);
     rtcAttachGeometryByID(impl_->scene, geom, unsigned(m));
     rtcReleaseGeometry(geom);
@@ -139,11 +192,7 @@ SurfacePoint EmbreeScene::surface(const Ray& ray, const Hit& hit) const {
       sp.ns_world = ns.dot(sp.ng_world) < 0 ? Vec3f(-ns) : ns;
     }
   }
-  if (tri.t[0] >= 0 && tri.t[1] >= 0 && tri.t[2] >= 0) {
-    sp.uv[0] = w0 * mesh.uvs[tri.t[0]] + hit.b1 * mesh.uvs[tri.t[1]] + hit.b2 * mesh.uvs[tri.t[2]];
-    if (!mesh.uvs1.empty())
-      sp.uv[1] = w0 * mesh.uvs1[tri.t[0]] + hit.b1 * mesh.uvs1[tri.t[1]] + hit.b2 * mesh.uvs1[tri.t[2]];
-  }
+  sp.uv = uv_at(mesh, tri, hit.b1, hit.b2);
   // Two-sided: both normals face the incoming ray.
   if (sp.ng_world.dot(ray.dir) > 0) {
     sp.ng_world = -sp.ng_world;

@@ -1,4 +1,5 @@
 // The Embree 3 scene of the objects: one triangle geometry per mesh, geometry ID = mesh index.
+// Cut-out materials (Material::opacity) let rays through where they are absent.
 #pragma once
 #include <memory>
 #include <vector>
@@ -28,6 +29,9 @@ struct SurfacePoint {
   UvSets uv = {Vec2f::Zero(), Vec2f::Zero()};
   const Material* material = nullptr;
 };
+
+// The UV sets of a triangle at barycentrics (b1, b2) of its vertices 1 and 2; zero without UVs.
+UvSets uv_at(const Mesh& mesh, const Triangle& tri, float b1, float b2);
 
 class EmbreeScene {
  public:

@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <map>
+#include <set>
+#include <cmath>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -19,6 +21,7 @@ class GltfImages {
 
   struct Decoded {
     std::shared_ptr<const Image> stored;  // as stored (k/255 for 8 bits), non-finite and negative values 0
+    std::shared_ptr<const Image> alpha;   // its alpha channel, or null
     bool display_referred = false;        // integer pixels: sRGB-encoded where they are colour
   };
 
@@ -44,9 +47,15 @@ class GltfImages {
     const bool jpeg = img.image.size() >= 2 && img.image[0] == 0xFF && img.image[1] == 0xD8;
     try {
       // The encoded bytes, kept by the loader (gltf_mesh.cpp), decoded by OpenImageIO.
-      ImageFile file = read_image_memory(jpeg ? "embedded.jpg" : "embedded.png", img.image, PixelGrid::kAsStored);
+      ImageFile file = read_image_memory(jpeg ? "embedded.jpg" : "embedded.png", img.image, PixelGrid::kAsStored,
+                                         AlphaChannel::kKeep);
       sanitize(file.stored);
-      return {std::make_shared<const Image>(std::move(file.stored)), file.display_referred};
+      Decoded d{std::make_shared<const Image>(std::move(file.stored)), nullptr, file.display_referred};
+      if (!file.alpha.empty()) {
+        sanitize(file.alpha);
+        d.alpha = std::make_shared<const Image>(std::move(file.alpha));
+      }
+      return d;
     } catch (const InputError& e) {
       throw InputError(fmt::format("{}: $.images[{}]", path_, index), e.message());
     }
@@ -89,24 +98,92 @@ class MaterialReader {
     m.name = g.name.empty() ? fmt::format("material {}", index) : g.name;
     m.principled = true;
     for (int c = 0; c < 3; ++c) m.kd[c] = float(pbr.baseColorFactor[std::size_t(c)]);
+    m.alpha = float(pbr.baseColorFactor[3]);
     m.metallic = float(pbr.metallicFactor);
     m.roughness = float(pbr.roughnessFactor);
-    if (!m.kd.allFinite() || (m.kd < 0).any() || !(m.metallic >= 0 && m.metallic <= 1) ||
-        !(m.roughness >= 0 && m.roughness <= 1))
+    if (!m.kd.allFinite() || (m.kd < 0).any() || !unit(m.alpha) || !unit(m.metallic) || !unit(m.roughness))
       throw InputError(where + ".pbrMetallicRoughness", "factors must be finite, within [0, 1]");
     m.map_kd = texture(pbr.baseColorTexture, true, where + ".pbrMetallicRoughness.baseColorTexture");
     m.map_metallic_roughness =
         texture(pbr.metallicRoughnessTexture, false, where + ".pbrMetallicRoughness.metallicRoughnessTexture");
+    read_alpha(g, m, where);
+    read_emission(g, m, where);
+    if (auto it = g.extensions.find("KHR_materials_clearcoat"); it != g.extensions.end())
+      read_clearcoat(it->second, m, where + ".extensions.KHR_materials_clearcoat");
     unrendered(g, m.name);
     return m;
   }
 
  private:
+  static bool unit(float x) { return x >= 0 && x <= 1; }
+
+  // A number of an extension's object, or `fallback`; a value that is not a finite number is refused.
+  static float number(const tinygltf::Value& object, const char* key, float fallback, const std::string& where) {
+    if (!object.Has(key)) return fallback;
+    const tinygltf::Value& v = object.Get(key);
+    const double x = v.IsNumber() ? v.GetNumberAsDouble() : std::nan("");
+    if (!std::isfinite(x)) throw InputError(where + "." + key, "must be a finite number");
+    return float(x);
+  }
+
+  // An extension's textureInfo object, as tinygltf reads the core ones.
+  static tinygltf::TextureInfo texture_info(const tinygltf::Value& object, const char* key) {
+    tinygltf::TextureInfo info;
+    if (!object.Has(key)) return info;
+    const tinygltf::Value& v = object.Get(key);
+    if (v.Has("index") && v.Get("index").IsInt()) info.index = v.Get("index").GetNumberAsInt();
+    if (v.Has("texCoord") && v.Get("texCoord").IsInt()) info.texCoord = v.Get("texCoord").GetNumberAsInt();
+    if (v.Has("extensions") && v.Get("extensions").Has("KHR_texture_transform"))
+      info.extensions["KHR_texture_transform"] = v.Get("extensions").Get("KHR_texture_transform");
+    return info;
+  }
+
+  // alphaMode and alphaCutoff (glTF 2.0 §3.9.4); the base colour texture's alpha channel.
+  void read_alpha(const tinygltf::Material& g, Material& m, const std::string& where) {
+    if (g.alphaMode == "MASK") {
+      m.alpha_mode = Material::AlphaMode::kMask;
+    } else if (g.alphaMode == "BLEND") {
+      m.alpha_mode = Material::AlphaMode::kBlend;
+    } else if (!g.alphaMode.empty() && g.alphaMode != "OPAQUE") {
+      throw InputError(where + ".alphaMode", fmt::format("'{}' is not OPAQUE, MASK or BLEND", g.alphaMode));
+    }
+    m.alpha_cutoff = float(g.alphaCutoff);
+    if (!(m.alpha_cutoff >= 0) || !std::isfinite(m.alpha_cutoff))
+      throw InputError(where + ".alphaCutoff", "must be a finite number ≥ 0");
+  }
+
+  // emissiveFactor × emissiveTexture (sRGB) × KHR_materials_emissive_strength.
+  void read_emission(const tinygltf::Material& g, Material& m, const std::string& where) {
+    for (int c = 0; c < 3; ++c) m.emission[c] = float(g.emissiveFactor[std::size_t(c)]);
+    if (!m.emission.allFinite() || (m.emission < 0).any() || (m.emission > 1).any())
+      throw InputError(where + ".emissiveFactor", "must be finite, within [0, 1]");
+    m.map_emission = texture(g.emissiveTexture, true, where + ".emissiveTexture");
+    if (auto it = g.extensions.find("KHR_materials_emissive_strength"); it != g.extensions.end()) {
+      const std::string ext = where + ".extensions.KHR_materials_emissive_strength";
+      const float strength = number(it->second, "emissiveStrength", 1.0f, ext);
+      if (strength < 0) throw InputError(ext + ".emissiveStrength", "must be ≥ 0");
+      m.emission *= strength;
+    }
+  }
+
+  // KHR_materials_clearcoat: the coat's factor (× R) and roughness (× G). Its normal texture is
+  // reported by unrendered().
+  void read_clearcoat(const tinygltf::Value& ext, Material& m, const std::string& where) {
+    m.clearcoat = number(ext, "clearcoatFactor", 0.0f, where);
+    m.clearcoat_roughness = number(ext, "clearcoatRoughnessFactor", 0.0f, where);
+    if (!unit(m.clearcoat) || !unit(m.clearcoat_roughness))
+      throw InputError(where, "clearcoatFactor and clearcoatRoughnessFactor must be within [0, 1]");
+    m.map_clearcoat = texture(texture_info(ext, "clearcoatTexture"), false, where + ".clearcoatTexture");
+    m.map_clearcoat_roughness =
+        texture(texture_info(ext, "clearcoatRoughnessTexture"), false, where + ".clearcoatRoughnessTexture");
+  }
+
   Texture texture(const tinygltf::TextureInfo& info, bool srgb, const std::string& where) {
     Texture t;
     if (info.index < 0) return t;
     const auto& image = images_.get(info.index, where);
     t.image = image.stored;
+    if (srgb) t.alpha = image.alpha;          // colour textures: the base colour's opacity
     t.srgb = srgb && image.display_referred;  // data textures (metallic, roughness) are their stored values
     t.texcoord = info.texCoord;
     if (auto it = info.extensions.find("KHR_texture_transform"); it != info.extensions.end()) {
@@ -129,12 +206,14 @@ class MaterialReader {
 
   // What the material asks for that insitu does not render, named once per material.
   void unrendered(const tinygltf::Material& g, const std::string& name) {
+    static const std::set<std::string> kRead = {"KHR_materials_clearcoat", "KHR_materials_emissive_strength"};
     std::vector<std::string> what;
-    if (g.emissiveTexture.index >= 0 || g.emissiveFactor[0] > 0 || g.emissiveFactor[1] > 0 || g.emissiveFactor[2] > 0)
-      what.push_back("emission");
-    if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty()) what.push_back("alphaMode " + g.alphaMode);
     if (g.normalTexture.index >= 0) what.push_back("normalTexture");
-    for (const auto& [ext, value] : g.extensions) what.push_back(ext);
+    for (const auto& [ext, value] : g.extensions)
+      if (!kRead.count(ext)) what.push_back(ext);
+    if (auto it = g.extensions.find("KHR_materials_clearcoat");
+        it != g.extensions.end() && it->second.Has("clearcoatNormalTexture"))
+      what.push_back("KHR_materials_clearcoat.clearcoatNormalTexture");
     if (what.empty()) return;
     std::string list;
     for (const std::string& w : what) list += (list.empty() ? "" : ", ") + w;

@@ -35,8 +35,23 @@ struct Material {
   bool principled = false;  // the principled model, with the parameters below
   float metallic = 0.0f, roughness = 0.5f, specular = 0.5f;
   Texture map_metallic_roughness;  // glTF's: G multiplies roughness, B metallic
+  float clearcoat = 0.0f, clearcoat_roughness = 0.0f;
+  Texture map_clearcoat, map_clearcoat_roughness;  // glTF's: R multiplies clearcoat, G its roughness
+
+  Rgb emission = Rgb::Zero();  // emitted radiance, in the environment's units (Cycles's strength 1)
+  Texture map_emission;        // multiplies emission
+
+  // glTF's alphaMode: opaque; a mask, opaque where alpha ≥ alpha_cutoff and absent elsewhere; or
+  // a blend, present with probability alpha (stochastic opacity).
+  enum class AlphaMode { kOpaque, kMask, kBlend };
+  AlphaMode alpha_mode = AlphaMode::kOpaque;
+  float alpha = 1.0f, alpha_cutoff = 0.5f;  // alpha: the base colour's, times map_kd's alpha channel
 
   Rgb base_colour(const UvSets& uv) const { return kd * map_kd.sample(uv); }
+  Rgb emitted(const UvSets& uv) const { return emission * map_emission.sample(uv); }
+  // The probability that a ray meets the surface here: 1 or 0 for opaque and mask, alpha for blend.
+  float opacity(const UvSets& uv) const;
+  bool cutout() const { return alpha_mode != AlphaMode::kOpaque; }
 };
 
 struct Triangle {

@@ -254,8 +254,8 @@ void warn_base_colour_only(const std::vector<Mesh>& meshes, const std::string& i
         names += (names.empty() ? "'" : ", '") + mat.name + "'";
   if (!names.empty())
     w.add("render.integrator", "the " + integrator +
-                                   " integrator shades the objects by their base colour only; metallic, roughness "
-                                   "and specular are the path integrator's (materials " +
+                                   " integrator shades the objects by their base colour only; metallic, roughness, "
+                                   "specular, clear coat and emission are the path integrator's (materials " +
                                    names + ")");
 }
 

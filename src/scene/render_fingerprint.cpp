@@ -17,6 +17,8 @@ void add_texture(Fnv1a& h, const Texture& t) {
   h.value(bool(t));
   if (!t) return;
   h.array(t.image->data), h.value(t.texcoord), h.bytes(t.image_from_uv.data(), 6 * sizeof(float));
+  h.value(bool(t.alpha));
+  if (t.alpha) h.array(t.alpha->data);
 }
 
 void add_meshes(Fnv1a& h, const EmbreeScene* scene) {
@@ -28,6 +30,10 @@ void add_meshes(Fnv1a& h, const EmbreeScene* scene) {
       add_texture(h, mat.map_kd);
       h.value(mat.principled), h.value(mat.metallic), h.value(mat.roughness), h.value(mat.specular);
       add_texture(h, mat.map_metallic_roughness);
+      h.value(mat.clearcoat), h.value(mat.clearcoat_roughness);
+      add_texture(h, mat.map_clearcoat), add_texture(h, mat.map_clearcoat_roughness);
+      h.bytes(mat.emission.data(), sizeof(Rgb)), add_texture(h, mat.map_emission);
+      h.value(mat.alpha_mode), h.value(mat.alpha), h.value(mat.alpha_cutoff);
     }
   }
 }

@@ -15,6 +15,7 @@
 
 #include "cli_util.h"
 #include "core/camera.h"
+#include "gltf_fixture.h"
 #include "insitu/insitu.h"
 #include "scene_fixture.h"
 
@@ -175,6 +176,34 @@ TEST(CApi, ErrorsAreCodesWithTheCLIsMessage) {
   const auto cli = insitu::test::run_insitu(fx.dir, "render " + fx.dir.file("scene.json"));
   EXPECT_EQ(cli.err, "insitu: error: " + std::string(insitu_last_error()) + "\n");
   insitu_scene_free(s);
+}
+
+// A glTF file added through the API renders as the scene file's "mesh" renders it, principled
+// material (a coated, half-metallic ball) and all.
+TEST(CApi, GltfFileRendersAsTheSceneFileSaysIt) {
+  SceneFixture fx;
+  const nlohmann::json material = {
+      {"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.4, 0.2, 1}}, {"metallicFactor", 0.5}}},
+      {"extensions", {{"KHR_materials_clearcoat", {{"clearcoatFactor", 1.0}, {"clearcoatRoughnessFactor", 0.1}}}}}};
+  const std::string ball =
+      insitu::test::write_gltf_sphere(fx.dir, "ball", insitu::Vec3f(0.5f, 0.2f, -0.5f), 0.2f, material, 8);
+  auto j = path_scene(fx, 2);
+  j["objects"] = {{{"mesh", "ball.gltf"}}};
+  insitu_scene* a = scene_from(fx.write(j));
+  j.erase("objects");
+  insitu_scene* b = scene_from(fx.write(j));
+  ASSERT_EQ(insitu_scene_add_obj(b, ball.c_str(), nullptr), INSITU_OK) << insitu_last_error();
+  Result ra, rb;
+  ASSERT_EQ(insitu_render(a, nullptr, nullptr, &ra.r), INSITU_OK) << insitu_last_error();
+  ASSERT_EQ(insitu_render(b, nullptr, nullptr, &rb.r), INSITU_OK) << insitu_last_error();
+  const std::vector<float> objects = layer(ra.r, "objects");
+  float coverage = 0;
+  for (std::size_t i = 3; i < objects.size(); i += 4) coverage += objects[i];
+  EXPECT_GT(coverage, 1.0f);  // the ball is in view
+  for (const char* name : {"composite", "objects", "with", "without"})
+    EXPECT_EQ(layer(ra.r, name), layer(rb.r, name)) << name;
+  insitu_scene_free(a);
+  insitu_scene_free(b);
 }
 
 // The quad of tests/data/good_quad.obj given from memory renders as the file does.

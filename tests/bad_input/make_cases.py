@@ -272,7 +272,7 @@ def systematic_cases():
         variant("missing_key_" + "_".join(str(k) for k in path), path, None, r"scene.json.*(missing|required)", delete=True)
 
 
-def gltf_quad(indices=(0, 1, 2, 0, 2, 3), count=4, required=(), buffer_uri=None):
+def gltf_quad(indices=(0, 1, 2, 0, 2, 3), count=4, required=(), buffer_uri=None, material=None):
     """A unit quad as a .gltf, its buffer in a data URI (or at buffer_uri, not written)."""
     pos = struct.pack("<12f", 0, 0, 0, 1, 0, 0, 1, 0, 1, 0, 0, 1)
     idx = struct.pack("<%dH" % len(indices), *indices)
@@ -286,6 +286,9 @@ def gltf_quad(indices=(0, 1, 2, 0, 2, 3), count=4, required=(), buffer_uri=None)
          "buffers": [{"uri": uri, "byteLength": len(data)}]}
     if required:
         g["extensionsRequired"] = g["extensionsUsed"] = list(required)
+    if material is not None:
+        g["materials"] = [material]
+        g["meshes"][0]["primitives"][0]["material"] = 0
     return json.dumps(g)
 
 
@@ -298,7 +301,11 @@ def gltf_cases():
             ("index_range", gltf_quad(indices=(0, 1, 7)), r"chair.gltf: \$\.accessors\[1\] \(indices\): index 7"),
             ("past_buffer", gltf_quad(count=40), r"chair.gltf: \$\.accessors\[0\] \(POSITION\): .*past the end"),
             ("missing_bin", gltf_quad(buffer_uri="chair.bin"), r"chair.gltf: .*chair.bin"),
-            ("not_json", "{\"asset\": ", r"chair.gltf: ")]:
+            ("not_json", "{\"asset\": ", r"chair.gltf: "),
+            ("alpha_mode", gltf_quad(material={"alphaMode": "CUTOUT"}),
+             r"chair.gltf: \$\.materials\[0\]\.alphaMode: 'CUTOUT' is not OPAQUE, MASK or BLEND"),
+            ("clearcoat_nan", gltf_quad(material={"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": "x"}}}),
+             r"chair.gltf: \$\.materials\[0\]\.extensions\.KHR_materials_clearcoat\.clearcoatFactor: must be a finite")]:
         case("gltf_" + name, ["render", "scene.json"], message, files={"chair.gltf": text}, scene=at)
 
 

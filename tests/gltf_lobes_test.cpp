@@ -1,0 +1,209 @@
+// glTF's material extensions and modes beyond metal/roughness (render/gltf_materials.h):
+// KHR_materials_clearcoat, emission with KHR_materials_emissive_strength, and alphaMode MASK and
+// BLEND as cut-outs (render/embree_scene.h), read from the file and rendered.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <OpenImageIO/imageio.h>
+
+#include "core/sampler.h"
+#include "cube_fixture.h"
+#include "gltf_fixture.h"
+#include "integrators/registry.h"
+#include "render/embree_scene.h"
+#include "render/gltf_mesh.h"
+#include "test_util.h"
+
+namespace insitu {
+namespace {
+
+using nlohmann::json;
+
+// A unit quad in the plane z = 0, (0, 0)–(1, 1), facing +z, with UVs u = x, v = y (glTF's v down:
+// v_gltf = 1 − y) and one material.
+std::string write_quad(const test::TempDir& dir, const std::string& name, const json& material,
+                       const json& extra = json::object()) {
+  std::string bin;
+  test::append(bin, std::vector<float>{0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0});
+  test::append(bin, std::vector<float>{0, 1, 1, 1, 1, 0, 0, 0});
+  test::append(bin, std::vector<std::uint16_t>{0, 1, 2, 0, 2, 3});
+  json doc = {
+      {"asset", {{"version", "2.0"}}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"meshes",
+       {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 2}, {"material", 0}}}}}}},
+      {"materials", {material}},
+      {"accessors",
+       {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}},
+        {{"bufferView", 0}, {"byteOffset", 48}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
+        {{"bufferView", 1}, {"componentType", 5123}, {"count", 6}, {"type", "SCALAR"}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteLength", 80}}, {{"buffer", 0}, {"byteOffset", 80}, {"byteLength", 12}}}},
+      {"buffers", {{{"uri", name + ".bin"}, {"byteLength", bin.size()}}}}};
+  doc.merge_patch(extra);
+  std::ofstream(dir.file(name + ".bin"), std::ios::binary) << bin;
+  return dir.write(name + ".gltf", doc.dump());
+}
+
+// A 2 × 1 RGBA PNG: both texels grey 128, alpha 51 (0.2) on the left, 204 (0.8) on the right;
+// written straight (unassociated), as glTF's images are.
+std::string write_alpha_png(const test::TempDir& dir) {
+  const unsigned char pixels[8] = {128, 128, 128, 51, 128, 128, 128, 204};
+  OIIO::ImageSpec spec(2, 1, 4, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:UnassociatedAlpha", 1);
+  auto out = OIIO::ImageOutput::create(dir.file("alpha.png"));
+  EXPECT_TRUE(out && out->open(dir.file("alpha.png"), spec) && out->write_image(OIIO::TypeDesc::UINT8, pixels));
+  out->close();
+  return "alpha.png";
+}
+
+TEST(GltfLobes, ExtensionsAndModesAreRead) {
+  test::TempDir dir;
+  const json material = {
+      {"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1, 0.6}}, {"baseColorTexture", {{"index", 0}}}}},
+      {"alphaMode", "MASK"},
+      {"alphaCutoff", 0.4},
+      {"emissiveFactor", {1, 0.5, 0.25}},
+      {"normalTexture", {{"index", 0}}},
+      {"extensions",
+       {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}},
+        {"KHR_materials_clearcoat",
+         {{"clearcoatFactor", 0.7}, {"clearcoatRoughnessFactor", 0.2}, {"clearcoatTexture", {{"index", 0}}}}}}}};
+  const json images = {{"images", {{{"uri", write_alpha_png(dir)}}}}, {"textures", {{{"source", 0}}}}};
+  Warnings w;
+  const Mesh m = load_mesh(write_quad(dir, "q", material, images), w);
+  const Material& mat = m.materials[0];
+  EXPECT_EQ(mat.alpha_mode, Material::AlphaMode::kMask);
+  EXPECT_FLOAT_EQ(mat.alpha_cutoff, 0.4f);
+  EXPECT_FLOAT_EQ(mat.alpha, 0.6f);
+  EXPECT_TRUE(mat.emission.isApprox(Rgb(4, 2, 1)));
+  EXPECT_FLOAT_EQ(mat.clearcoat, 0.7f);
+  EXPECT_FLOAT_EQ(mat.clearcoat_roughness, 0.2f);
+  EXPECT_TRUE(bool(mat.map_clearcoat));
+  // Opacity 0.6 × 0.2 = 0.12 at the left texel, 0.6 × 0.8 = 0.48 at the right: the cutoff 0.4
+  // keeps the right one only. The colour is the PNG's as stored, not premultiplied by its alpha.
+  const UvSets left = {Vec2f(0.25f, 0.5f), Vec2f::Zero()}, right = {Vec2f(0.75f, 0.5f), Vec2f::Zero()};
+  EXPECT_NEAR(mat.map_kd.sample_alpha(left), 0.2f, 1e-6f);
+  EXPECT_EQ(mat.opacity(left), 0.0f);
+  EXPECT_EQ(mat.opacity(right), 1.0f);
+  EXPECT_NEAR(mat.map_kd.sample(left)[0], mat.map_kd.sample(right)[0], 1e-6f);
+  // What is read goes unremarked; the normal map is named.
+  ASSERT_EQ(w.items.size(), 1u);
+  EXPECT_NE(w.items[0].find("not rendered yet: normalTexture"), std::string::npos) << w.items[0];
+  EXPECT_EQ(w.items[0].find("clearcoat"), std::string::npos) << w.items[0];
+}
+
+// A texture with alpha filters its colour associated: halfway between a white texel that is there
+// and a black one that is not, the colour is white (Σ w a c / Σ w a), and the alpha a half; where
+// no texel is there, the plain mean.
+TEST(GltfLobes, ColourIsFilteredByAlpha) {
+  Texture t;
+  auto image = std::make_shared<Image>(2, 1, 3, 0.0f);
+  image->set_rgb(0, 0, Rgb(1, 0.5f, 0.25f));
+  auto alpha = std::make_shared<Image>(2, 1, 1, 0.0f);
+  *alpha->at(0, 0) = 1.0f;
+  t.image = image, t.alpha = alpha;
+  t.image_from_uv = Texture::obj_convention();
+  const UvSets midway = {Vec2f(0.5f, 0.5f), Vec2f::Zero()};
+  EXPECT_TRUE(t.sample(midway).isApprox(Rgb(1, 0.5f, 0.25f), 1e-6f)) << t.sample(midway).transpose();
+  EXPECT_NEAR(t.sample_alpha(midway), 0.5f, 1e-6f);
+  *alpha->at(0, 0) = 0.0f;
+  EXPECT_TRUE(t.sample(midway).isApprox(Rgb(0.5f, 0.25f, 0.125f), 1e-6f)) << t.sample(midway).transpose();
+}
+
+TEST(GltfLobes, BadValuesAreRefusedWithTheirPath) {
+  test::TempDir dir;
+  auto error_of = [&](const json& material) {
+    Warnings w;
+    try {
+      load_mesh(write_quad(dir, "bad", material), w);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error_of({{"alphaMode", "CLIP"}}).find("bad.gltf: $.materials[0].alphaMode: 'CLIP' is not OPAQUE"),
+            std::string::npos);
+  EXPECT_NE(error_of({{"extensions", {{"KHR_materials_clearcoat", {{"clearcoatFactor", 2}}}}}})
+                .find("$.materials[0].extensions.KHR_materials_clearcoat: clearcoatFactor"),
+            std::string::npos);
+  EXPECT_NE(error_of({{"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", -1}}}}}})
+                .find("KHR_materials_emissive_strength.emissiveStrength: must be ≥ 0"),
+            std::string::npos);
+}
+
+// Rays straight down through the quad (z = 1 → −1) at n points spread over it; the fraction that
+// the scene reports hit, by intersect() and by occluded().
+struct Fractions {
+  double hit = 0, occluded = 0;
+  int disagree = 0;
+};
+Fractions hit_fractions(const EmbreeScene& scene, int n) {
+  Fractions f;
+  for (int k = 0; k < n; ++k) {
+    Sampler s(3, std::uint64_t(k), 0);
+    const Ray ray{Vec3f(0.05f + 0.9f * s.next(), 0.05f + 0.9f * s.next(), 1.0f), Vec3f(0, 0, -1)};
+    const bool hit = scene.intersect(ray, 0.0f, 2.0f).valid(), blocked = scene.occluded(ray, 0.0f, 2.0f);
+    f.hit += hit, f.occluded += blocked, f.disagree += hit != blocked;
+  }
+  f.hit /= n, f.occluded /= n;
+  return f;
+}
+
+// BLEND is stochastic opacity: a quad of alpha a is met by a fraction a of rays (binomial, 4σ),
+// and a shadow ray along a traced ray's line decides as that ray did. MASK is all or nothing.
+TEST(GltfLobes, CutOutsLetRaysThroughByTheirOpacity) {
+  test::TempDir dir;
+  const int n = 20000;
+  for (double a : {0.0, 0.3, 0.75}) {
+    Warnings w;
+    std::vector<Mesh> meshes;
+    meshes.push_back(
+        load_mesh(write_quad(dir, "blend",
+                             {{"alphaMode", "BLEND"}, {"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1, a}}}}}),
+                  w));
+    const EmbreeScene scene(std::move(meshes));
+    const Fractions f = hit_fractions(scene, n);
+    EXPECT_NEAR(f.hit, a, 4 * std::sqrt(a * (1 - a) / n) + 1e-9) << a;
+    EXPECT_EQ(f.disagree, 0) << a;
+  }
+  for (double a : {0.3, 0.75}) {
+    Warnings w;
+    std::vector<Mesh> meshes;
+    meshes.push_back(load_mesh(
+        write_quad(dir, "mask", {{"alphaMode", "MASK"}, {"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1, a}}}}}),
+        w));
+    const EmbreeScene scene(std::move(meshes));
+    EXPECT_EQ(hit_fractions(scene, 2000).hit, a >= 0.5 ? 1.0 : 0.0) << a;
+  }
+}
+
+// An emitting object of black base colour in a black room is seen at its emitted radiance:
+// emissiveFactor × emissiveStrength, in the environment's units (Cycles's strength 1 = radiance 1),
+// with no variance.
+TEST(GltfLobes, EmissionIsSeenAtItsRadiance) {
+  test::TempDir dir;
+  const json material = {{"pbrMetallicRoughness", {{"baseColorFactor", {0, 0, 0, 1}}, {"metallicFactor", 0}}},
+                         {"emissiveFactor", {1, 0.5, 0.25}},
+                         {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 3}}}}}};
+  Warnings w;
+  std::vector<Mesh> meshes;
+  meshes.push_back(load_mesh(write_quad(dir, "lamp", material), w));
+  const EmbreeScene scene(std::move(meshes));
+  const CubeMap env = test::constant_cube(8, Rgb::Zero());
+  RenderInputs in;
+  in.objects = &scene;
+  in.environment = &env;
+  const auto path = make_integrator("path", in);
+  for (int k = 0; k < 16; ++k) {
+    Sampler s(9, 0, std::uint64_t(k));
+    const Rgb L = path->sample({Vec3f(0.5f, 0.4f, 2.0f), Vec3f(0, 0, -1)}, s).radiance;
+    EXPECT_TRUE(L.isApprox(Rgb(3, 1.5f, 0.75f), 1e-6f)) << L.transpose();
+  }
+}
+
+}  // namespace
+}  // namespace insitu
