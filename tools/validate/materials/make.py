@@ -18,15 +18,28 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(HERE)))
 
-# name: (base colour, metallic, roughness, texture). Classes insitu renders today; clear coat,
-# sheen and glass follow with their lobes.
+# name: (base colour (RGBA), metallic, roughness, texture, more of the glTF material). Classes insitu
+# renders today; sheen and glass follow with their lobes. MATERIALS_ONLY=a,b makes only those.
+COAT = "KHR_materials_clearcoat"
 MATERIALS = {
-    "rough_dielectric": ((0.8, 0.3, 0.2), 0.0, 0.6, None),
-    "polished_dielectric": ((0.1, 0.25, 0.6), 0.0, 0.15, None),
-    "white_dielectric": ((0.9, 0.9, 0.9), 0.0, 0.4, None),
-    "gold": ((1.0, 0.77, 0.34), 1.0, 0.3, None),
-    "polished_steel": ((0.56, 0.57, 0.58), 1.0, 0.1, None),
-    "half_metal_textured": ((1.0, 1.0, 1.0), 0.5, 0.45, "checker"),
+    "rough_dielectric": ((0.8, 0.3, 0.2, 1), 0.0, 0.6, None, {}),
+    "polished_dielectric": ((0.1, 0.25, 0.6, 1), 0.0, 0.15, None, {}),
+    "white_dielectric": ((0.9, 0.9, 0.9, 1), 0.0, 0.4, None, {}),
+    "gold": ((1.0, 0.77, 0.34, 1), 1.0, 0.3, None, {}),
+    "polished_steel": ((0.56, 0.57, 0.58, 1), 1.0, 0.1, None, {}),
+    "half_metal_textured": ((1.0, 1.0, 1.0, 1), 0.5, 0.45, "checker", {}),
+    # A lacquer: a glossy coat over a textured, rough wood-brown base.
+    "lacquered_wood": ((1.0, 1.0, 1.0, 1), 0.0, 0.6, "checker",
+                       {"extensions": {COAT: {"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": 0.05}}}),
+    "satin_coat": ((0.6, 0.1, 0.1, 1), 0.0, 0.35, None,
+                   {"extensions": {COAT: {"clearcoatFactor": 0.6, "clearcoatRoughnessFactor": 0.3}}}),
+    "coated_gold": ((1.0, 0.77, 0.34, 1), 1.0, 0.5, None,
+                    {"extensions": {COAT: {"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": 0.1}}}),
+    "emissive": ((0.2, 0.2, 0.2, 1), 0.0, 0.5, None,
+                 {"emissiveFactor": [1.0, 0.6, 0.3],
+                  "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 2.0}}}),
+    "alpha_mask": ((1.0, 1.0, 1.0, 1), 0.0, 0.5, "checker_alpha", {"alphaMode": "MASK", "alphaCutoff": 0.5}),
+    "alpha_blend": ((0.8, 0.8, 0.8, 0.4), 0.0, 0.4, None, {"alphaMode": "BLEND"}),
 }
 
 
@@ -51,24 +64,26 @@ def sphere(rings=48, segments=96):
     return pos, nor, uv, idx
 
 
-def checker_png(path):
-    subprocess.check_call(["oiiotool", "--pattern", "checker:width=32:height=32:color1=0.9,0.85,0.8:color2=0.2,0.12,0.08",
-                           "256x256", "3", "-d", "uint8", "-o", path])
+def checker_png(path, alpha=False):
+    """A 256² checker of 32-texel squares; with alpha, the dark squares have alpha 0."""
+    colours = "color1=0.9,0.85,0.8,1:color2=0.2,0.12,0.08,0" if alpha else "color1=0.9,0.85,0.8:color2=0.2,0.12,0.08"
+    subprocess.check_call(["oiiotool", "--pattern", "checker:width=32:height=32:" + colours,
+                           "256x256", "4" if alpha else "3", "-d", "uint8", "-o", path])
 
 
-def write_gltf(out, name, base, metallic, roughness, texture):
+def write_gltf(out, name, base, metallic, roughness, texture, more):
     pos, nor, uv, idx = sphere()
     n = len(pos) // 3
     blob = struct.pack("<%df" % len(pos), *pos) + struct.pack("<%df" % len(nor), *nor)
     blob += struct.pack("<%df" % len(uv), *uv) + struct.pack("<%dI" % len(idx), *idx)
     o_nor, o_uv, o_idx = 12 * n, 24 * n, 32 * n
-    pbr = {"baseColorFactor": list(base) + [1.0], "metallicFactor": metallic, "roughnessFactor": roughness}
+    pbr = {"baseColorFactor": list(base), "metallicFactor": metallic, "roughnessFactor": roughness}
     doc = {
         "asset": {"version": "2.0", "generator": "insitu tools/validate/materials/make.py"},
         "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0, "name": name}],
         "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3,
                                     "material": 0}]}],
-        "materials": [{"name": name, "pbrMetallicRoughness": pbr}],
+        "materials": [dict({"name": name, "pbrMetallicRoughness": pbr}, **more)],
         "accessors": [
             {"bufferView": 0, "componentType": 5126, "count": n, "type": "VEC3",
              "min": [-0.5, -0.5, -0.5], "max": [0.5, 0.5, 0.5]},
@@ -79,8 +94,8 @@ def write_gltf(out, name, base, metallic, roughness, texture):
         "buffers": [{"uri": name + ".bin", "byteLength": len(blob)}],
     }
     if texture:
-        checker_png(os.path.join(out, "checker.png"))
-        doc["images"] = [{"uri": "checker.png"}]
+        checker_png(os.path.join(out, texture + ".png"), alpha=texture.endswith("alpha"))
+        doc["images"] = [{"uri": texture + ".png"}]
         doc["textures"] = [{"source": 0}]
         pbr["baseColorTexture"] = {"index": 0}
     with open(os.path.join(out, name + ".bin"), "wb") as f:
@@ -96,8 +111,11 @@ def main():
     os.makedirs(out, exist_ok=True)
     subprocess.check_call(["oiiotool", "--pattern", "constant:color=0,0,0", "320x240", "3", "-d", "uint8", "-o",
                            os.path.join(out, "black.png")])
-    for name, (base, metallic, roughness, texture) in MATERIALS.items():
-        write_gltf(out, name, base, metallic, roughness, texture)
+    only = [m for m in os.environ.get("MATERIALS_ONLY", "").split(",") if m]
+    for name, (base, metallic, roughness, texture, more) in MATERIALS.items():
+        if only and name not in only:
+            continue
+        write_gltf(out, name, base, metallic, roughness, texture, more)
         scene = {"photo": "black.png",
                  "camera": {"eye": [0.0, 0.45, 3.4], "look": [0.0, 0.0, 0.0], "hfov_deg": 30},
                  # 1024² faces (the HDRI's 1024 × 512 upsampled): finer than the polished lobes, so that
@@ -108,7 +126,7 @@ def main():
                  "output": {"image": "insitu_" + name + ".exr", "layers": "none"}}
         with open(os.path.join(out, name + ".json"), "w") as f:
             json.dump(scene, f, indent=1)
-    print("materials: wrote", len(MATERIALS), "scenes to", out)
+    print("materials: wrote", len(only) if only else len(MATERIALS), "scenes to", out)
 
 
 if __name__ == "__main__":

@@ -23,7 +23,7 @@ for scene in "$out"/*.json; do
       > "$out/insitu_${name}_$seed.log" 2>&1
   done
   t_insitu=$(echo "$(date +%s.%N) - $start" | bc)
-  "$insitu" export-blender "$scene" -o "$out/cycles_$name.py" > /dev/null
+  "$insitu" export-blender "$scene" -o "$out/cycles_$name.py" > "$out/export_$name.log" 2>&1
   start=$(date +%s.%N)
   for seed in 1 2; do
     blender -b --factory-startup --python "$out/cycles_$name.py" -- --render "$out/cycles_${name}_$seed.exr" \
