@@ -3,6 +3,7 @@
 #include "render/bsdf.h"
 #include "render/ggx.h"
 #include "render/gtr1.h"
+#include "render/velvet.h"
 #include "core/sampler.h"
 
 namespace insitu {
@@ -29,7 +30,7 @@ Mc hemisphere_integral(G g, int count, std::uint64_t seed) {
     sum2 += x * x;
   }
   const double m = sum / count;
-  return {m, std::sqrt((sum2 / count - m * m) / count)};
+  return {m, std::sqrt(std::max(0.0, sum2 / count - m * m) / count)};
 }
 
 // E[f·cos/pdf] over the BSDF's own samples (failed samples count 0).
@@ -44,7 +45,7 @@ Mc sampled_albedo(const Bsdf& b, const Vec3f& wo, int count, std::uint64_t seed)
     sum2 += x * x;
   }
   const double m = sum / count;
-  return {m, std::sqrt((sum2 / count - m * m) / count)};
+  return {m, std::sqrt(std::max(0.0, sum2 / count - m * m) / count)};
 }
 
 TEST(BsdfTest, WithoutKsItIsLambertian) {
@@ -322,6 +323,49 @@ TEST(BsdfTest, ClearCoatSamplingIsCyclesEstimatorAndAdds) {
         EXPECT_TRUE(b.eval(wo, wi).isApprox(without.eval(wo, wi) + coat.eval(wo, wi), 1e-5f)) << rc << " " << t;
       }
     }
+}
+
+}  // namespace
+}  // namespace insitu
+
+namespace insitu {
+namespace {
+
+// The velvet distribution is normalized: 2π ∫₀¹ D(μ) μ dμ = 1 (velvet.h derives it).
+TEST(BsdfTest, VelvetIsNormalized) {
+  for (float sigma : {0.05f, 0.3f, 1.0f}) {
+    const int n = 2000000;
+    double sum = 0;
+    for (int k = 0; k < n; ++k) {
+      const double mu = (k + 0.5) / n;
+      sum += double(velvet::d(float(mu), sigma)) * mu;
+    }
+    EXPECT_NEAR(2 * kPi * sum / n, 1.0, 2e-3) << sigma;
+  }
+}
+
+// Sheen alone (a black base without specular) and on a base: samples follow pdf() (uniform for the
+// velvet lobe) and their mean weight is ∫ f cos dω by quadrature; the sheen adds its f.
+TEST(BsdfTest, SheenSamplingMatchesEvalAndPdf) {
+  for (float rough : {0.3f, 0.8f})
+    for (float theta : {0.0f, 60.0f, 85.0f})
+      for (float base : {0.0f, 0.5f}) {
+        PrincipledParams p;
+        p.base = Rgb::Constant(base), p.specular = 0.0f, p.sheen = Rgb(0.8f, 0.6f, 0.4f), p.sheen_roughness = rough;
+        const Bsdf b = Bsdf::principled(p);
+        const Vec3f wo = direction_at(theta);
+        const Mc by_sampling = sampled_albedo(b, wo, 400000, 3);
+        const Mc by_quadrature =
+            hemisphere_integral([&](const Vec3f& wi) { return double(b.eval(wo, wi)[1]) * wi.z(); }, 400000, 4);
+        EXPECT_NEAR(by_sampling.mean, by_quadrature.mean, 4 * std::hypot(by_sampling.se, by_quadrature.se))
+            << "roughness " << rough << " theta " << theta << " base " << base;
+        const Mc pdf_integral = hemisphere_integral([&](const Vec3f& wi) { return double(b.pdf(wo, wi)); }, 400000, 5);
+        EXPECT_NEAR(pdf_integral.mean, 1.0, 4 * pdf_integral.se + 1e-3);
+        PrincipledParams bare = p;
+        bare.sheen = Rgb::Zero();
+        const Vec3f wi = direction_at(-50);
+        EXPECT_NEAR(b.eval(wo, wi)[1], Bsdf::principled(bare).eval(wo, wi)[1] + 0.6f * velvet::f(wo, wi, rough), 1e-5f);
+      }
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // glTF's material extensions and modes beyond metal/roughness (render/gltf_materials.h):
-// KHR_materials_clearcoat, emission with KHR_materials_emissive_strength, and alphaMode MASK and
+// KHR_materials_clearcoat, KHR_materials_sheen, emission with KHR_materials_emissive_strength, and alphaMode MASK and
 // BLEND as cut-outs (render/embree_scene.h), read from the file and rendered.
 #include <gtest/gtest.h>
 
@@ -71,7 +71,11 @@ TEST(GltfLobes, ExtensionsAndModesAreRead) {
       {"extensions",
        {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}},
         {"KHR_materials_clearcoat",
-         {{"clearcoatFactor", 0.7}, {"clearcoatRoughnessFactor", 0.2}, {"clearcoatTexture", {{"index", 0}}}}}}}};
+         {{"clearcoatFactor", 0.7}, {"clearcoatRoughnessFactor", 0.2}, {"clearcoatTexture", {{"index", 0}}}}},
+        {"KHR_materials_sheen",
+         {{"sheenColorFactor", {0.5, 0.4, 0.3}},
+          {"sheenRoughnessFactor", 0.6},
+          {"sheenRoughnessTexture", {{"index", 0}}}}}}}};
   const json images = {{"images", {{{"uri", write_alpha_png(dir)}}}}, {"textures", {{{"source", 0}}}}};
   Warnings w;
   const Mesh m = load_mesh(write_quad(dir, "q", material, images), w);
@@ -83,6 +87,8 @@ TEST(GltfLobes, ExtensionsAndModesAreRead) {
   EXPECT_FLOAT_EQ(mat.clearcoat, 0.7f);
   EXPECT_FLOAT_EQ(mat.clearcoat_roughness, 0.2f);
   EXPECT_TRUE(bool(mat.map_clearcoat));
+  EXPECT_TRUE(mat.sheen.isApprox(Rgb(0.5f, 0.4f, 0.3f)));
+  EXPECT_FLOAT_EQ(mat.sheen_roughness, 0.6f);
   // Opacity 0.6 × 0.2 = 0.12 at the left texel, 0.6 × 0.8 = 0.48 at the right: the cutoff 0.4
   // keeps the right one only. The colour is the PNG's as stored, not premultiplied by its alpha.
   const UvSets left = {Vec2f(0.25f, 0.5f), Vec2f::Zero()}, right = {Vec2f(0.75f, 0.5f), Vec2f::Zero()};
@@ -90,10 +96,13 @@ TEST(GltfLobes, ExtensionsAndModesAreRead) {
   EXPECT_EQ(mat.opacity(left), 0.0f);
   EXPECT_EQ(mat.opacity(right), 1.0f);
   EXPECT_NEAR(mat.map_kd.sample(left)[0], mat.map_kd.sample(right)[0], 1e-6f);
+  // The sheen's roughness is its texture's alpha (as Blender's importer connects it).
+  EXPECT_NEAR(mat.map_sheen_roughness.sample_alpha(left), 0.2f, 1e-6f);
   // What is read goes unremarked; the normal map is named.
   ASSERT_EQ(w.items.size(), 1u);
   EXPECT_NE(w.items[0].find("not rendered yet: normalTexture"), std::string::npos) << w.items[0];
   EXPECT_EQ(w.items[0].find("clearcoat"), std::string::npos) << w.items[0];
+  EXPECT_EQ(w.items[0].find("sheen"), std::string::npos) << w.items[0];
 }
 
 // A texture with alpha filters its colour associated: halfway between a white texel that is there

@@ -259,8 +259,8 @@ TEST(Gltf, TheSceneFileLoadsItAndOtherIntegratorsSayWhatTheyFlatten) {
   EXPECT_EQ(warnings_with("path").find("base colour only"), std::string::npos);
   for (const char* integrator : {"realtime", "irradiance"}) {
     const std::string all = warnings_with(integrator);
-    EXPECT_NE(all.find("shades the objects by their base colour only; metallic, roughness, specular, clear coat and "
-                       "emission are the path integrator's (materials 'brushed steel')"),
+    EXPECT_NE(all.find("shades the objects by their base colour only; metallic, roughness, specular, clear coat, "
+                       "sheen and emission are the path integrator's (materials 'brushed steel')"),
               std::string::npos)
         << integrator << ": " << all;
   }

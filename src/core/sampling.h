@@ -33,6 +33,12 @@ inline Vec3f cosine_sample(const Vec3f& n, float u1, float u2) {
   return Frame(n).to_world(cosine_sample_local(u1, u2)).normalized();
 }
 
+// A uniform direction over the upper hemisphere (z = u1): pdf(ω) = 1 / 2π.
+inline Vec3f uniform_hemisphere_local(float u1, float u2) {
+  const float r = std::sqrt(std::max(0.0f, 1 - u1 * u1)), phi = 2 * kPiF * u2;
+  return {r * std::cos(phi), r * std::sin(phi), u1};
+}
+
 // Veach's power heuristic (β = 2) for strategy a against b (Veach 1997, §9.2.4):
 // w_a = p_a² / (p_a² + p_b²); w_a + w_b = 1.
 inline float power_heuristic(float pdf_a, float pdf_b) { return pdf_a * pdf_a / (pdf_a * pdf_a + pdf_b * pdf_b); }

@@ -4,6 +4,7 @@
 
 #include "render/ggx.h"
 #include "render/gtr1.h"
+#include "render/velvet.h"
 #include "render/mesh.h"
 
 namespace insitu {
@@ -61,7 +62,11 @@ Bsdf Bsdf::principled(const PrincipledParams& p) {
     b.coat_ggx_ = rc * rc * rc * rc <= kCoatMirrorAlpha2;
     b.coat_alpha_ = b.coat_ggx_ ? kMirrorAlpha : rc * rc;
   }
-  b.glossy_ = s > kWeightCutoff || m > kWeightCutoff || b.coat_ > 0;
+  if (p.sheen.maxCoeff() > kWeightCutoff) {
+    b.sheen_ = p.sheen.max(0.0f);
+    b.sheen_sigma_ = velvet::sigma(p.sheen_roughness);
+  }
+  b.glossy_ = s > kWeightCutoff || m > kWeightCutoff || b.coat_ > 0 || b.sheen_.maxCoeff() > 0;
   return b;
 }
 
@@ -71,7 +76,8 @@ Bsdf Bsdf::from_material(const Material& m, const UvSets& uv) {
     const Rgb mr = m.map_metallic_roughness.sample(uv);  // glTF: G roughness, B metallic
     const Rgb cc = m.map_clearcoat.sample(uv), ccr = m.map_clearcoat_roughness.sample(uv);  // R, G
     return principled({base, m.metallic * mr[2], m.roughness * mr[1], m.specular, m.clearcoat * cc[0],
-                       m.clearcoat_roughness * ccr[1]});
+                       m.clearcoat_roughness * ccr[1], m.sheen * m.map_sheen.sample(uv),
+                       m.sheen_roughness * m.map_sheen_roughness.sample_alpha(uv)});
   }
   // Walter et al. 2007: α = √(2/(Ns + 2)).
   const float alpha = std::sqrt(2.0f / (std::max(0.0f, m.ns) + 2.0f));
@@ -117,10 +123,12 @@ Bsdf::LobeOdds Bsdf::lobe_odds(float cos_o) const {
     return odds;
   }
   const float w_s = fresnel(cos_o).mean(), w_c = coat_ * fresnel_dielectric(cos_o, kCoatEta);
-  const float w_d = diffuse_.mean() > kWeightCutoff ? diffuse_.mean() : 0.0f, sum = w_s + w_c + w_d;
+  const float w_d = diffuse_.mean() > kWeightCutoff ? diffuse_.mean() : 0.0f, w_v = sheen_.mean();
+  const float sum = w_s + w_c + w_d + w_v;
   if (!(sum > 0)) return odds;
   odds.specular = w_s / sum;
   odds.coat = w_c / sum;
+  odds.sheen = w_v / sum;
   return odds;
 }
 
@@ -131,8 +139,10 @@ Rgb Bsdf::eval(const Vec3f& wo, const Vec3f& wi) const {
   if (!glossy_) return f_d;
   const Vec3f h = (wo + wi).normalized();
   const float D = ggx::d(h.z(), alpha_), G = ggx::g1(co, alpha_) * ggx::g1(ci, alpha_);
-  const Rgb f = f_d + fresnel(std::max(0.0f, wi.dot(h))) * (D * G / (4 * co * ci));
-  return coat_ > 0 ? Rgb(f + coat(wo, wi)) : f;
+  Rgb f = f_d + fresnel(std::max(0.0f, wi.dot(h))) * (D * G / (4 * co * ci));
+  if (coat_ > 0) f += coat(wo, wi);
+  if (sheen_.maxCoeff() > 0) f += sheen_ * velvet::f(wo, wi, sheen_sigma_);
+  return f;
 }
 
 float Bsdf::pdf(const Vec3f& wo, const Vec3f& wi) const {
@@ -141,7 +151,8 @@ float Bsdf::pdf(const Vec3f& wo, const Vec3f& wi) const {
   if (!glossy_) return p_cos;
   const LobeOdds odds = lobe_odds(wo.z());
   const float p_coat = odds.coat > 0 ? odds.coat * coat_pdf(wo, wi) : 0.0f;
-  return odds.specular * ggx::reflection_pdf(wo, wi, alpha_) + p_coat + (1 - odds.specular - odds.coat) * p_cos;
+  const float p_diffuse = (1 - odds.specular - odds.coat - odds.sheen) * p_cos;
+  return odds.specular * ggx::reflection_pdf(wo, wi, alpha_) + p_coat + odds.sheen / (2 * kPiF) + p_diffuse;
 }
 
 bool Bsdf::sample(const Vec3f& wo, float u_lobe, float u1, float u2, BsdfSample* out) const {
@@ -152,6 +163,8 @@ bool Bsdf::sample(const Vec3f& wo, float u_lobe, float u1, float u2, BsdfSample*
     const bool coat_lobe = u_lobe >= odds.specular;
     const Vec3f h = ggx::sample_visible_normal(wo, coat_lobe ? coat_alpha_ : alpha_, u1, u2);
     wi = 2 * wo.dot(h) * h - wo;
+  } else if (u_lobe < odds.specular + odds.coat + odds.sheen) {
+    wi = uniform_hemisphere_local(u1, u2);
   } else {
     wi = cosine_sample_local(u1, u2);
   }

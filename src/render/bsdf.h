@@ -10,7 +10,8 @@
 //
 // `principled` (glTF): Cycles 3.4's Principled BSDF, lobe by lobe as its
 // kernel sets it up (intern/cycles/kernel/svm/closure.h, CLOSURE_BSDF_PRINCIPLED_ID), for the
-// parameters insitu reads (no transmission, sheen or subsurface):
+// parameters insitu reads (no transmission, or subsurface), with the Velvet BSDF that Blender's
+// glTF importer adds for sheen:
 //   diffuse   base·(1 − m) · f_pd, the principled diffuse of bsdf_principled_diffuse.h:
 //             f_pd = 1/π [(1 − ½F_V)(1 − ½F_L) + R (F_L + F_V + F_L F_V (R − 1))],
 //             F_x = (1 − cos θ_x)^5, R = r (1 + ωo·ωi)  (Burley 2012's retro-reflection);
@@ -22,7 +23,10 @@
 //   clear coat ¼·c · F_d(ωi·h, 1.5) D₁(h) G1(ωo) G1(ωi) / (4 |ωo·n| |ωi·n|), D₁ GTR1 of
 //             α = r_c² (render/gtr1.h), G1 GGX's Smith term at a fixed α = 0.25
 //             (bsdf_microfacet.h, CLOSURE_BSDF_MICROFACET_GGX_CLEARCOAT_ID); where Cycles makes
-//             the coat a mirror (α² ≤ 10⁻⁷), GGX at α = 10⁻³.
+//             the coat a mirror (α² ≤ 10⁻⁷), GGX at α = 10⁻³;
+//   sheen     sheen colour × the Ashikhmin velvet lobe of σ = sheen roughness (render/velvet.h),
+//             added (KHR_materials_sheen as Blender 3.4 imports it: a Velvet BSDF through an Add
+//             Shader, not the Principled BSDF's own sheen).
 // m: metallic, r: roughness, s: specular, c: clear coat, r_c: its roughness. Cycles adds the
 // lobes: none is weighted by what another reflects, so a white base reflects up to ~1.5 × what
 // arrives at grazing angles (BsdfTest.PrincipledGainsWhatCyclesGains); each lobe alone conserves
@@ -31,7 +35,8 @@
 // Sampling: the specular lobe by GGX's visible normals (render/ggx.h), the diffuse one
 // cosine-weighted; the lobe with probability: obj, p_s = max F(ωo·n) clamped to [0.05, 0.95];
 // principled, Cycles's sample weights, each lobe's w over their sum: w_s the mean of F at ωo·n,
-// w_c = ¼·c·F_d(ωo·n, 1.5), w_d the mean diffuse weight. pdf() is the mixture.
+// w_c = ¼·c·F_d(ωo·n, 1.5), w_d the mean diffuse weight, w_v the mean sheen colour (its lobe
+// sampled uniformly, as Cycles does). pdf() is the mixture.
 //
 // The clear coat is sampled as Cycles 3.4 samples it (bsdf_microfacet_ggx_sample): directions from
 // GGX's visible normals at α_c, their density reported as Cycles reports it,
@@ -54,6 +59,8 @@ struct PrincipledParams {
   Rgb base = Rgb::Constant(0.8f);
   float metallic = 0.0f, roughness = 0.5f, specular = 0.5f;
   float clearcoat = 0.0f, clearcoat_roughness = 0.03f;
+  Rgb sheen = Rgb::Zero();  // the Velvet BSDF's colour (KHR_materials_sheen's sheenColor)
+  float sheen_roughness = 0.0f;
 };
 
 struct BsdfSample {
@@ -86,7 +93,7 @@ class Bsdf {
   Rgb coat(const Vec3f& wo, const Vec3f& wi) const;     // the clear coat's f
   float coat_pdf(const Vec3f& wo, const Vec3f& wi) const;
   struct LobeOdds {
-    float specular = 0, coat = 0;  // the rest: diffuse
+    float specular = 0, coat = 0, sheen = 0;  // the rest: diffuse
   };
   LobeOdds lobe_odds(float cos_o) const;
   bool principled_ = false;
@@ -96,6 +103,8 @@ class Bsdf {
   float roughness_ = 0.0f, eta_ = 1.5f, f0_dielectric_ = 0.04f;  // principled only
   float coat_ = 0.0f, coat_alpha_ = 1.0f;                        // ¼·c, α_c
   bool coat_ggx_ = false;                                        // a mirror coat: GGX at α = 10⁻³
+  Rgb sheen_ = Rgb::Zero();                                      // the velvet lobe's colour
+  float sheen_sigma_ = 1.0f;
 };
 
 // The reflectance of a smooth dielectric of relative index η at cos θ (Cycles's

@@ -110,12 +110,33 @@ class MaterialReader {
     read_emission(g, m, where);
     if (auto it = g.extensions.find("KHR_materials_clearcoat"); it != g.extensions.end())
       read_clearcoat(it->second, m, where + ".extensions.KHR_materials_clearcoat");
+    if (auto it = g.extensions.find("KHR_materials_sheen"); it != g.extensions.end())
+      read_sheen(it->second, m, where + ".extensions.KHR_materials_sheen");
     unrendered(g, m.name);
     return m;
   }
 
  private:
   static bool unit(float x) { return x >= 0 && x <= 1; }
+
+  // KHR_materials_sheen as Blender 3.4's importer reads it: a Velvet BSDF of colour
+  // sheenColorFactor × sheenColorTexture (sRGB) and σ = sheenRoughnessFactor × the alpha of
+  // sheenRoughnessTexture, added to the principled one (render/bsdf.h).
+  void read_sheen(const tinygltf::Value& ext, Material& m, const std::string& where) {
+    if (ext.Has("sheenColorFactor")) {
+      const tinygltf::Value& c = ext.Get("sheenColorFactor");
+      for (int k = 0; k < 3; ++k) {
+        const double x = c.IsArray() && c.ArrayLen() == 3 && c.Get(k).IsNumber() ? c.Get(k).GetNumberAsDouble() : -1;
+        if (!(x >= 0 && x <= 1)) throw InputError(where + ".sheenColorFactor", "must be 3 numbers within [0, 1]");
+        m.sheen[k] = float(x);
+      }
+    }
+    m.sheen_roughness = number(ext, "sheenRoughnessFactor", 0.0f, where);
+    if (!unit(m.sheen_roughness)) throw InputError(where + ".sheenRoughnessFactor", "must be within [0, 1]");
+    m.map_sheen = texture(texture_info(ext, "sheenColorTexture"), true, where + ".sheenColorTexture");
+    m.map_sheen_roughness =
+        texture(texture_info(ext, "sheenRoughnessTexture"), false, where + ".sheenRoughnessTexture", true);
+  }
 
   // A number of an extension's object, or `fallback`; a value that is not a finite number is refused.
   static float number(const tinygltf::Value& object, const char* key, float fallback, const std::string& where) {
@@ -178,12 +199,14 @@ class MaterialReader {
         texture(texture_info(ext, "clearcoatRoughnessTexture"), false, where + ".clearcoatRoughnessTexture");
   }
 
-  Texture texture(const tinygltf::TextureInfo& info, bool srgb, const std::string& where) {
+  // A texture; its alpha channel is kept for colour textures (the base colour's opacity) and where
+  // asked for (`alpha`: a value stored in alpha).
+  Texture texture(const tinygltf::TextureInfo& info, bool srgb, const std::string& where, bool alpha = false) {
     Texture t;
     if (info.index < 0) return t;
     const auto& image = images_.get(info.index, where);
     t.image = image.stored;
-    if (srgb) t.alpha = image.alpha;          // colour textures: the base colour's opacity
+    if (srgb || alpha) t.alpha = image.alpha;
     t.srgb = srgb && image.display_referred;  // data textures (metallic, roughness) are their stored values
     t.texcoord = info.texCoord;
     if (auto it = info.extensions.find("KHR_texture_transform"); it != info.extensions.end()) {
@@ -206,7 +229,8 @@ class MaterialReader {
 
   // What the material asks for that insitu does not render, named once per material.
   void unrendered(const tinygltf::Material& g, const std::string& name) {
-    static const std::set<std::string> kRead = {"KHR_materials_clearcoat", "KHR_materials_emissive_strength"};
+    static const std::set<std::string> kRead = {"KHR_materials_clearcoat", "KHR_materials_emissive_strength",
+                                                "KHR_materials_sheen"};
     std::vector<std::string> what;
     if (g.normalTexture.index >= 0) what.push_back("normalTexture");
     for (const auto& [ext, value] : g.extensions)

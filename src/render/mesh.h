@@ -37,6 +37,9 @@ struct Material {
   Texture map_metallic_roughness;  // glTF's: G multiplies roughness, B metallic
   float clearcoat = 0.0f, clearcoat_roughness = 0.0f;
   Texture map_clearcoat, map_clearcoat_roughness;  // glTF's: R multiplies clearcoat, G its roughness
+  Rgb sheen = Rgb::Zero();                         // KHR_materials_sheen's colour (a Velvet BSDF)
+  float sheen_roughness = 0.0f;
+  Texture map_sheen, map_sheen_roughness;  // sRGB colour; the roughness in the alpha channel
 
   Rgb emission = Rgb::Zero();  // emitted radiance, in the environment's units (Cycles's strength 1)
   Texture map_emission;        // multiplies emission

@@ -255,7 +255,7 @@ void warn_base_colour_only(const std::vector<Mesh>& meshes, const std::string& i
   if (!names.empty())
     w.add("render.integrator", "the " + integrator +
                                    " integrator shades the objects by their base colour only; metallic, roughness, "
-                                   "specular, clear coat and emission are the path integrator's (materials " +
+                                   "specular, clear coat, sheen and emission are the path integrator's (materials " +
                                    names + ")");
 }
 

@@ -33,6 +33,8 @@ void add_meshes(Fnv1a& h, const EmbreeScene* scene) {
       h.value(mat.clearcoat), h.value(mat.clearcoat_roughness);
       add_texture(h, mat.map_clearcoat), add_texture(h, mat.map_clearcoat_roughness);
       h.bytes(mat.emission.data(), sizeof(Rgb)), add_texture(h, mat.map_emission);
+      h.bytes(mat.sheen.data(), sizeof(Rgb)), h.value(mat.sheen_roughness);
+      add_texture(h, mat.map_sheen), add_texture(h, mat.map_sheen_roughness);
       h.value(mat.alpha_mode), h.value(mat.alpha), h.value(mat.alpha_cutoff);
     }
   }

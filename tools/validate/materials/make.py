@@ -19,7 +19,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(HERE)))
 
 # name: (base colour (RGBA), metallic, roughness, texture, more of the glTF material). Classes insitu
-# renders today; sheen and glass follow with their lobes. MATERIALS_ONLY=a,b makes only those.
+# renders today; glass follows with its lobes. MATERIALS_ONLY=a,b makes only those.
 COAT = "KHR_materials_clearcoat"
 MATERIALS = {
     "rough_dielectric": ((0.8, 0.3, 0.2, 1), 0.0, 0.6, None, {}),
@@ -35,6 +35,10 @@ MATERIALS = {
                    {"extensions": {COAT: {"clearcoatFactor": 0.6, "clearcoatRoughnessFactor": 0.3}}}),
     "coated_gold": ((1.0, 0.77, 0.34, 1), 1.0, 0.5, None,
                     {"extensions": {COAT: {"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": 0.1}}}),
+    # An upholstery fabric: a rough, dark base under a pale sheen.
+    "sheen_fabric": ((0.25, 0.05, 0.08, 1), 0.0, 0.8, None,
+                     {"extensions": {"KHR_materials_sheen": {"sheenColorFactor": [0.6, 0.5, 0.55],
+                                                             "sheenRoughnessFactor": 0.35}}}),
     "emissive": ((0.2, 0.2, 0.2, 1), 0.0, 0.5, None,
                  {"emissiveFactor": [1.0, 0.6, 0.3],
                   "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 2.0}}}),
