@@ -146,10 +146,15 @@ Rgb Bsdf::eval(const Vec3f& wo, const Vec3f& wi) const {
 }
 
 float Bsdf::pdf(const Vec3f& wo, const Vec3f& wi) const {
+  if (!glossy_) return wo.z() <= 0 || wi.z() <= 0 ? 0 : wi.z() / kPiF;
+  return mixture_pdf(lobe_odds(wo.z()), wo, wi);
+}
+
+// Σ_lobes odds · density; the diffuse lobe takes the odds the others leave.
+float Bsdf::mixture_pdf(const LobeOdds& odds, const Vec3f& wo, const Vec3f& wi) const {
   if (wo.z() <= 0 || wi.z() <= 0) return 0;
   const float p_cos = wi.z() / kPiF;
   if (!glossy_) return p_cos;
-  const LobeOdds odds = lobe_odds(wo.z());
   const float p_coat = odds.coat > 0 ? odds.coat * coat_pdf(wo, wi) : 0.0f;
   const float p_diffuse = (1 - odds.specular - odds.coat - odds.sheen) * p_cos;
   return odds.specular * ggx::reflection_pdf(wo, wi, alpha_) + p_coat + odds.sheen / (2 * kPiF) + p_diffuse;
@@ -159,7 +164,7 @@ bool Bsdf::sample(const Vec3f& wo, float u_lobe, float u1, float u2, BsdfSample*
   if (wo.z() <= 0) return false;
   Vec3f wi;
   const LobeOdds odds = lobe_odds(wo.z());
-  if (u_lobe < odds.specular || u_lobe < odds.specular + odds.coat) {
+  if (u_lobe < odds.specular + odds.coat) {
     const bool coat_lobe = u_lobe >= odds.specular;
     const Vec3f h = ggx::sample_visible_normal(wo, coat_lobe ? coat_alpha_ : alpha_, u1, u2);
     wi = 2 * wo.dot(h) * h - wo;
@@ -170,7 +175,7 @@ bool Bsdf::sample(const Vec3f& wo, float u_lobe, float u1, float u2, BsdfSample*
   }
   if (wi.z() <= 0) return false;
   out->wi = wi.normalized();
-  out->pdf = pdf(wo, out->wi);
+  out->pdf = mixture_pdf(odds, wo, out->wi);
   if (!(out->pdf > 0)) return false;
   out->weight = eval(wo, out->wi) * (out->wi.z() / out->pdf);
   return true;

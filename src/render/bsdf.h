@@ -96,6 +96,7 @@ class Bsdf {
     float specular = 0, coat = 0, sheen = 0;  // the rest: diffuse
   };
   LobeOdds lobe_odds(float cos_o) const;
+  float mixture_pdf(const LobeOdds& odds, const Vec3f& wo, const Vec3f& wi) const;
   bool principled_ = false;
   Rgb diffuse_ = Rgb::Zero(), f0_ = Rgb::Zero();  // principled: base·(1 − m) and c0
   float alpha_ = 1.0f;
