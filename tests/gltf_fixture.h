@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "glb.h"
 #include "test_util.h"
 #include "uv_sphere.h"
 
@@ -25,11 +26,6 @@ inline std::string base64(const std::string& bytes) {
     for (std::size_t k = 0; k < 4; ++k) out += k < digits ? kDigits[(v >> (18 - 6 * k)) & 63] : '=';
   }
   return out;
-}
-
-template <class T>
-void append(std::string& bytes, const std::vector<T>& values) {
-  bytes.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
 }
 
 // A UV sphere (`rings` × 2·`rings` quads, smooth normals) of `radius` about `centre`, with one

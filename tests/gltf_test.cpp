@@ -63,20 +63,10 @@ struct GltfTriangle {
     doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64(bin);
     return dir.write(name + ".gltf", doc.dump());
   }
-  // GLB: a 12-byte header, a JSON chunk and a BIN chunk, each padded to 4 bytes.
   std::string write_glb(const test::TempDir& dir, const std::string& name) {
     json d = doc;
     d["buffers"][0].erase("uri");
-    std::string text = d.dump();
-    while (text.size() % 4) text += ' ';
-    std::string b = bin;
-    while (b.size() % 4) b += '\0';
-    std::string out = "glTF";
-    auto u32 = [&](std::uint32_t v) { out.append(reinterpret_cast<const char*>(&v), 4); };
-    u32(2), u32(std::uint32_t(12 + 8 + text.size() + 8 + b.size()));
-    u32(std::uint32_t(text.size())), u32(0x4E4F534A), out += text;
-    u32(std::uint32_t(b.size())), u32(0x004E4942), out += b;
-    std::ofstream(dir.file(name + ".glb"), std::ios::binary) << out;
+    std::ofstream(dir.file(name + ".glb"), std::ios::binary) << test::glb(d, bin);
     return dir.file(name + ".glb");
   }
 };

@@ -9,6 +9,7 @@
 #include "commands.h"
 #include "core/output_paths.h"
 #include "interop/blender_export.h"
+#include "render/gltf_mesh.h"
 #include "scene/pipeline.h"
 #include "scene/scene_file.h"
 
@@ -28,8 +29,9 @@ int run_export_blender(const ExportArgs& a) {
     it = it->rfind("output.", 0) == 0 ? spec.given.erase(it) : std::next(it);
   if (a.spp > 0) spec.render.spp = a.spp;
   const BlenderExportPaths paths = blender_export_paths(a.output);
-  const std::vector<NamedPath> outputs = {
-      {paths.script, "-o"}, {paths.meshes, "the meshes"}, {paths.world, "the world"}};
+  std::vector<NamedPath> outputs = {{paths.script, "-o"}, {paths.meshes, "the meshes"}, {paths.world, "the world"}};
+  for (std::size_t i = 0; i < spec.objects.size(); ++i)  // written only for a compressed glTF
+    if (is_gltf_path(spec.objects[i].mesh)) outputs.push_back({paths.gltf_copy(i), "a decompressed copy"});
   std::vector<NamedPath> inputs = scene_input_files(spec);
   inputs.push_back({a.scene, "the scene file"});
   check_outputs(inputs, outputs);  // before any work
@@ -41,7 +43,9 @@ int run_export_blender(const ExportArgs& a) {
       for (const auto& f : m.files) files.push_back({f, "read by " + m.source});
       check_outputs(files, outputs);
     }
-  write_blender_export(make_blender_export(scene, paths), paths);
+  const BlenderExport e = make_blender_export(scene, paths);
+  write_blender_export(e, paths);
+  for (const auto& copy : e.gltf_copies) std::printf("%s\n", copy.first.c_str());
   for (const auto& p : {paths.script, paths.meshes, paths.world}) std::printf("%s\n", p.c_str());
   return 0;
 }

@@ -78,14 +78,26 @@ std::string local_scene_lines(const LoadedScene& s, std::string& bytes) {
   return out;
 }
 
-std::string objects_lines(const LoadedScene& s, std::string& bytes) {
+// A glTF object imports the user's file, or the decompressed copy written beside the script.
+std::string gltf_lines(const ObjectSpec& o, std::size_t i, const std::string& name, const BlenderExportPaths& paths,
+                       BlenderExport& e) {
+  std::optional<std::string> copy = gltf_plain_copy(o.mesh);
+  if (!copy) return blender_gltf_object(py_string(abs_path(o.mesh)), name, o.M_world_from_object);
+  const std::string path = paths.gltf_copy(i);
+  e.gltf_copies.emplace_back(path, std::move(*copy));
+  const std::string py_path =
+      fmt::format("data_file({}, {})", py_string(fs::path(path).filename().string()), py_string(abs_path(path)));
+  return blender_gltf_object(py_path, name + " (decompressed)", o.M_world_from_object);
+}
+
+std::string objects_lines(const LoadedScene& s, const BlenderExportPaths& paths, BlenderExport& e) {
   std::string out;
   if (!s.objects) return out;
   for (std::size_t i = 0; i < s.objects->meshes().size(); ++i) {
     const ObjectSpec& o = s.spec.objects[i];
     const std::string name = fmt::format("objects[{}] {}", i, fs::path(o.mesh).filename().string());
-    out += is_gltf_path(o.mesh) ? blender_gltf_object(o.mesh, name, o.M_world_from_object)
-                                : blender_mesh(s.objects->meshes()[i], name, std::nullopt, bytes);
+    out += is_gltf_path(o.mesh) ? gltf_lines(o, i, name, paths, e)
+                                : blender_mesh(s.objects->meshes()[i], name, std::nullopt, e.mesh_bytes);
   }
   return out;
 }
@@ -112,8 +124,10 @@ int max_bounces(const LoadedScene& s) {
 BlenderExportPaths blender_export_paths(const std::string& script_path) {
   fs::path p(script_path);
   const fs::path stem = p.extension() == ".py" ? p.replace_extension() : p;
-  return {script_path, stem.string() + ".meshes.bin", stem.string() + ".world.exr"};
+  return {script_path, stem.string() + ".meshes.bin", stem.string() + ".world.exr", stem.string()};
 }
+
+std::string BlenderExportPaths::gltf_copy(std::size_t i) const { return fmt::format("{}.objects{}.glb", stem, i); }
 
 BlenderExport make_blender_export(const LoadedScene& s, const BlenderExportPaths& paths) {
   BlenderExport e;
@@ -133,7 +147,7 @@ BlenderExport make_blender_export(const LoadedScene& s, const BlenderExportPaths
     py += fmt::format("room_box(scene, {}, WORLD, {})\n", py_quads(room_wall_quads(*box, s.spec.local_scene)),
                       py_vec(to_blender(box->capture)));
   py += local_scene_lines(s, e.mesh_bytes);
-  py += objects_lines(s, e.mesh_bytes);
+  py += objects_lines(s, paths, e);
   py += fmt::format("composite_over_photo(scene, {}, {})\n", py_string(abs_path(s.spec.photo)),
                     s.photo.display_referred ? "False" : "True");
   py += "run_from_command_line(scene)\n";
@@ -141,6 +155,7 @@ BlenderExport make_blender_export(const LoadedScene& s, const BlenderExportPaths
 }
 
 void write_blender_export(const BlenderExport& e, const BlenderExportPaths& paths) {
+  for (const auto& [path, bytes] : e.gltf_copies) write_binary_file(path, bytes);
   write_image(paths.world, e.world);
   write_binary_file(paths.meshes, e.mesh_bytes);
   write_text_file(paths.script, e.script);

@@ -33,6 +33,10 @@ namespace insitu {
 
 struct BlenderExportPaths {
   std::string script, meshes, world;
+  std::string stem;  // scene.py -> scene
+  // Where objects[i]'s glTF goes when Blender cannot read the original (Draco or meshopt
+  // compression, which Blender 3.4's importer lacks): scene.objects<i>.glb.
+  std::string gltf_copy(std::size_t i) const;
 };
 // scene.py -> scene.meshes.bin, scene.world.exr (the extension .py replaced, or appended).
 BlenderExportPaths blender_export_paths(const std::string& script_path);
@@ -40,10 +44,11 @@ BlenderExportPaths blender_export_paths(const std::string& script_path);
 struct BlenderExport {
   std::string script;
   std::string mesh_bytes;
-  Image world;  // equirectangular, Blender's layout
+  Image world;                                                   // equirectangular, Blender's layout
+  std::vector<std::pair<std::string, std::string>> gltf_copies;  // path, .glb bytes
 };
 BlenderExport make_blender_export(const LoadedScene& scene, const BlenderExportPaths& paths);
-// Writes the three files, each atomically; the world and meshes first, the script last.
+// Writes the files, each atomically: the glTF copies, the world and the meshes first, the script last.
 void write_blender_export(const BlenderExport& e, const BlenderExportPaths& paths);
 
 // The room box's walls (insitu's frame, metres) as rectangles of four corners, counter-clockwise

@@ -84,7 +84,7 @@ std::string blender_mesh(const Mesh& m, const std::string& name, const std::opti
   return s;
 }
 
-std::string blender_gltf_object(const std::string& path, const std::string& name, const Mat4d& M_world_from_object) {
+std::string blender_gltf_object(const std::string& py_path, const std::string& name, const Mat4d& M_world_from_object) {
   Mat4d B = Mat4d::Identity();
   B.topLeftCorner<3, 3>() = blender_from_insitu();
   const Mat4d M = B * M_world_from_object * B.inverse();
@@ -92,8 +92,7 @@ std::string blender_gltf_object(const std::string& path, const std::string& name
   for (int r = 0; r < 4; ++r)
     rows +=
         fmt::format("({:.17g}, {:.17g}, {:.17g}, {:.17g}){}", M(r, 0), M(r, 1), M(r, 2), M(r, 3), r < 3 ? ", " : "");
-  return fmt::format("gltf_object(scene, {}, {}, ({}))\n", py_string(name),
-                     py_string(std::filesystem::absolute(path).lexically_normal().string()), rows);
+  return fmt::format("gltf_object(scene, {}, {}, ({}))\n", py_string(name), py_path, rows);
 }
 
 }  // namespace insitu

@@ -23,7 +23,7 @@ std::string blender_mesh(const Mesh& mesh, const std::string& name, const std::o
 // The line that imports a glTF asset with Blender's own importer (its materials as Blender reads
 // them: the Principled BSDF) as object `name`, placed by insitu's M_world_from_object. The
 // importer turns glTF's +Y up to Blender's +Z up by B (blender_camera.h), so the imported asset
-// is B·p and the object's matrix is B·M·B⁻¹.
-std::string blender_gltf_object(const std::string& path, const std::string& name, const Mat4d& M_world_from_object);
+// is B·p and the object's matrix is B·M·B⁻¹. `py_path`: a Python expression for the file.
+std::string blender_gltf_object(const std::string& py_path, const std::string& name, const Mat4d& M_world_from_object);
 
 }  // namespace insitu

@@ -4,9 +4,11 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <cstring>
+#include <fstream>
 #include <set>
 
 #include "core/file_check.h"
+#include "render/gltf_decompress.h"
 #include "render/gltf_materials.h"
 
 namespace insitu {
@@ -14,7 +16,8 @@ namespace fs = std::filesystem;
 namespace {
 
 // Extensions a file may require that insitu renders as the file means them.
-const std::set<std::string> kSupportedRequired = {"KHR_texture_transform"};
+const std::set<std::string> kSupportedRequired = {"KHR_texture_transform", "KHR_draco_mesh_compression",
+                                                  "EXT_meshopt_compression", "KHR_mesh_quantization"};
 
 // tinygltf's image hook: keep the encoded bytes, decoded later by OpenImageIO (gltf_materials.cpp)
 // with insitu's checks on size and corruption.
@@ -30,6 +33,19 @@ std::string first_line(const std::string& s) {
   return line.empty() ? "cannot be parsed" : line;
 }
 
+// The whole file, refused beyond tinygltf's 4 GiB (its lengths are unsigned int).
+std::string file_bytes(const std::string& path) {
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec) throw InputError(path, "cannot be read: " + ec.message());
+  if (size == 0) throw InputError(path, "is empty");
+  if (size >= (std::uintmax_t(1) << 32)) throw InputError(path, "is larger than 4 GiB");
+  std::string bytes(size, '\0');
+  std::ifstream in(path, std::ios::binary);
+  if (!in.read(bytes.data(), std::streamsize(size))) throw InputError(path, "cannot be read");
+  return bytes;
+}
+
 tinygltf::Model parse(const std::string& path, Warnings& warnings) {
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(keep_encoded, nullptr);
@@ -38,14 +54,19 @@ tinygltf::Model parse(const std::string& path, Warnings& warnings) {
   std::string ext = fs::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   const bool binary = ext == ".glb";
-  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                         : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  const std::string bytes = gltf_prepared_for_tinygltf(file_bytes(path), binary);
+  const std::string dir = fs::path(path).parent_path().string();
+  const bool ok =
+      binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                           unsigned(bytes.size()), dir)
+             : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), dir);
   if (!ok || !err.empty()) throw InputError(path, first_line(err));
   if (!warn.empty()) warnings.add(path, first_line(warn));
   for (std::size_t i = 0; i < model.extensionsRequired.size(); ++i)
     if (!kSupportedRequired.count(model.extensionsRequired[i]))
       throw InputError(fmt::format("{}: $.extensionsRequired[{}]", path, i),
                        fmt::format("the file requires {}, which insitu does not support", model.extensionsRequired[i]));
+  decompress_gltf(model, path);
   return model;
 }
 
@@ -58,12 +79,13 @@ class Accessors {
   std::vector<float> floats(int index, int components, const char* semantic) const {
     const tinygltf::Accessor& a = checked(index, semantic, components);
     const int ct = a.componentType;
-    if (ct != TINYGLTF_COMPONENT_TYPE_FLOAT && !(a.normalized && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                                                  ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)))
-      throw InputError(where(index, semantic), "component type must be float, or normalized unsigned byte or short");
+    if (ct != TINYGLTF_COMPONENT_TYPE_FLOAT && ct != TINYGLTF_COMPONENT_TYPE_BYTE &&
+        ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ct != TINYGLTF_COMPONENT_TYPE_SHORT &&
+        ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)
+      throw InputError(where(index, semantic), "component type must be float, or a byte or short");
     std::vector<float> out(a.count * std::size_t(components));
     for_each(a, [&](std::size_t i, const unsigned char* p) {
-      for (int c = 0; c < components; ++c) out[i * components + c] = component(p, ct, c);
+      for (int c = 0; c < components; ++c) out[i * components + c] = component(p, ct, a.normalized, c);
     });
     for (float v : out)
       if (!std::isfinite(v)) throw InputError(where(index, semantic), "a value is not finite");
@@ -96,10 +118,24 @@ class Accessors {
     std::memcpy(&v, p, sizeof(T));
     return v;
   }
-  static float component(const unsigned char* p, int ct, int c) {
-    if (ct == TINYGLTF_COMPONENT_TYPE_FLOAT) return read<float>(p + 4 * c);
-    if (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) return float(p[c]) / 255.0f;
-    return float(read<std::uint16_t>(p + 2 * c)) / 65535.0f;
+  // glTF's integer components (KHR_mesh_quantization): normalized, unsigned c / (2ᵇ − 1) and signed
+  // max(c / (2ᵇ⁻¹ − 1), −1) (glTF 2.0, "Animation samplers" and the extension's table); else c.
+  static float component(const unsigned char* p, int ct, bool normalized, int c) {
+    switch (ct) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT:
+        return read<float>(p + 4 * c);
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return integer(p[c], 255, normalized);
+      case TINYGLTF_COMPONENT_TYPE_BYTE:
+        return integer(read<std::int8_t>(p + c), 127, normalized);
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+        return integer(read<std::uint16_t>(p + 2 * c), 65535, normalized);
+      default:
+        return integer(read<std::int16_t>(p + 2 * c), 32767, normalized);
+    }
+  }
+  static float integer(int value, float max, bool normalized) {
+    return normalized ? std::max(float(value) / max, -1.0f) : float(value);
   }
 
   // The accessor, its type (SCALAR, VEC2, VEC3 by `components`) and its bytes within its view and buffer.
@@ -327,6 +363,13 @@ Mesh load_gltf(const std::string& path, Warnings& warnings) {
   Mesh mesh = builder.finish();
   for (std::string& file : gltf_dependencies(path)) mesh.files.push_back(std::move(file));
   return mesh;
+}
+
+std::optional<std::string> gltf_plain_copy(const std::string& path) {
+  Warnings ignored;  // load_gltf reported them
+  const tinygltf::Model model = parse(path, ignored);
+  if (!gltf_is_compressed(model)) return std::nullopt;
+  return plain_glb(model, path);
 }
 
 Mesh load_mesh(const std::string& path, Warnings& warnings) {

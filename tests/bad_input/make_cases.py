@@ -272,8 +272,10 @@ def systematic_cases():
         variant("missing_key_" + "_".join(str(k) for k in path), path, None, r"scene.json.*(missing|required)", delete=True)
 
 
-def gltf_quad(indices=(0, 1, 2, 0, 2, 3), count=4, required=(), buffer_uri=None, material=None):
-    """A unit quad as a .gltf, its buffer in a data URI (or at buffer_uri, not written)."""
+def gltf_quad(indices=(0, 1, 2, 0, 2, 3), count=4, required=(), buffer_uri=None, material=None, draco=None,
+              meshopt=None):
+    """A unit quad as a .gltf, its buffer in a data URI (or at buffer_uri, not written); draco: the
+    primitive's KHR_draco_mesh_compression object; meshopt: buffer view 0's EXT_meshopt_compression."""
     pos = struct.pack("<12f", 0, 0, 0, 1, 0, 0, 1, 0, 1, 0, 0, 1)
     idx = struct.pack("<%dH" % len(indices), *indices)
     data = pos + idx
@@ -289,6 +291,10 @@ def gltf_quad(indices=(0, 1, 2, 0, 2, 3), count=4, required=(), buffer_uri=None,
     if material is not None:
         g["materials"] = [material]
         g["meshes"][0]["primitives"][0]["material"] = 0
+    if draco is not None:
+        g["meshes"][0]["primitives"][0]["extensions"] = {"KHR_draco_mesh_compression": draco}
+    if meshopt is not None:
+        g["bufferViews"][0]["extensions"] = {"EXT_meshopt_compression": meshopt}
     return json.dumps(g)
 
 
@@ -296,8 +302,17 @@ def gltf_cases():
     """glTF furniture: each refusal names the file and the JSON path or accessor."""
     at = scene_with(objects__0__mesh="chair.gltf")
     for name, text, message in [
-            ("required_draco", gltf_quad(required=["KHR_draco_mesh_compression"]),
-             r"chair.gltf: \$\.extensionsRequired\[0\]: .*KHR_draco_mesh_compression"),
+            ("required_webp", gltf_quad(required=["EXT_texture_webp"]),
+             r"chair.gltf: \$\.extensionsRequired\[0\]: .*EXT_texture_webp"),
+            ("draco_not_a_stream",  # the indices' bytes where the Draco stream should be
+             gltf_quad(required=["KHR_draco_mesh_compression"],
+                       draco={"bufferView": 1, "attributes": {"POSITION": 0}}),
+             r"chair.gltf: \$\.meshes\[0\]\.primitives\[0\]\.extensions\.KHR_draco_mesh_compression: "
+             r"Draco cannot decode"),
+            ("meshopt_bomb",  # 2³⁰ vertices declared from 48 encoded bytes
+             gltf_quad(required=["EXT_meshopt_compression"],
+                       meshopt={"buffer": 0, "byteLength": 48, "byteStride": 12, "count": 1 << 30, "mode": "ATTRIBUTES"}),
+             r"chair.gltf: \$\.bufferViews\[0\]\.extensions\.EXT_meshopt_compression: .*cannot come from 48"),
             ("index_range", gltf_quad(indices=(0, 1, 7)), r"chair.gltf: \$\.accessors\[1\] \(indices\): index 7"),
             ("past_buffer", gltf_quad(count=40), r"chair.gltf: \$\.accessors\[0\] \(POSITION\): .*past the end"),
             ("missing_bin", gltf_quad(buffer_uri="chair.bin"), r"chair.gltf: .*chair.bin"),

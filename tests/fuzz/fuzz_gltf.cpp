@@ -1,6 +1,7 @@
-// Fuzz target: the glTF reader (tinygltf's parser, then insitu's checks of the accessors, nodes and
-// materials). The first byte chooses whether the input is a .gltf (JSON, buffers as data URIs) or
-// a .glb.
+// Fuzz target: the glTF reader (tinygltf's parser, Draco's and meshoptimizer's decoders, then
+// insitu's checks of the accessors, nodes and materials). The first byte chooses whether the input
+// is a .gltf (JSON, buffers as data URIs) or a .glb. The seeds sphere_draco.glb and
+// sphere_meshopt.glb are tests/gltf_compression_test.cpp's spheres.
 #include "fuzz_common.h"
 #include "render/gltf_mesh.h"
 
