@@ -59,12 +59,12 @@ std::uint32_t u32(const std::string& s, std::size_t at) {
 
 void put_u32(std::string& s, std::uint32_t v) { s.append(reinterpret_cast<const char*>(&v), 4); }
 
-// GLB: a 12-byte header (magic, version, length), then chunks of (length, type, bytes); the first
-// is the JSON. A container tinygltf would refuse is passed on unchanged for it to refuse.
 bool mentions_compression(std::string_view json) {
   return json.find("EXT_meshopt_compression") != json.npos || json.find("KHR_draco_mesh_compression") != json.npos;
 }
 
+// GLB: a 12-byte header (magic, version, length), then chunks of (length, type, bytes); the first
+// is the JSON. A container tinygltf would refuse is passed on unchanged for it to refuse.
 std::string reprepare_glb(std::string bytes) {
   const std::uint32_t json_length = u32(bytes, 12);
   if (u32(bytes, 0) != kGlbMagic || u32(bytes, 16) != kJsonChunk || 20 + std::uint64_t(json_length) > bytes.size())
@@ -288,7 +288,13 @@ std::string plain_glb(tinygltf::Model model, const std::string& path) {
   std::vector<unsigned char> merged;
   std::vector<std::size_t> base;
   for (const tinygltf::Buffer& b : model.buffers) base.push_back(append_aligned(merged, b.data));
-  for (tinygltf::BufferView& view : model.bufferViews) {
+  for (std::size_t i = 0; i < model.bufferViews.size(); ++i) {
+    tinygltf::BufferView& view = model.bufferViews[i];
+    // tinygltf checks neither a view's buffer nor its range; the loader checks only the views it
+    // reads, and the copy carries every view.
+    if (view.buffer < 0 || std::size_t(view.buffer) >= base.size() ||
+        view.byteOffset + view.byteLength > model.buffers[std::size_t(view.buffer)].data.size())
+      throw InputError(fmt::format("{}: $.bufferViews[{}]", path, i), "lies outside its buffer");
     view.byteOffset += base[std::size_t(view.buffer)];
     view.buffer = 0;
     view.extensions.erase("EXT_meshopt_compression");

@@ -322,6 +322,14 @@ def gltf_cases():
             ("clearcoat_nan", gltf_quad(material={"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": "x"}}}),
              r"chair.gltf: \$\.materials\[0\]\.extensions\.KHR_materials_clearcoat\.clearcoatFactor: must be a finite")]:
         case("gltf_" + name, ["render", "scene.json"], message, files={"chair.gltf": text}, scene=at)
+    # A compressed file (so export-blender writes a plain copy) with a view that no accessor reads
+    # into a buffer that does not exist: the render never reads it, the copy would.
+    g = json.loads(gltf_quad())
+    g["extensionsUsed"] = ["EXT_meshopt_compression"]
+    g["bufferViews"].append({"buffer": 5, "byteLength": 4})
+    case("gltf_copy_view_outside", ["export-blender", "scene.json", "-o", "s.py"],
+         r"chair.gltf: \$\.bufferViews\[2\]: lies outside its buffer", files={"chair.gltf": json.dumps(g)},
+         scene=scene_with(objects__0__mesh="chair.gltf", render={"spp": 1, "integrator": "path"}))
 
 
 def more_cases():
