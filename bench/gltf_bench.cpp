@@ -17,6 +17,7 @@
 #include "core/image.h"
 #include "peak_memory.h"
 #include "render/gltf_mesh.h"
+#include "render/tangents.h"
 #include "../tests/gltf_compressed_fixture.h"
 #include "../tests/uv_sphere.h"
 
@@ -138,5 +139,17 @@ void BM_LoadCompressedGltf(benchmark::State& state) {
   state.counters["file_kB"] = double(bytes.size()) / 1e3;
 }
 BENCHMARK(BM_LoadCompressedGltf)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// MikkTSpace tangents for a normal map (render/tangents.h), generated at load where a file has no
+// TANGENT: the same 99 904-triangle sphere, every vertex shared by six corners.
+//   build/bench/insitu_bench --benchmark_filter=MikkTSpace
+void BM_MikkTSpaceTangents(benchmark::State& state) {
+  const float centre[3] = {0, 0, 0};
+  const test::UvSphere s = test::make_uv_sphere(224, 224, centre, 0.5f);
+  const Mesh m = test::uv_sphere_mesh(s);
+  for (auto _ : state) benchmark::DoNotOptimize(mikktspace_tangents(m, 0));
+  state.counters["triangles"] = double(m.triangles.size());
+}
+BENCHMARK(BM_MikkTSpaceTangents)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace

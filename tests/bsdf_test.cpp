@@ -369,5 +369,23 @@ TEST(BsdfTest, SheenSamplingMatchesEvalAndPdf) {
       }
 }
 
+// Bump shadowing on a Lambertian lobe whose smooth normal is tilted 60° toward +x from the shading
+// normal: g = (n_s·ωi) / ((n·ωi)(n_s·n)) is 1 along the shading normal (nothing taken), 0 at
+// ωi ⟂ n_s and beyond (all taken); at ωi turned by t toward −x, where cos(t + 60°) = ¼ cos t
+// (tan t = (cos 60° − ¼) / sin 60°), g = ½ and G = −⅛ + ¼ + ½ = 0.625.
+TEST(BsdfTest, BumpShadowingDimsTheDiffuseTowardTheTerminator) {
+  Bsdf b(Rgb::Constant(0.5f), Rgb::Zero(), 1.0f);
+  const float beta = 60 * kPiF / 180;
+  const Vec3f wo(0, 0, 1), ns(std::sin(beta), 0, std::cos(beta));
+  const Rgb plain = b.eval(wo, wo);
+  b.set_smooth_normal(ns);
+  EXPECT_TRUE(b.eval(wo, wo).isApprox(plain));
+  const float t = std::atan((std::cos(beta) - 0.25f) / std::sin(beta));  // cos(t + β) = ¼ cos t
+  const Vec3f half(-std::sin(t), 0, std::cos(t));
+  EXPECT_NEAR(b.eval(wo, half)[0] / plain[0], 0.625f, 1e-4f);
+  const Vec3f beyond = Vec3f(-std::cos(beta), 0, std::sin(beta) - 0.01f).normalized();  // n_s·ωi < 0 < n·ωi
+  EXPECT_EQ(b.eval(wo, beyond)[0], 0.0f);
+}
+
 }  // namespace
 }  // namespace insitu

@@ -70,6 +70,7 @@ TEST(GltfLobes, ExtensionsAndModesAreRead) {
       {"normalTexture", {{"index", 0}}},
       {"extensions",
        {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}},
+        {"KHR_materials_specular", {{"specularFactor", 0.5}}},
         {"KHR_materials_clearcoat",
          {{"clearcoatFactor", 0.7}, {"clearcoatRoughnessFactor", 0.2}, {"clearcoatTexture", {{"index", 0}}}}},
         {"KHR_materials_sheen",
@@ -98,9 +99,12 @@ TEST(GltfLobes, ExtensionsAndModesAreRead) {
   EXPECT_NEAR(mat.map_kd.sample(left)[0], mat.map_kd.sample(right)[0], 1e-6f);
   // The sheen's roughness is its texture's alpha (as Blender's importer connects it).
   EXPECT_NEAR(mat.map_sheen_roughness.sample_alpha(left), 0.2f, 1e-6f);
-  // What is read goes unremarked; the normal map is named.
+  EXPECT_TRUE(bool(mat.map_normal));
+  EXPECT_FLOAT_EQ(mat.normal_strength, 1.0f);  // glTF's default scale
+  // What is read goes unremarked; the extension insitu lacks is named.
   ASSERT_EQ(w.items.size(), 1u);
-  EXPECT_NE(w.items[0].find("not rendered yet: normalTexture"), std::string::npos) << w.items[0];
+  EXPECT_NE(w.items[0].find("not rendered yet: KHR_materials_specular"), std::string::npos) << w.items[0];
+  EXPECT_EQ(w.items[0].find("normalTexture"), std::string::npos) << w.items[0];
   EXPECT_EQ(w.items[0].find("clearcoat"), std::string::npos) << w.items[0];
   EXPECT_EQ(w.items[0].find("sheen"), std::string::npos) << w.items[0];
 }

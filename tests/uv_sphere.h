@@ -1,10 +1,13 @@
 // A UV sphere as glTF buffers: `rings` × `segments` quads (the poles' rows as triangles), smooth
-// normals, glTF UVs (v down), uint32 indices. For the glTF tests (gltf_fixture.h) and the glTF
-// loading benchmark (bench/gltf_bench.cpp); no test framework needed.
+// normals, glTF UVs (v down), uint32 indices; and as a Mesh. For the glTF and tangent tests
+// (gltf_fixture.h, tangents_test.cpp) and the glTF benchmarks (bench/gltf_bench.cpp); no test
+// framework needed.
 #pragma once
 #include <cmath>
 #include <cstdint>
 #include <vector>
+
+#include "render/mesh.h"
 
 namespace insitu::test {
 
@@ -30,6 +33,22 @@ inline UvSphere make_uv_sphere(int rings, int segments, const float centre[3], f
       if (i < rings - 1) s.idx.insert(s.idx.end(), {a + 1, b, b + 1});
     }
   return s;
+}
+
+// The sphere as a Mesh: every corner indexes its vertex's position, normal and UV (OBJ's v up).
+inline Mesh uv_sphere_mesh(const UvSphere& s) {
+  Mesh m;
+  for (std::size_t i = 0; i < s.pos.size() / 3; ++i) {
+    m.positions.emplace_back(s.pos[3 * i], s.pos[3 * i + 1], s.pos[3 * i + 2]);
+    m.normals.emplace_back(s.nor[3 * i], s.nor[3 * i + 1], s.nor[3 * i + 2]);
+    m.uvs.emplace_back(s.uv[2 * i], 1.0f - s.uv[2 * i + 1]);
+  }
+  for (std::size_t i = 0; i < s.idx.size(); i += 3) {
+    Triangle t{};
+    for (std::size_t k = 0; k < 3; ++k) t.v[k] = s.idx[i + k], t.n[k] = t.t[k] = std::int32_t(s.idx[i + k]);
+    m.triangles.push_back(t);
+  }
+  return m;
 }
 
 }  // namespace insitu::test

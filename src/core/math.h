@@ -9,6 +9,7 @@ namespace insitu {
 
 using Vec2f = Eigen::Vector2f;
 using Vec3f = Eigen::Vector3f;
+using Vec4f = Eigen::Vector4f;
 using Vec2d = Eigen::Vector2d;
 using Vec3d = Eigen::Vector3d;
 using Mat3d = Eigen::Matrix3d;

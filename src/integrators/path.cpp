@@ -58,6 +58,7 @@
 #include "core/stop.h"
 #include "integrators/registry.h"
 #include "render/bsdf.h"
+#include "render/shading_normal.h"
 #include "light/env_sampling.h"
 #include "light/plane_irradiance.h"
 #include "light/room_light.h"
@@ -235,8 +236,12 @@ class PathIntegrator final : public Integrator {
       // Emission (glTF's emissive), found by the camera or a BSDF sample only: emitting objects
       // are not sampled as lights.
       L += throughput * sp.material->emitted(sp.uv);
-      const Bsdf bsdf = Bsdf::from_material(*sp.material, sp.uv);
-      const Frame frame(sp.ns_world);
+      Bsdf bsdf = Bsdf::from_material(*sp.material, sp.uv);
+      // Cycles bends every closure's normal so that its mirror direction stays above the surface,
+      // and shadows the diffuse where that normal is not the smooth one.
+      const Vec3f n_closure = valid_reflection_normal(sp.ng_world, -ray.dir, sp.ns_world);
+      const Frame frame(n_closure);
+      if (n_closure != sp.n_smooth_world) bsdf.set_smooth_normal(frame.to_local(sp.n_smooth_world));
       const Vec3f wo = frame.to_local(-ray.dir);
       const Vec3f origin = offset_origin(sp.p_world, sp.ng_world);
       // Next-event estimation toward the room's light (catcher planes occlude it).

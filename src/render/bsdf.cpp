@@ -132,10 +132,18 @@ Bsdf::LobeOdds Bsdf::lobe_odds(float cos_o) const {
   return odds;
 }
 
+float Bsdf::bump_shadowing(const Vec3f& wi) const {
+  const float denominator = wi.z() * smooth_n_.z();
+  const float g = denominator != 0 ? smooth_n_.dot(wi) / denominator : 0.0f;  // Cycles's safe_divide
+  if (g >= 1) return 1;
+  if (g < 0) return 0;
+  return -g * g * g + g * g + g;
+}
+
 Rgb Bsdf::eval(const Vec3f& wo, const Vec3f& wi) const {
   const float co = wo.z(), ci = wi.z();
   if (co <= 0 || ci <= 0) return Rgb::Zero();
-  const Rgb f_d = diffuse(wo, wi);
+  const Rgb f_d = bump_ ? Rgb(diffuse(wo, wi) * bump_shadowing(wi)) : diffuse(wo, wi);
   if (!glossy_) return f_d;
   const Vec3f h = (wo + wi).normalized();
   const float D = ggx::d(h.z(), alpha_), G = ggx::g1(co, alpha_) * ggx::g1(ci, alpha_);

@@ -85,12 +85,22 @@ class Bsdf {
   float pdf(const Vec3f& wo, const Vec3f& wi) const;  // solid-angle density of sample()
   bool sample(const Vec3f& wo, float u_lobe, float u1, float u2, BsdfSample* out) const;
   bool glossy() const { return glossy_; }
+  // Cycles's bump shadowing of its diffuse closures (kernel/closure/bsdf.h, bump_shadowing_term;
+  // Chiang, Li and Burley 2019, "Taming the Shadow Terminator"), for a shading normal (this BSDF's
+  // +z) bent away from the smooth one by a normal map or a valid-reflection bend: the diffuse lobe
+  // is multiplied by G(g) = −g³ + g² + g for g = (n_s·ωi) / ((n·ωi)(n_s·n)) in [0, 1), 1 above, 0
+  // below. `n_smooth` is the smooth normal in this BSDF's frame.
+  void set_smooth_normal(const Vec3f& n_smooth) {
+    smooth_n_ = n_smooth;
+    bump_ = true;
+  }
 
  private:
   Bsdf() = default;
   Rgb fresnel(float cos_ih) const;                      // the specular lobe's F at ωi·h
   Rgb diffuse(const Vec3f& wo, const Vec3f& wi) const;  // the diffuse lobe's f
   Rgb coat(const Vec3f& wo, const Vec3f& wi) const;     // the clear coat's f
+  float bump_shadowing(const Vec3f& wi) const;
   float coat_pdf(const Vec3f& wo, const Vec3f& wi) const;
   struct LobeOdds {
     float specular = 0, coat = 0, sheen = 0;  // the rest: diffuse
@@ -106,6 +116,8 @@ class Bsdf {
   bool coat_ggx_ = false;                                        // a mirror coat: GGX at α = 10⁻³
   Rgb sheen_ = Rgb::Zero();                                      // the velvet lobe's colour
   float sheen_sigma_ = 1.0f;
+  bool bump_ = false;
+  Vec3f smooth_n_ = Vec3f::UnitZ();
 };
 
 // The reflectance of a smooth dielectric of relative index η at cos θ (Cycles's

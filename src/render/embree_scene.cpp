@@ -9,6 +9,7 @@
 
 #include "core/sampler.h"
 #include "render/ray_log.h"
+#include "render/shading_normal.h"
 
 namespace insitu {
 
@@ -182,23 +183,35 @@ SurfacePoint EmbreeScene::surface(const Ray& ray, const Hit& hit) const {
   // The hit point from barycentrics (more accurate than origin + t·dir far from the origin).
   sp.p_world = w0 * p0 + hit.b1 * p1 + hit.b2 * p2;
   sp.ng_world = (p1 - p0).cross(p2 - p0).normalized();
-  sp.ns_world = sp.ng_world;
+  sp.material = &mesh.materials[tri.material];
+  sp.uv = uv_at(mesh, tri, hit.b1, hit.b2);
+  // The interpolated normal, unnormalized (the normal map's n); the geometric one where the mesh
+  // has none.
+  Vec3f n = sp.ng_world;
   if (tri.n[0] >= 0 && tri.n[1] >= 0 && tri.n[2] >= 0) {
     Vec3f ns = Vec3f::Zero();
     for (int k = 0; k < 3; ++k) ns += w[k] * mesh.normals[tri.n[k]];
-    if (ns.squaredNorm() > 0) {
-      ns.normalize();
-      // The interpolated normal is brought to the side of the geometric one (winding may differ).
-      sp.ns_world = ns.dot(sp.ng_world) < 0 ? Vec3f(-ns) : ns;
-    }
+    if (ns.squaredNorm() > 0) n = ns;
   }
-  sp.uv = uv_at(mesh, tri, hit.b1, hit.b2);
-  // Two-sided: both normals face the incoming ray.
-  if (sp.ng_world.dot(ray.dir) > 0) {
-    sp.ng_world = -sp.ng_world;
-    sp.ns_world = -sp.ns_world;
+  sp.ns_world = n.normalized();
+  Vec3f mapped = Vec3f::Zero();
+  if (sp.material->map_normal && !mesh.tangents.empty()) {
+    Vec4f t = Vec4f::Zero();
+    for (int k = 0; k < 3; ++k) t += w[k] * mesh.tangents[3 * std::size_t(hit.triangle) + std::size_t(k)];
+    mapped = tangent_space_normal(n, t, sp.material->map_normal.sample(sp.uv));
   }
-  sp.material = &mesh.materials[tri.material];
+  // The shading normals are brought to the side of the geometric one (winding may differ), then,
+  // two-sided, all three face the incoming ray.
+  const float to_winding = sp.ns_world.dot(sp.ng_world) < 0 ? -1.0f : 1.0f;
+  const float to_ray = sp.ng_world.dot(ray.dir) > 0 ? -1.0f : 1.0f;
+  sp.ng_world *= to_ray;
+  sp.ns_world *= to_winding * to_ray;
+  mapped *= to_winding * to_ray;
+  sp.n_smooth_world = sp.ns_world;
+  if (mapped.squaredNorm() > 0) {
+    mapped = with_strength(sp.ns_world, mapped, sp.material->normal_strength);
+    if (mapped.squaredNorm() > 0) sp.ns_world = mapped;
+  }
   return sp;
 }
 

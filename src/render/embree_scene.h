@@ -24,8 +24,9 @@ struct Hit {
 // side the ray came from (two-sided surfaces, as the legacy renderer drew them).
 struct SurfacePoint {
   Vec3f p_world;
-  Vec3f ng_world;  // geometric normal
-  Vec3f ns_world;  // interpolated shading normal (the geometric one where the OBJ has none)
+  Vec3f ng_world;        // geometric normal
+  Vec3f ns_world;        // shading normal: interpolated (the geometric one where the mesh has none), then mapped
+  Vec3f n_smooth_world;  // the interpolated normal before the normal map (Cycles's sd->N)
   UvSets uv = {Vec2f::Zero(), Vec2f::Zero()};
   const Material* material = nullptr;
 };

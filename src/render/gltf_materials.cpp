@@ -108,6 +108,7 @@ class MaterialReader {
         texture(pbr.metallicRoughnessTexture, false, where + ".pbrMetallicRoughness.metallicRoughnessTexture");
     read_alpha(g, m, where);
     read_emission(g, m, where);
+    read_normal(g, m, where);
     if (auto it = g.extensions.find("KHR_materials_clearcoat"); it != g.extensions.end())
       read_clearcoat(it->second, m, where + ".extensions.KHR_materials_clearcoat");
     if (auto it = g.extensions.find("KHR_materials_sheen"); it != g.extensions.end())
@@ -118,6 +119,20 @@ class MaterialReader {
 
  private:
   static bool unit(float x) { return x >= 0 && x <= 1; }
+
+  // normalTexture: tangent-space, linear; its scale is the Normal Map node's strength, as Blender
+  // 3.4's importer sets it (not glTF's scaling of x and y; render/shading_normal.h).
+  void read_normal(const tinygltf::Material& g, Material& m, const std::string& where) {
+    const tinygltf::NormalTextureInfo& n = g.normalTexture;
+    if (n.index < 0) return;
+    tinygltf::TextureInfo info;
+    info.index = n.index;
+    info.texCoord = n.texCoord;
+    info.extensions = n.extensions;
+    m.map_normal = texture(info, false, where + ".normalTexture");
+    m.normal_strength = float(n.scale);
+    if (!std::isfinite(m.normal_strength)) throw InputError(where + ".normalTexture.scale", "must be finite");
+  }
 
   // KHR_materials_sheen as Blender 3.4's importer reads it: a Velvet BSDF of colour
   // sheenColorFactor × sheenColorTexture (sRGB) and σ = sheenRoughnessFactor × the alpha of
@@ -232,7 +247,6 @@ class MaterialReader {
     static const std::set<std::string> kRead = {"KHR_materials_clearcoat", "KHR_materials_emissive_strength",
                                                 "KHR_materials_sheen"};
     std::vector<std::string> what;
-    if (g.normalTexture.index >= 0) what.push_back("normalTexture");
     for (const auto& [ext, value] : g.extensions)
       if (!kRead.count(ext)) what.push_back(ext);
     if (auto it = g.extensions.find("KHR_materials_clearcoat");

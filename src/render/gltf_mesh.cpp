@@ -1,6 +1,7 @@
 #include "render/gltf_mesh.h"
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fmt/format.h>
 #include <cstring>
@@ -10,6 +11,7 @@
 #include "core/file_check.h"
 #include "render/gltf_decompress.h"
 #include "render/gltf_materials.h"
+#include "render/tangents.h"
 
 namespace insitu {
 namespace fs = std::filesystem;
@@ -233,6 +235,7 @@ class MeshBuilder {
   Mesh finish() {
     if (out_.triangles.empty()) throw InputError(path_, "the default scene holds no triangles");
     if (dropped_ > 0) warnings_.add(path_, fmt::format("{} degenerate triangles dropped", dropped_));
+    tangents();
     if (!uses_default_) out_.materials.pop_back();
     return std::move(out_);
   }
@@ -264,6 +267,7 @@ class MeshBuilder {
         out_.normals.push_back((v.norm() > 0 ? v.normalized() : v).cast<float>());
       }
     }
+    file_tangents(attribute("TANGENT"), n, world.topLeftCorner<3, 3>());
     uvs(attribute("TEXCOORD_0"), "TEXCOORD_0", n, uv0_, out_.uvs);
     uvs(attribute("TEXCOORD_1"), "TEXCOORD_1", n, uv1_, out_.uvs1);
     int material = prim.material;
@@ -282,6 +286,41 @@ class MeshBuilder {
       throw InputError(accessors_.where(accessor, semantic),
                        fmt::format("{} elements for {} positions", v.size() / components, n));
     return v;
+  }
+
+  // TANGENT (xyz, and w = ±1 the bitangent's sign), to world like transform_mesh; w = 0 where the
+  // primitive has none.
+  void file_tangents(int accessor, std::size_t n, const Eigen::Matrix3d& linear) {
+    if (accessor < 0) {
+      file_tangents_.insert(file_tangents_.end(), n, Vec4f::Zero());
+      return;
+    }
+    const std::vector<float> t = vertex_floats(accessor, 4, "TANGENT", n);
+    const float handedness = linear.determinant() < 0 ? -1.0f : 1.0f;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3d v = linear * Vec3d(t[4 * i], t[4 * i + 1], t[4 * i + 2]);
+      Vec4f tangent = Vec4f::Zero();
+      if (v.norm() > 0) tangent << v.normalized().cast<float>(), t[4 * i + 3] < 0 ? -handedness : handedness;
+      file_tangents_.push_back(tangent);
+    }
+  }
+
+  // The tangents of the normal maps' UV sets (render/tangents.h), where some material has a normal
+  // map: the file's TANGENT where a triangle's three vertices have it, MikkTSpace's elsewhere.
+  void tangents() {
+    std::array<std::vector<Vec4f>, 2> generated;
+    for (std::size_t f = 0; f < out_.triangles.size(); ++f) {
+      const Triangle& tri = out_.triangles[f];
+      const Texture& map = out_.materials[std::size_t(tri.material)].map_normal;
+      if (!map) continue;
+      if (out_.tangents.empty()) out_.tangents.assign(3 * out_.triangles.size(), Vec4f(1, 0, 0, 1));
+      const bool in_file =
+          std::all_of(tri.v.begin(), tri.v.end(), [&](std::uint32_t v) { return file_tangents_[v].w() != 0; });
+      std::vector<Vec4f>& gen = generated[std::size_t(map.texcoord)];
+      if (!in_file && gen.empty()) gen = mikktspace_tangents(out_, map.texcoord);
+      for (std::size_t k = 0; k < 3; ++k)
+        out_.tangents[3 * f + k] = in_file ? file_tangents_[tri.v[k]] : gen[3 * f + k];
+    }
   }
 
   // A UV set: present in some primitive, it is stored for every vertex (zero where a primitive lacks it).
@@ -331,6 +370,7 @@ class MeshBuilder {
   Accessors accessors_;
   bool uv0_ = false, uv1_ = false, uses_default_ = false;
   std::size_t dropped_ = 0;
+  std::vector<Vec4f> file_tangents_;  // per position
   Mesh out_;
 };
 

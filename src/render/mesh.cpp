@@ -376,6 +376,12 @@ void transform_mesh(Mesh& mesh, const Mat4d& M) {
     const Vec3d m = N * n.cast<double>();
     n = (m.norm() > 0 ? m.normalized() : m).cast<float>();
   }
+  // A mirroring transform turns the frame (n, t, n × t) left-handed: the bitangent's sign follows.
+  const float handedness = A.determinant() < 0 ? -1.0f : 1.0f;
+  for (Vec4f& tangent : mesh.tangents) {
+    const Vec3d m = A * tangent.head<3>().cast<double>();
+    tangent << (m.norm() > 0 ? m.normalized() : m).cast<float>(), tangent.w() * handedness;
+  }
 }
 
 Bounds mesh_bounds(const Mesh& mesh) {

@@ -41,6 +41,11 @@ struct Material {
   float sheen_roughness = 0.0f;
   Texture map_sheen, map_sheen_roughness;  // sRGB colour; the roughness in the alpha channel
 
+  // A tangent-space normal map (linear RGB, 2c − 1 per channel; Mesh::tangents), with Cycles's
+  // Normal Map strength: glTF's normalTexture.scale, as Blender imports it.
+  Texture map_normal;
+  float normal_strength = 1.0f;
+
   Rgb emission = Rgb::Zero();  // emitted radiance, in the environment's units (Cycles's strength 1)
   Texture map_emission;        // multiplies emission
 
@@ -72,6 +77,9 @@ struct Mesh {
   std::vector<Vec2f> uvs;
   std::vector<Vec2f> uvs1;  // a second UV set, indexed as uvs (glTF's TEXCOORD_1), or empty
   std::vector<Triangle> triangles;
+  // Per triangle corner (3 per triangle): the tangent of the normal map's UV set (xyz) and the
+  // bitangent's sign (w; render/tangents.h). Empty where no material has a normal map.
+  std::vector<Vec4f> tangents;
   std::vector<Material> materials;  // never empty: a default material is added when needed
 };
 
@@ -87,7 +95,8 @@ std::vector<std::string> obj_dependencies(const std::string& obj_path);
 // A triangle whose edges are parallel or zero: |e1 × e2| ≤ 1e-12 (|e1|² + |e2|²), in double.
 bool degenerate_triangle(const Mesh& mesh, const Triangle& tri);
 
-// Applies an affine transform (positions by M, normals by its inverse transpose).
+// Applies an affine transform (positions by M, normals by its inverse transpose, tangents by M and
+// their sign by det M's).
 void transform_mesh(Mesh& mesh, const Mat4d& M_world_from_object);
 
 struct Bounds {
