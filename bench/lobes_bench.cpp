@@ -1,8 +1,9 @@
 // What glTF's extra lobes and cut-outs cost:
 //   build/bench/insitu_bench --benchmark_filter='PrincipledSample|CutoutRays'
 // BM_PrincipledSample: one sample() (with its eval and pdf) of the principled model, without and
-// with a clear coat (Arg 0, 1). BM_CutoutRays: 64 k rays through a 99 904-triangle sphere, opaque
-// (0), MASK (1) and BLEND at alpha 0.5 (2): the price of Embree calling the alpha filter.
+// with a clear coat (Arg 0, 1), and as rough glass (Arg 2: transmission 1, roughness 0.3). BM_CutoutRays: 64 k rays
+// through a 99 904-triangle sphere, opaque (0), MASK (1) and BLEND at alpha 0.5 (2): the price of Embree calling the
+// alpha filter.
 #include <benchmark/benchmark.h>
 
 #include "core/sampler.h"
@@ -16,8 +17,9 @@ using namespace insitu;
 void BM_PrincipledSample(benchmark::State& state) {
   PrincipledParams p;
   p.base = Rgb(0.6f, 0.4f, 0.2f);
-  p.clearcoat = state.range(0) ? 1.0f : 0.0f;
+  p.clearcoat = state.range(0) == 1 ? 1.0f : 0.0f;
   p.clearcoat_roughness = 0.05f;
+  if (state.range(0) == 2) p.transmission = 1, p.roughness = 0.3f;
   const Bsdf b = Bsdf::principled(p);
   const Vec3f wo = Vec3f(0.5f, 0.1f, 0.8f).normalized();
   std::uint64_t k = 0;
@@ -29,7 +31,7 @@ void BM_PrincipledSample(benchmark::State& state) {
     benchmark::DoNotOptimize(bs);
   }
 }
-BENCHMARK(BM_PrincipledSample)->Arg(0)->Arg(1);
+BENCHMARK(BM_PrincipledSample)->Arg(0)->Arg(1)->Arg(2);
 
 Mesh sphere_mesh(Material::AlphaMode mode) {
   const float centre[3] = {0, 0, 0};

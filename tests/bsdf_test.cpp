@@ -6,6 +6,8 @@
 #include "render/gtr1.h"
 #include "render/velvet.h"
 #include "core/sampler.h"
+#include "bsdf_sampling.h"
+#include "chi2.h"
 #include "test_util.h"
 
 namespace insitu {
@@ -74,16 +76,8 @@ TEST(BsdfTest, SamplingMatchesEvalAndPdf) {
       EXPECT_NEAR(by_sampling.mean, by_quadrature.mean, 4 * std::hypot(by_sampling.se, by_quadrature.se))
           << "alpha " << alpha << " theta " << theta;
       const Mc pdf_integral = hemisphere_integral([&](const Vec3f& wi) { return double(b.pdf(wo, wi)); }, 400000, 5);
-      int ok = 0;
-      const int n = 200000;
-      for (int k = 0; k < n; ++k) {
-        Sampler s(6, std::uint64_t(k), 2);
-        BsdfSample bs;
-        const float ul = s.next(), u1 = s.next(), u2 = s.next();
-        ok += b.sample(wo, ul, u1, u2, &bs);
-      }
-      const double p = double(ok) / n, se_p = std::sqrt(p * (1 - p) / n);
-      EXPECT_NEAR(pdf_integral.mean, p, 4 * std::hypot(pdf_integral.se, se_p) + 1e-3)
+      const test::Fraction ok = test::success_fraction(b, wo);
+      EXPECT_NEAR(pdf_integral.mean, ok.p, 4 * std::hypot(pdf_integral.se, ok.se) + 1e-3)
           << "alpha " << alpha << " theta " << theta;
     }
 }
@@ -137,19 +131,7 @@ double chi2_score(const Bsdf& b, const Vec3f& wo, Pdf pdf, double* chi2_out = nu
           const double d_omega = (1.0 / kTheta) * (2 * kPi / kPhi) / 64;
           expected[std::size_t(i * kPhi + j)] += kN * pdf(wi) * d_omega;
         }
-  double chi2 = 0, pooled_o = 0, pooled_e = 0;
-  int dof = 0;
-  for (std::size_t k = 0; k < observed.size(); ++k) {
-    if (expected[k] < 5) {
-      pooled_o += observed[k], pooled_e += expected[k];
-      continue;
-    }
-    chi2 += (observed[k] - expected[k]) * (observed[k] - expected[k]) / expected[k];
-    ++dof;
-  }
-  if (pooled_e >= 5) chi2 += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e, ++dof;
-  if (chi2_out) *chi2_out = chi2;
-  return (chi2 - dof) / std::sqrt(2.0 * dof);
+  return test::chi2_score_of(observed, expected, chi2_out);
 }
 
 // reflect(ωo, h), h from GGX's visible normals, follows ggx::reflection_pdf.

@@ -19,7 +19,15 @@
 // light's samples, so directions toward them are reached by BSDF sampling only (weight 1; the
 // environment sample toward them counts as occluded). Russian roulette from the third bounce on,
 // survival probability min(0.95, max throughput). Materials: bsdf.h — Lambertian ρ = Kd × map_Kd, plus a
-// glossy GGX lobe where the MTL gives Ks (roughness from Ns).
+// glossy GGX lobe where the MTL gives Ks (roughness from Ns); glTF's, Cycles's Principled BSDF.
+//
+// Glass. A ray that meets a face from behind (its winding's normal facing away) is inside: the
+// glass's index is inverted there, as Cycles does, and the path it took since the last vertex
+// crossed the material's Volume Absorption, exp(−σ_a d). A refraction leaves from behind the
+// surface, and next-event estimation takes light through the refraction lobe too. Glass blocks
+// shadow rays like any object (so do Cycles's): the light that comes through it — the coloured
+// shadow of a glass top on the floor, the photo seen through it — is found by BSDF samples, and
+// a ray through glass that meets the floor sees the photo there, P + (W − N) as below.
 //
 // Catcher. A camera sample that meets the local scene (a plane or a mesh) before any object estimates
 // the plane's reflected radiance twice with the same random numbers: with the objects (their
@@ -233,34 +241,31 @@ class PathIntegrator final : public Integrator {
     Rgb throughput = Rgb::Ones(), L = Rgb::Zero();
     for (; depth < max_depth_; ++depth) {
       const SurfacePoint sp = objects_->surface(ray, hit);
+      // A ray that leaves a glass through its back face has crossed its volume (Beer–Lambert).
+      if (sp.backfacing) throughput *= absorbed(*sp.material, (sp.p_world - ray.origin).norm());
       // Emission (glTF's emissive), found by the camera or a BSDF sample only: emitting objects
       // are not sampled as lights.
       L += throughput * sp.material->emitted(sp.uv);
-      Bsdf bsdf = Bsdf::from_material(*sp.material, sp.uv);
+      Bsdf bsdf = Bsdf::from_material(*sp.material, sp.uv, sp.backfacing);
       // Cycles bends every closure's normal so that its mirror direction stays above the surface,
       // and shadows the diffuse where that normal is not the smooth one.
       const Vec3f n_closure = valid_reflection_normal(sp.ng_world, -ray.dir, sp.ns_world);
       const Frame frame(n_closure);
       if (n_closure != sp.n_smooth_world) bsdf.set_smooth_normal(frame.to_local(sp.n_smooth_world));
       const Vec3f wo = frame.to_local(-ray.dir);
+      // Rays leave from the side they go to: a refraction from behind the surface.
       const Vec3f origin = offset_origin(sp.p_world, sp.ng_world);
-      // Next-event estimation toward the room's light (catcher planes occlude it).
-      const float ue = sampler.next(), us = sampler.next(), ut = sampler.next();
-      const RoomSample rs = room_.sample(origin, ue, us, ut);
-      const Vec3f wl = frame.to_local(rs.dir);
-      if (rs.pdf > 0 && wl.z() > 0 && rs.dir.dot(sp.ng_world) > 0 && !blocked_by_catcher(origin, rs) &&
-          !blocked_by_objects(origin, rs)) {
-        L += throughput * bsdf.eval(wo, wl) * rs.radiance *
-             (wl.z() / rs.pdf * power_heuristic(rs.pdf, bsdf.pdf(wo, wl)));
-      }
+      const Vec3f origin_behind = offset_origin(sp.p_world, -sp.ng_world);
+      L += throughput * next_event(sp, bsdf, frame, wo, origin, origin_behind, sampler);
       // BSDF sample.
       BsdfSample bs;
       const float ul = sampler.next(), u1 = sampler.next(), u2 = sampler.next();
       if (!bsdf.sample(wo, ul, u1, u2, &bs)) break;
       const Vec3f wi = frame.to_world(bs.wi);
-      if (wi.dot(sp.ng_world) <= 0) break;  // below the geometric surface: no light comes from there
+      const bool refracted = bs.wi.z() < 0;
+      if ((wi.dot(sp.ng_world) <= 0) != refracted) break;  // the geometric side disagrees: no light comes
       throughput *= bs.weight;
-      ray = {origin, wi};
+      ray = {refracted ? origin_behind : origin, wi};
       hit = objects_->intersect(ray);
       if (const CatcherHit c = find_catcher(ray, hit.valid() ? hit.t : kInfinity, /*walls=*/true); c.valid) {
         // The real surface as photographed, changed by the objects (differential rendering once
@@ -284,6 +289,27 @@ class PathIntegrator final : public Integrator {
       }
     }
     return L;
+  }
+
+  // Cycles's Volume Absorption inside a glass: exp(−σ_a d) over a path of d metres.
+  static Rgb absorbed(const Material& m, float d_m) {
+    if (!(m.absorption.maxCoeff() > 0)) return Rgb::Ones();
+    return (-m.absorption * d_m).exp();
+  }
+
+  // Next-event estimation toward the room's light (catcher planes occlude it), weighed by MIS
+  // against the BSDF; through a glass's refraction, from behind the surface.
+  Rgb next_event(const SurfacePoint& sp, const Bsdf& bsdf, const Frame& frame, const Vec3f& wo, const Vec3f& origin,
+                 const Vec3f& origin_behind, Sampler& sampler) const {
+    const float ue = sampler.next(), us = sampler.next(), ut = sampler.next();
+    const RoomSample rs = room_.sample(origin, ue, us, ut);
+    const Vec3f wl = frame.to_local(rs.dir);
+    const bool behind = wl.z() < 0;  // only a glass's refraction takes light from behind
+    if (!(rs.pdf > 0) || wl.z() == 0 || (behind && !bsdf.transmits()) || (rs.dir.dot(sp.ng_world) > 0) == behind)
+      return Rgb::Zero();
+    const Vec3f& from = behind ? origin_behind : origin;
+    if (blocked_by_catcher(from, rs) || blocked_by_objects(from, rs)) return Rgb::Zero();
+    return bsdf.eval(wo, wl) * rs.radiance * (std::abs(wl.z()) / rs.pdf * power_heuristic(rs.pdf, bsdf.pdf(wo, wl)));
   }
 
   // ρ/π of a local-scene point met along `dir`: the surface's, or the photo's P/E (E the room's

@@ -49,9 +49,12 @@ Bsdf Bsdf::principled(const PrincipledParams& p) {
   const float m = std::clamp(p.metallic, 0.0f, 1.0f), r = std::clamp(p.roughness, 0.0f, 1.0f);
   const float s = std::clamp(p.specular, 0.0f, 1.0f), c = std::clamp(p.clearcoat, 0.0f, 1.0f);
   const float rc = std::clamp(p.clearcoat_roughness, 0.0f, 1.0f);
+  const float t = std::clamp(p.transmission, 0.0f, 1.0f), T = t * (1 - m);
   Bsdf b;
   b.principled_ = true;
-  b.diffuse_ = base * (1 - m);
+  b.diffuse_ = base * ((1 - m) * (1 - t));
+  b.specular_weight_ = s > kWeightCutoff || m > kWeightCutoff ? 1 - T : 0.0f;
+  if (b.specular_weight_ <= kWeightCutoff) b.specular_weight_ = 0;
   b.f0_ = (0.08f * s * (1 - m) + base * m).min(1.0f);
   b.roughness_ = r;
   b.alpha_ = std::max(kMirrorAlpha, r * r);
@@ -66,18 +69,27 @@ Bsdf Bsdf::principled(const PrincipledParams& p) {
     b.sheen_ = p.sheen.max(0.0f);
     b.sheen_sigma_ = velvet::sigma(p.sheen_roughness);
   }
-  b.glossy_ = s > kWeightCutoff || m > kWeightCutoff || b.coat_ > 0 || b.sheen_.maxCoeff() > 0;
+  if (T > kWeightCutoff) {
+    // Cycles: eta = max(ior, 10⁻⁵), inverted on a back face.
+    const float eta = std::max(p.ior, 1e-5f);
+    b.glass_ = T;
+    b.glass_alpha_ = std::max(kMirrorAlpha, r * r);
+    b.glass_eta_ = p.inside ? 1 / eta : eta;
+    b.glass_tint_ = base;
+  }
+  b.glossy_ = b.specular_weight_ > 0 || b.coat_ > 0 || b.sheen_.maxCoeff() > 0 || b.glass_ > 0;
   return b;
 }
 
-Bsdf Bsdf::from_material(const Material& m, const UvSets& uv) {
+Bsdf Bsdf::from_material(const Material& m, const UvSets& uv, bool inside) {
   const Rgb base = m.base_colour(uv);
   if (m.principled) {
     const Rgb mr = m.map_metallic_roughness.sample(uv);  // glTF: G roughness, B metallic
     const Rgb cc = m.map_clearcoat.sample(uv), ccr = m.map_clearcoat_roughness.sample(uv);  // R, G
     return principled({base, m.metallic * mr[2], m.roughness * mr[1], m.specular, m.clearcoat * cc[0],
                        m.clearcoat_roughness * ccr[1], m.sheen * m.map_sheen.sample(uv),
-                       m.sheen_roughness * m.map_sheen_roughness.sample_alpha(uv)});
+                       m.sheen_roughness * m.map_sheen_roughness.sample_alpha(uv),
+                       m.transmission * m.map_transmission.sample(uv)[0], m.ior, inside});
   }
   // Walter et al. 2007: α = √(2/(Ns + 2)).
   const float alpha = std::sqrt(2.0f / (std::max(0.0f, m.ns) + 2.0f));
@@ -106,6 +118,20 @@ Rgb Bsdf::coat(const Vec3f& wo, const Vec3f& wi) const {
   return Rgb::Constant(coat_ * fresnel_dielectric(std::max(0.0f, wi.dot(h)), kCoatEta) * D * G / (4 * co * ci));
 }
 
+// The glass: reflection T·F·D G/(4 cos θo cos θi), or refraction base·T·max(10⁻⁴, 1 − F)·f_t,
+// F = F_d(ωo·n, η) (closure.h: the Fresnel is taken at the closure's normal, once).
+Rgb Bsdf::glass(const Vec3f& wo, const Vec3f& wi) const {
+  const float F = fresnel_dielectric(wo.z(), glass_eta_);
+  if (wi.z() > 0) {
+    const Vec3f h = (wo + wi).normalized();
+    const float G = ggx::g1(wo.z(), glass_alpha_) * ggx::g1(wi.z(), glass_alpha_);
+    return Rgb::Constant(glass_ * F * ggx::d(h.z(), glass_alpha_) * G / (4 * wo.z() * wi.z()));
+  }
+  float pdf = 0;
+  const float f_cos = ggx::cycles_refraction(wo, wi, glass_alpha_, glass_eta_, &pdf);
+  return glass_tint_ * (glass_ * std::max(1e-4f, 1 - F) * f_cos / -wi.z());
+}
+
 // Cycles's density for the coat, pdf = G1(ωo; 0.25) D₁(h) / (4 |ωo·n|), which is not the density
 // its samples are drawn from (GGX's visible normals at α_c; render/gtr1.h).
 float Bsdf::coat_pdf(const Vec3f& wo, const Vec3f& wi) const {
@@ -122,13 +148,21 @@ Bsdf::LobeOdds Bsdf::lobe_odds(float cos_o) const {
     odds.specular = std::clamp(schlick(f0_, cos_o).maxCoeff(), 0.05f, 0.95f);
     return odds;
   }
-  const float w_s = fresnel(cos_o).mean(), w_c = coat_ * fresnel_dielectric(cos_o, kCoatEta);
+  const float w_s = specular_weight_ * fresnel(cos_o).mean(), w_c = coat_ * fresnel_dielectric(cos_o, kCoatEta);
   const float w_d = diffuse_.mean() > kWeightCutoff ? diffuse_.mean() : 0.0f, w_v = sheen_.mean();
-  const float sum = w_s + w_c + w_d + w_v;
+  float w_r = 0, w_t = 0;
+  if (glass_ > 0) {
+    const float F = fresnel_dielectric(cos_o, glass_eta_);
+    w_r = glass_ * F;
+    w_t = glass_tint_.mean() * glass_ * std::max(1e-4f, 1 - F);
+  }
+  const float sum = w_s + w_c + w_d + w_v + w_r + w_t;
   if (!(sum > 0)) return odds;
   odds.specular = w_s / sum;
   odds.coat = w_c / sum;
   odds.sheen = w_v / sum;
+  odds.reflect = w_r / sum;
+  odds.refract = w_t / sum;
   return odds;
 }
 
@@ -142,14 +176,19 @@ float Bsdf::bump_shadowing(const Vec3f& wi) const {
 
 Rgb Bsdf::eval(const Vec3f& wo, const Vec3f& wi) const {
   const float co = wo.z(), ci = wi.z();
-  if (co <= 0 || ci <= 0) return Rgb::Zero();
+  if (co <= 0 || ci == 0) return Rgb::Zero();
+  if (ci < 0) return glass_ > 0 ? glass(wo, wi) : Rgb::Zero();
   const Rgb f_d = bump_ ? Rgb(diffuse(wo, wi) * bump_shadowing(wi)) : diffuse(wo, wi);
   if (!glossy_) return f_d;
-  const Vec3f h = (wo + wi).normalized();
-  const float D = ggx::d(h.z(), alpha_), G = ggx::g1(co, alpha_) * ggx::g1(ci, alpha_);
-  Rgb f = f_d + fresnel(std::max(0.0f, wi.dot(h))) * (D * G / (4 * co * ci));
+  Rgb f = f_d;
+  if (specular_weight_ > 0) {
+    const Vec3f h = (wo + wi).normalized();
+    const float D = ggx::d(h.z(), alpha_), G = ggx::g1(co, alpha_) * ggx::g1(ci, alpha_);
+    f += fresnel(std::max(0.0f, wi.dot(h))) * (specular_weight_ * D * G / (4 * co * ci));
+  }
   if (coat_ > 0) f += coat(wo, wi);
   if (sheen_.maxCoeff() > 0) f += sheen_ * velvet::f(wo, wi, sheen_sigma_);
+  if (glass_ > 0) f += glass(wo, wi);
   return f;
 }
 
@@ -160,24 +199,43 @@ float Bsdf::pdf(const Vec3f& wo, const Vec3f& wi) const {
 
 // Σ_lobes odds · density; the diffuse lobe takes the odds the others leave.
 float Bsdf::mixture_pdf(const LobeOdds& odds, const Vec3f& wo, const Vec3f& wi) const {
-  if (wo.z() <= 0 || wi.z() <= 0) return 0;
+  if (wo.z() <= 0 || wi.z() == 0) return 0;
+  if (wi.z() < 0) {
+    float pdf = 0;
+    if (odds.refract > 0) ggx::cycles_refraction(wo, wi, glass_alpha_, glass_eta_, &pdf);
+    return odds.refract * pdf;
+  }
   const float p_cos = wi.z() / kPiF;
   if (!glossy_) return p_cos;
   const float p_coat = odds.coat > 0 ? odds.coat * coat_pdf(wo, wi) : 0.0f;
-  const float p_diffuse = (1 - odds.specular - odds.coat - odds.sheen) * p_cos;
-  return odds.specular * ggx::reflection_pdf(wo, wi, alpha_) + p_coat + odds.sheen / (2 * kPiF) + p_diffuse;
+  const float p_reflect = odds.reflect > 0 ? odds.reflect * ggx::reflection_pdf(wo, wi, glass_alpha_) : 0.0f;
+  const float p_diffuse = (1 - odds.others()) * p_cos;
+  return odds.specular * ggx::reflection_pdf(wo, wi, alpha_) + p_coat + odds.sheen / (2 * kPiF) + p_reflect + p_diffuse;
 }
 
 bool Bsdf::sample(const Vec3f& wo, float u_lobe, float u1, float u2, BsdfSample* out) const {
   if (wo.z() <= 0) return false;
   Vec3f wi;
   const LobeOdds odds = lobe_odds(wo.z());
-  if (u_lobe < odds.specular + odds.coat) {
+  const float to_sheen = odds.specular + odds.coat, to_glass = to_sheen + odds.sheen;
+  if (u_lobe < to_sheen) {
     const bool coat_lobe = u_lobe >= odds.specular;
     const Vec3f h = ggx::sample_visible_normal(wo, coat_lobe ? coat_alpha_ : alpha_, u1, u2);
     wi = 2 * wo.dot(h) * h - wo;
-  } else if (u_lobe < odds.specular + odds.coat + odds.sheen) {
+  } else if (u_lobe < to_glass) {
     wi = uniform_hemisphere_local(u1, u2);
+  } else if (u_lobe < to_glass + odds.reflect + odds.refract) {
+    const Vec3f h = ggx::sample_visible_normal(wo, glass_alpha_, u1, u2);
+    if (u_lobe < to_glass + odds.reflect) {
+      wi = 2 * wo.dot(h) * h - wo;
+    } else {
+      if (!ggx::refract(wo, h, glass_eta_, &wi) || wi.z() >= 0) return false;
+      out->wi = wi;
+      out->pdf = mixture_pdf(odds, wo, wi);
+      if (!(out->pdf > 0)) return false;
+      out->weight = eval(wo, wi) * (-wi.z() / out->pdf);
+      return true;
+    }
   } else {
     wi = cosine_sample_local(u1, u2);
   }

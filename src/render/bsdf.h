@@ -10,12 +10,12 @@
 //
 // `principled` (glTF): Cycles 3.4's Principled BSDF, lobe by lobe as its
 // kernel sets it up (intern/cycles/kernel/svm/closure.h, CLOSURE_BSDF_PRINCIPLED_ID), for the
-// parameters insitu reads (no transmission, or subsurface), with the Velvet BSDF that Blender's
+// parameters insitu reads (no subsurface, no anisotropy), with the Velvet BSDF that Blender's
 // glTF importer adds for sheen:
-//   diffuse   base·(1 − m) · f_pd, the principled diffuse of bsdf_principled_diffuse.h:
+//   diffuse   base·(1 − m)(1 − t) · f_pd, the principled diffuse of bsdf_principled_diffuse.h:
 //             f_pd = 1/π [(1 − ½F_V)(1 − ½F_L) + R (F_L + F_V + F_L F_V (R − 1))],
 //             F_x = (1 − cos θ_x)^5, R = r (1 + ωo·ωi)  (Burley 2012's retro-reflection);
-//   specular  GGX, α = r², single-scattering (the node's "GGX" distribution), with Cycles's
+//   specular  (1 − T) × GGX, α = r², single-scattering (the node's "GGX" distribution), with Cycles's
 //             interpolated Fresnel (bsdf_util.h, interpolate_fresnel_color):
 //             F = c0 (1 − F_H) + F_H,  F_H = (F_d(ωi·h, η) − F0) / (1 − F0),
 //             c0 = 0.08·s·(1 − m) + base·m,  F0 = 0.08·s,  η = 2/(1 − √(0.08·s)) − 1,
@@ -27,7 +27,13 @@
 //   sheen     sheen colour × the Ashikhmin velvet lobe of σ = sheen roughness (render/velvet.h),
 //             added (KHR_materials_sheen as Blender 3.4 imports it: a Velvet BSDF through an Add
 //             Shader, not the Principled BSDF's own sheen).
-// m: metallic, r: roughness, s: specular, c: clear coat, r_c: its roughness. Cycles adds the
+//   glass     T = t·(1 − m), two closures of α = r² and the index η (1/η from inside, on a back
+//             face), their Fresnel F = F_d(ωo·n, η) taken once at the macroscopic normal:
+//             reflection  T·F × GGX reflection with a microfacet Fresnel of 1;
+//             refraction  base·T·max(10⁻⁴, 1 − F) × Walter et al. 2007's GGX refraction without
+//             Fresnel, ωi on the other side (a direction with ωi·n < 0), evaluated as Cycles
+//             evaluates it, also where no microfacet refracts (render/ggx.h, cycles_refraction).
+// m: metallic, r: roughness, s: specular, c: clear coat, r_c: its roughness, t: transmission. Cycles adds the
 // lobes: none is weighted by what another reflects, so a white base reflects up to ~1.5 × what
 // arrives at grazing angles (BsdfTest.PrincipledGainsWhatCyclesGains); each lobe alone conserves
 // energy.
@@ -36,7 +42,10 @@
 // cosine-weighted; the lobe with probability: obj, p_s = max F(ωo·n) clamped to [0.05, 0.95];
 // principled, Cycles's sample weights, each lobe's w over their sum: w_s the mean of F at ωo·n,
 // w_c = ¼·c·F_d(ωo·n, 1.5), w_d the mean diffuse weight, w_v the mean sheen colour (its lobe
-// sampled uniformly, as Cycles does). pdf() is the mixture.
+// sampled uniformly, as Cycles does), the glass's T·F and mean(base)·T·(1 − F); a refraction
+// through a visible normal under total internal reflection is no sample, as in Cycles. pdf() is the
+// mixture. A mirror (Cycles's singular lobes, α² ≤ 10⁻⁷) is GGX at α = 10⁻³ here, for the
+// specular lobe, the coat and the glass alike.
 //
 // The clear coat is sampled as Cycles 3.4 samples it (bsdf_microfacet_ggx_sample): directions from
 // GGX's visible normals at α_c, their density reported as Cycles reports it,
@@ -61,6 +70,8 @@ struct PrincipledParams {
   float clearcoat = 0.0f, clearcoat_roughness = 0.03f;
   Rgb sheen = Rgb::Zero();  // the Velvet BSDF's colour (KHR_materials_sheen's sheenColor)
   float sheen_roughness = 0.0f;
+  float transmission = 0.0f, ior = 1.5f;
+  bool inside = false;  // seen from inside (a back face): the glass's index is 1/ior
 };
 
 struct BsdfSample {
@@ -78,13 +89,17 @@ class Bsdf {
   static Bsdf principled(const Rgb& base, float metallic, float roughness, float specular) {
     return principled(PrincipledParams{base, metallic, roughness, specular});
   }
-  // The material's model at a surface point, its textures sampled there.
-  static Bsdf from_material(const Material& m, const UvSets& uv);
+  // The material's model at a surface point, its textures sampled there; `inside`: met from
+  // behind its face (the glass's index inverted).
+  static Bsdf from_material(const Material& m, const UvSets& uv, bool inside = false);
 
-  Rgb eval(const Vec3f& wo, const Vec3f& wi) const;   // f, local directions, both above
+  // f, local directions, ωo above; ωi below (ωi.z < 0) is the glass's refraction, 0 without it.
+  Rgb eval(const Vec3f& wo, const Vec3f& wi) const;
   float pdf(const Vec3f& wo, const Vec3f& wi) const;  // solid-angle density of sample()
+  // A direction and its weight f |cos θi| / pdf; below the surface for a refraction.
   bool sample(const Vec3f& wo, float u_lobe, float u1, float u2, BsdfSample* out) const;
   bool glossy() const { return glossy_; }
+  bool transmits() const { return glass_ > 0; }
   // Cycles's bump shadowing of its diffuse closures (kernel/closure/bsdf.h, bump_shadowing_term;
   // Chiang, Li and Burley 2019, "Taming the Shadow Terminator"), for a shading normal (this BSDF's
   // +z) bent away from the smooth one by a normal map or a valid-reflection bend: the diffuse lobe
@@ -102,8 +117,10 @@ class Bsdf {
   Rgb coat(const Vec3f& wo, const Vec3f& wi) const;     // the clear coat's f
   float bump_shadowing(const Vec3f& wi) const;
   float coat_pdf(const Vec3f& wo, const Vec3f& wi) const;
+  Rgb glass(const Vec3f& wo, const Vec3f& wi) const;  // the glass's reflection or refraction f
   struct LobeOdds {
-    float specular = 0, coat = 0, sheen = 0;  // the rest: diffuse
+    float specular = 0, coat = 0, sheen = 0, reflect = 0, refract = 0;  // the rest: diffuse
+    float others() const { return specular + coat + sheen + reflect + refract; }
   };
   LobeOdds lobe_odds(float cos_o) const;
   float mixture_pdf(const LobeOdds& odds, const Vec3f& wo, const Vec3f& wi) const;
@@ -116,6 +133,9 @@ class Bsdf {
   bool coat_ggx_ = false;                                        // a mirror coat: GGX at α = 10⁻³
   Rgb sheen_ = Rgb::Zero();                                      // the velvet lobe's colour
   float sheen_sigma_ = 1.0f;
+  float specular_weight_ = 1.0f;                                // 1 − T
+  float glass_ = 0.0f, glass_alpha_ = 1.0f, glass_eta_ = 1.5f;  // T, α, η from ωo's side
+  Rgb glass_tint_ = Rgb::Ones();                                // the base colour
   bool bump_ = false;
   Vec3f smooth_n_ = Vec3f::UnitZ();
 };

@@ -205,6 +205,7 @@ SurfacePoint EmbreeScene::surface(const Ray& ray, const Hit& hit) const {
   const float to_winding = sp.ns_world.dot(sp.ng_world) < 0 ? -1.0f : 1.0f;
   const float to_ray = sp.ng_world.dot(ray.dir) > 0 ? -1.0f : 1.0f;
   sp.ng_world *= to_ray;
+  sp.backfacing = to_ray < 0;
   sp.ns_world *= to_winding * to_ray;
   mapped *= to_winding * to_ray;
   sp.n_smooth_world = sp.ns_world;

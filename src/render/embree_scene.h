@@ -29,6 +29,7 @@ struct SurfacePoint {
   Vec3f n_smooth_world;  // the interpolated normal before the normal map (Cycles's sd->N)
   UvSets uv = {Vec2f::Zero(), Vec2f::Zero()};
   const Material* material = nullptr;
+  bool backfacing = false;  // the ray met the triangle's back (its winding's normal faced away from it)
 };
 
 // The UV sets of a triangle at barycentrics (b1, b2) of its vertices 1 and 2; zero without UVs.

@@ -113,6 +113,7 @@ class MaterialReader {
       read_clearcoat(it->second, m, where + ".extensions.KHR_materials_clearcoat");
     if (auto it = g.extensions.find("KHR_materials_sheen"); it != g.extensions.end())
       read_sheen(it->second, m, where + ".extensions.KHR_materials_sheen");
+    read_glass(g, m, where + ".extensions");
     unrendered(g, m.name);
     return m;
   }
@@ -138,19 +139,54 @@ class MaterialReader {
   // sheenColorFactor × sheenColorTexture (sRGB) and σ = sheenRoughnessFactor × the alpha of
   // sheenRoughnessTexture, added to the principled one (render/bsdf.h).
   void read_sheen(const tinygltf::Value& ext, Material& m, const std::string& where) {
-    if (ext.Has("sheenColorFactor")) {
-      const tinygltf::Value& c = ext.Get("sheenColorFactor");
-      for (int k = 0; k < 3; ++k) {
-        const double x = c.IsArray() && c.ArrayLen() == 3 && c.Get(k).IsNumber() ? c.Get(k).GetNumberAsDouble() : -1;
-        if (!(x >= 0 && x <= 1)) throw InputError(where + ".sheenColorFactor", "must be 3 numbers within [0, 1]");
-        m.sheen[k] = float(x);
-      }
-    }
+    if (ext.Has("sheenColorFactor")) m.sheen = unit_rgb(ext.Get("sheenColorFactor"), where + ".sheenColorFactor");
     m.sheen_roughness = number(ext, "sheenRoughnessFactor", 0.0f, where);
     if (!unit(m.sheen_roughness)) throw InputError(where + ".sheenRoughnessFactor", "must be within [0, 1]");
     m.map_sheen = texture(texture_info(ext, "sheenColorTexture"), true, where + ".sheenColorTexture");
     m.map_sheen_roughness =
         texture(texture_info(ext, "sheenRoughnessTexture"), false, where + ".sheenRoughnessTexture", true);
+  }
+
+  // Glass, as Blender 3.4's importer reads it (render/mesh.h): KHR_materials_transmission's factor
+  // (× R of its texture) and KHR_materials_ior's index are the Principled BSDF's; where
+  // KHR_materials_volume gives a thickness, the mesh holds a Volume Absorption of colour
+  // attenuationColor and density 1/attenuationDistance (0 without one). Its thickness texture
+  // shapes only a rasterizer's thin approximation, which neither Cycles nor insitu makes.
+  void read_glass(const tinygltf::Material& g, Material& m, const std::string& where) {
+    if (auto it = g.extensions.find("KHR_materials_transmission"); it != g.extensions.end()) {
+      const std::string ext = where + ".KHR_materials_transmission";
+      m.transmission = number(it->second, "transmissionFactor", 0.0f, ext);
+      if (!unit(m.transmission)) throw InputError(ext + ".transmissionFactor", "must be within [0, 1]");
+      m.map_transmission =
+          texture(texture_info(it->second, "transmissionTexture"), false, ext + ".transmissionTexture");
+    }
+    if (auto it = g.extensions.find("KHR_materials_ior"); it != g.extensions.end()) {
+      m.ior = number(it->second, "ior", 1.5f, where + ".KHR_materials_ior");
+      if (!(m.ior >= 1 && m.ior <= 10)) throw InputError(where + ".KHR_materials_ior.ior", "must be within [1, 10]");
+    }
+    if (auto it = g.extensions.find("KHR_materials_volume"); it != g.extensions.end()) {
+      const std::string ext = where + ".KHR_materials_volume";
+      const float thickness = number(it->second, "thicknessFactor", 0.0f, ext);
+      const float distance = number(it->second, "attenuationDistance", 0.0f, ext);
+      if (!(thickness >= 0)) throw InputError(ext + ".thicknessFactor", "must be ≥ 0");
+      if (it->second.Has("attenuationDistance") && !(distance > 0))
+        throw InputError(ext + ".attenuationDistance", "must be > 0");
+      Rgb colour = Rgb::Ones();
+      if (it->second.Has("attenuationColor"))
+        colour = unit_rgb(it->second.Get("attenuationColor"), ext + ".attenuationColor");
+      if (thickness > 0 && distance > 0) m.absorption = (Rgb::Ones() - colour) / distance;
+    }
+  }
+
+  // Three numbers within [0, 1].
+  static Rgb unit_rgb(const tinygltf::Value& c, const std::string& where) {
+    Rgb out;
+    for (int k = 0; k < 3; ++k) {
+      const double x = c.IsArray() && c.ArrayLen() == 3 && c.Get(k).IsNumber() ? c.Get(k).GetNumberAsDouble() : -1;
+      if (!(x >= 0 && x <= 1)) throw InputError(where, "must be 3 numbers within [0, 1]");
+      out[k] = float(x);
+    }
+    return out;
   }
 
   // A number of an extension's object, or `fallback`; a value that is not a finite number is refused.
@@ -245,7 +281,8 @@ class MaterialReader {
   // What the material asks for that insitu does not render, named once per material.
   void unrendered(const tinygltf::Material& g, const std::string& name) {
     static const std::set<std::string> kRead = {"KHR_materials_clearcoat", "KHR_materials_emissive_strength",
-                                                "KHR_materials_sheen"};
+                                                "KHR_materials_sheen",     "KHR_materials_transmission",
+                                                "KHR_materials_ior",       "KHR_materials_volume"};
     std::vector<std::string> what;
     for (const auto& [ext, value] : g.extensions)
       if (!kRead.count(ext)) what.push_back(ext);

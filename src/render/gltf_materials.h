@@ -4,7 +4,9 @@
 //   pbrMetallicRoughness.baseColorFactor × baseColorTexture (sRGB)   → base colour (alpha ignored)
 //     (8-bit colour decoded after interpolation, as Cycles: render/texture.h)
 //   metallicFactor × texture B, roughnessFactor × texture G (linear) → metallic, roughness
-//   KHR_materials_specular, KHR_materials_ior                        → not yet: specular 0.5 (ior 1.5)
+//   KHR_materials_transmission × texture R, KHR_materials_ior         → transmission, IOR (glass)
+//   KHR_materials_volume (a thickness): attenuationColor, _Distance    → σ_a = (1 − colour)/distance
+//   KHR_materials_specular                                            → not yet: specular 0.5
 // Textures through texCoord 0 or 1 and KHR_texture_transform (render/texture.h), repeating.
 // What a material uses and insitu does not render (emission, alpha, normal and occlusion maps,
 // other extensions, wrap modes other than REPEAT) is a warning naming the material.

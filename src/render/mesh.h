@@ -41,6 +41,13 @@ struct Material {
   float sheen_roughness = 0.0f;
   Texture map_sheen, map_sheen_roughness;  // sRGB colour; the roughness in the alpha channel
 
+  // Glass (KHR_materials_transmission, _ior, _volume as Blender 3.4 imports them): the Principled
+  // BSDF's transmission (× R of its texture) and IOR; inside a closed mesh of non-zero thickness,
+  // Cycles's Volume Absorption of colour c and density 1/d, σ_a = (1 − c)/d per metre.
+  float transmission = 0.0f, ior = 1.5f;
+  Texture map_transmission;
+  Rgb absorption = Rgb::Zero();  // σ_a, 1/m
+
   // A tangent-space normal map (linear RGB, 2c − 1 per channel; Mesh::tangents), with Cycles's
   // Normal Map strength: glTF's normalTexture.scale, as Blender imports it.
   Texture map_normal;

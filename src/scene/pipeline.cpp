@@ -253,10 +253,11 @@ void warn_base_colour_only(const std::vector<Mesh>& meshes, const std::string& i
       if (mat.principled && names.find("'" + mat.name + "'") == std::string::npos)
         names += (names.empty() ? "'" : ", '") + mat.name + "'";
   if (!names.empty())
-    w.add("render.integrator", "the " + integrator +
-                                   " integrator shades the objects by their base colour only; metallic, roughness, "
-                                   "specular, clear coat, sheen and emission are the path integrator's (materials " +
-                                   names + ")");
+    w.add("render.integrator",
+          "the " + integrator +
+              " integrator shades the objects by their base colour only; metallic, roughness, "
+              "specular, clear coat, sheen, glass and emission are the path integrator's (materials " +
+              names + ")");
 }
 
 // The objects (from the spec, then from memory) and the local scene's meshes.
