@@ -19,7 +19,8 @@
 #    "checker_scale": 20}, "objects": [{"mesh": "...obj", "translate": [x,y,z], "rotate": deg,
 #    "scale": s}], "camera": {"eye": [...], "look": [...], "hfov_deg": 50, "width": 320,
 #    "height": 240}, "insertion": [x,y,z], "samples": {"photo": 1024, "shots": 256},
-#    "shot_size": 128, "seed": 1}
+#    "shot_size": 128, "seed": 1}; "max_depth": n caps every kind of Cycles bounce at n and is the
+# insitu scene's render.max_depth (without it, Blender's defaults and insitu's 5).
 # "handheld": {"hfov_deg": 110, "aspect": 0.75, "aim_sigma_deg": 2, "seed": 3} renders the shots as
 # a hand aims them: shot_size wide and aspect × as tall, with hfov_deg across, each turned from its
 # nominal direction by a rotation vector of normal components σ = aim_sigma_deg (roll included),
@@ -29,9 +30,10 @@
 # "radius": r}, "albedo": a, "stand": r_rod}] puts a grey ball of albedo a (on a rod of radius r_rod from the floor,
 # if "stand" is given) into the real scene (the photo, the
 # truth and the shots; not the objects' coverage), and into the insitu scene as inverse
-# lighting's reference (issue 13). Paths in it are relative to the file. Every material is made a pure Lambertian (Diffuse BSDF,
+# lighting's reference (issue 13). Paths in it are relative to the file. Every OBJ material is made a pure Lambertian (Diffuse BSDF,
 # roughness 0) of the MTL's Kd or map_Kd, the reflectance model insitu's MTL reading gives a
-# material without Ks; the pixel filter is a 1-pixel box, insitu's.
+# material without Ks; a glTF object (one file, data URIs) keeps the materials Blender's importer
+# gives it, as insitu's export does (blender_prelude.gltf_object); the pixel filter is a 1-pixel box, insitu's.
 import json
 import math
 import os
@@ -44,7 +46,7 @@ from mathutils import Matrix, Vector
 # The Cycles settings shared with insitu's Blender export (src/interop/blender_prelude.py).
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
                                 "src", "interop"))
-from blender_prelude import cycles_common  # noqa: E402
+from blender_prelude import cycles_common, gltf_object  # noqa: E402
 
 argv = sys.argv[sys.argv.index("--") + 1:]
 desc_path, out_dir = os.path.abspath(argv[0]), os.path.abspath(argv[1])
@@ -64,6 +66,10 @@ def to_blender(v):
 
 def setup_render(scene, samples, width, height, seed):
     cycles_common(scene, samples, seed)  # the settings insitu's Blender export uses too
+    if "max_depth" in desc:  # every kind of bounce capped alike, as insitu's max_depth caps a path
+        scene.cycles.max_bounces = desc["max_depth"]
+        for kind in ("diffuse", "glossy", "transmission", "transparent"):
+            setattr(scene.cycles, kind + "_bounces", desc["max_depth"])
     scene.render.resolution_x, scene.render.resolution_y = width, height
     scene.render.resolution_percentage = 100
     scene.render.image_settings.file_format = "OPEN_EXR"
@@ -239,20 +245,28 @@ def lambertian_copy(mat):
     return new
 
 
+def placement(o):
+    """insitu's translate · rotate about +Y · scale, in Blender's frame (insitu's +Y is its +Z)."""
+    s = o.get("scale", 1.0)
+    sx, sy, sz = s if isinstance(s, list) else (s, s, s)
+    S = Matrix.Diagonal((sx, sz, sy, 1.0))
+    R = Matrix.Rotation(math.radians(o.get("rotate", 0.0)), 4, "Z")
+    return Matrix.Translation(to_blender(o.get("translate", [0, 0, 0]))) @ R @ S
+
+
 def make_objects():
     objects = []
     for o in desc["objects"]:
+        if o["mesh"].lower().endswith((".gltf", ".glb")):
+            # Blender's own importer, its materials kept, as insitu's export does.
+            root = gltf_object(bpy.context.scene, o["mesh"], rel(o["mesh"]), placement(o))
+            objects += list(root.children_recursive)
+            continue
         before = set(bpy.data.objects)
         bpy.ops.wm.obj_import(filepath=rel(o["mesh"]), forward_axis="NEGATIVE_Z", up_axis="Y")
         for obj in set(bpy.data.objects) - before:
-            # insitu: translate · rotate about +Y · scale, after the importer's Y-up -> Z-up turn
-            # (kept in the object's matrix); insitu's +Y is Blender's +Z.
-            s = o.get("scale", 1.0)
-            sx, sy, sz = s if isinstance(s, list) else (s, s, s)
-            S = Matrix.Diagonal((sx, sz, sy, 1.0))
-            R = Matrix.Rotation(math.radians(o.get("rotate", 0.0)), 4, "Z")
-            T = Matrix.Translation(to_blender(o.get("translate", [0, 0, 0])))
-            obj.matrix_world = T @ R @ S @ obj.matrix_world.copy()
+            # After the importer's Y-up -> Z-up turn (kept in the object's matrix).
+            obj.matrix_world = placement(o) @ obj.matrix_world.copy()
             for slot in obj.material_slots:
                 if slot.material:
                     slot.material = lambertian_copy(slot.material)
@@ -411,13 +425,15 @@ def shot_aims(hand):
 
 
 def copy_mesh(path):
-    """The OBJ and the MTL files it names, copied into OUT_DIR/meshes: the output stands alone."""
+    """The OBJ and the MTL files it names (a glTF: one file, its buffers as data URIs), copied into
+    OUT_DIR/meshes: the output stands alone."""
     dest = os.path.join(out_dir, "meshes")
     os.makedirs(dest, exist_ok=True)
     shutil.copy(path, dest)
-    for line in open(path):
-        if line.startswith("mtllib "):
-            shutil.copy(os.path.join(os.path.dirname(path), line.split(None, 1)[1].strip()), dest)
+    if not path.lower().endswith(".gltf"):
+        for line in open(path):
+            if line.startswith("mtllib "):
+                shutil.copy(os.path.join(os.path.dirname(path), line.split(None, 1)[1].strip()), dest)
     return "meshes/" + os.path.basename(path)
 
 
@@ -454,7 +470,7 @@ def write_insitu_scene(shots):
         "environment": dict({"shots": shots, "exposure": 1.0}, **room_box()),
         "local_scene": [{"plane": {"point": [0, 0, 0], "normal": [0, 1, 0]}}] if desc.get("ground") else [],
         "objects": objects,
-        "render": {"integrator": "path", "spp": 64},
+        "render": dict({"integrator": "path", "spp": 64}, **({"max_depth": desc["max_depth"]} if "max_depth" in desc else {})),
         "output": {"image": "insitu.exr", "layers": "insitu.layers.exr"},
     }
     if desc.get("references"):  # the stand is the real scene's, not insitu's to know
