@@ -107,6 +107,26 @@ bool refractable(const Vec3f& wo, const Vec3f& wi, bool inside) {
   return wi.z() >= 0 || ggx::refraction_half(wo, wi, inside ? 1 / 1.5f : 1.5f, &h);
 }
 
+// An index of 1 (glTF's least) passes the light straight through and reflects none, from outside
+// and inside. Smooth, all of it; rough, what GGX's masking of the way out lets through, G1(ωi) at
+// ωi = −ωo (Cycles, which passes an index within 10⁻⁴ of 1 straight through, gives 1 there, and
+// G1 at 1.001, the index insitu takes for 1).
+TEST(Glass, AnIndexOfOneIsInvisible) {
+  for (bool inside : {false, true})
+    for (float roughness : {0.0f, 0.5f}) {
+      PrincipledParams p;
+      p.base = Rgb::Ones(), p.metallic = 0, p.roughness = roughness, p.transmission = 1, p.ior = 1, p.inside = inside;
+      const Bsdf b = Bsdf::principled(p);
+      const Vec3f wo = glass_wo(50);
+      const float alpha = std::max(1e-3f, roughness * roughness);
+      EXPECT_NEAR(glass_albedo(b, wo, 20000).mean, ggx::g1(wo.z(), alpha), 2e-3)
+          << "inside " << inside << " roughness " << roughness;
+      BsdfSample bs;
+      ASSERT_TRUE(b.sample(wo, 0.5f, 0.3f, 0.8f, &bs));
+      EXPECT_LT((bs.wi + wo).norm(), 2e-2f) << "inside " << inside << " roughness " << roughness;
+    }
+}
+
 // Rough glass's sampled weights average to ∫ f |cos| dω over the directions it can sample
 // (computed by uniform sampling of the sphere), for glass alone and half glass over a diffuse
 // base, from outside and inside; ∫ pdf dω over them is the fraction of samples that succeed

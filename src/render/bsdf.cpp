@@ -23,6 +23,7 @@ Rgb schlick(const Rgb& f0, float cos_theta) { return f0 + (Rgb::Ones() - f0) * s
 constexpr float kWeightCutoff = 1e-5f;
 // The clear coat: index of refraction 1.5, Smith masking at a fixed α (Disney 2012); a mirror
 // where α² ≤ 10⁻⁷ (bsdf_microfacet.h: "alpha_x * alpha_y <= 1e-7f").
+constexpr float kIndexMatched = 1e-3f;
 constexpr float kCoatEta = 1.5f, kCoatMaskingAlpha = 0.25f, kCoatMirrorAlpha2 = 1e-7f, kMirrorAlpha = 1e-3f;
 
 }  // namespace
@@ -70,8 +71,12 @@ Bsdf Bsdf::principled(const PrincipledParams& p) {
     b.sheen_sigma_ = velvet::sigma(p.sheen_roughness);
   }
   if (T > kWeightCutoff) {
-    // Cycles: eta = max(ior, 10⁻⁵), inverted on a back face.
-    const float eta = std::max(p.ior, 1e-5f);
+    // Cycles: eta = max(ior, 10⁻⁵), inverted on a back face. An index within 10⁻³ of 1 is 1.001:
+    // Cycles passes light straight through an index within 10⁻⁴ of 1 (a singular closure), where
+    // the refraction's half vector ωo + η ωi vanishes; at 1.001 a microfacet tilted by θ turns the
+    // light by about 0.001 tan θ, and the surface reflects 2·10⁻⁷ of it.
+    float eta = std::max(p.ior, 1e-5f);
+    if (std::abs(eta - 1) < kIndexMatched) eta = 1 + kIndexMatched;
     b.glass_ = T;
     b.glass_alpha_ = std::max(kMirrorAlpha, r * r);
     b.glass_eta_ = p.inside ? 1 / eta : eta;
