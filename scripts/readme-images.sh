@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates the README's pictures and figures from the demo scene with the current build:
-# docs/images/demo-{photo,path,realtime,shadow-ratio,ab}.png and docs/tradeoff/ (the table in the
+# docs/images/demo-{photo,path,chair,realtime,shadow-ratio,ab}.png and docs/tradeoff/ (the table in the
 # "Speed against accuracy" of docs/performance.md is printed by the last step). Run after the build:
-#   bash scripts/readme-images.sh            (about 6 minutes on 2 cores; --no-tradeoff: 30 s)
+#   bash scripts/readme-images.sh            (about 13 minutes on 2 cores; --no-tradeoff: 7)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 insitu=build/insitu
@@ -13,6 +13,9 @@ scene=scenes/demo/scene.json
 "$insitu" render "$scene"  # the README's first command: scenes/demo/out/composite.png, layers.exr
 cp scenes/demo/out/composite.png docs/images/demo-path.png
 oiiotool scenes/demo/photo.jpg -o docs/images/demo-photo.png
+# The glTF armchair, at 1024 spp: the floor under its glass top is lit only through the glass.
+"$insitu" render scenes/demo/scene_chair.json --spp 1024 -o "$tmp/chair.png" --layers none
+cp "$tmp/chair.png" docs/images/demo-chair.png
 "$insitu" render "$scene" --integrator realtime --spp 16 -o "$tmp/realtime.png" --layers none
 cp "$tmp/realtime.png" docs/images/demo-realtime.png
 # The shadow ratio W/N, white = 1 (ratios above 1, bounce light, clip to white), sRGB-encoded.

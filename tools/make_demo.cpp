@@ -24,6 +24,7 @@
 #include "core/colour.h"
 #include "core/image.h"
 #include "core/sampler.h"
+#include "demo_chair.h"
 #include "light/sixshot.h"
 
 namespace {
@@ -360,6 +361,12 @@ void write_scene(const fs::path& out, const Vec3f& shot_origin) {
   scene["camera"] = {{"fspy", "fspy.json"}};
   scene["output"] = {{"image", "out/fspy.png"}, {"layers", "out/fspy.layers.exr"}};
   write_text(out / "scene_fspy.json", scene.dump(2) + "\n");
+  // The catalogue scene: the glTF armchair and its glass-topped side table (tools/demo_chair.h) in
+  // the ball's place, turned toward the camera.
+  scene["camera"] = {{"points", "points.json"}};
+  scene["objects"][2] = {{"mesh", "chair.glb"}, {"translate", {0.75, 0, -0.1}}, {"rotate", 30}};
+  scene["output"] = {{"image", "out/chair.png"}, {"layers", "out/chair.layers.exr"}};
+  write_text(out / "scene_chair.json", scene.dump(2) + "\n");
 }
 
 // The demo camera as fSpy exports it (calib/fspy.h, read there; this is its inverse): the longer
@@ -408,6 +415,7 @@ int main(int argc, char** argv) {
   write_photo(out, cam, exif);
   write_shots(out, shot_origin, exif);
   write_furniture(out);
+  write_demo_chair((out / "chair.glb").string());
   write_points(out, cam);
   write_scene(out, shot_origin);
   write_fspy(out, cam);

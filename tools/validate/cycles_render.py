@@ -425,12 +425,12 @@ def shot_aims(hand):
 
 
 def copy_mesh(path):
-    """The OBJ and the MTL files it names (a glTF: one file, its buffers as data URIs), copied into
-    OUT_DIR/meshes: the output stands alone."""
+    """The OBJ and the MTL files it names (a glTF: one file, its buffers as data URIs; a .glb: one
+    file), copied into OUT_DIR/meshes: the output stands alone."""
     dest = os.path.join(out_dir, "meshes")
     os.makedirs(dest, exist_ok=True)
     shutil.copy(path, dest)
-    if not path.lower().endswith(".gltf"):
+    if path.lower().endswith(".obj"):
         for line in open(path):
             if line.startswith("mtllib "):
                 shutil.copy(os.path.join(os.path.dirname(path), line.split(None, 1)[1].strip()), dest)
