@@ -192,6 +192,49 @@ TEST(Gltf, RefusalsNameTheJsonPath) {
   EXPECT_NE(error_of(texcoord).find("$.accessors[2] (TEXCOORD_0): expected 2 components"), std::string::npos);
 }
 
+// glTF 2.0 §3.6.2.3: a sparse accessor's values replace its elements at its indices; without a
+// buffer view the other elements are zeros. POSITION's vertex 2, (0, 1, 0), becomes (0, 3, 0),
+// placed by the nodes at (1, 2 + 2·3, 3); a TEXCOORD_0 of zeros gets (1, 0) at vertex 1, which is
+// OBJ's (1, 1).
+GltfTriangle sparse_triangle(std::uint16_t index) {
+  GltfTriangle g;
+  append(g.bin, std::vector<std::uint16_t>{index, 0});  // at 104: the sparse index (padded)
+  append(g.bin, std::vector<float>{0, 3, 0});           // at 108: POSITION's value
+  append(g.bin, std::vector<float>{1, 0});              // at 120: TEXCOORD_0's value
+  g.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 104}, {"byteLength", 4}});
+  g.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 108}, {"byteLength", 12}});
+  g.doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 120}, {"byteLength", 8}});
+  g.doc["buffers"][0]["byteLength"] = g.bin.size();
+  g.doc["accessors"][0]["sparse"] = {
+      {"count", 1}, {"indices", {{"bufferView", 2}, {"componentType", 5123}}}, {"values", {{"bufferView", 3}}}};
+  g.doc["accessors"][2].erase("bufferView");
+  g.doc["accessors"][2].erase("byteOffset");
+  g.doc["accessors"][2]["sparse"] = {
+      {"count", 1}, {"indices", {{"bufferView", 2}, {"componentType", 5123}}}, {"values", {{"bufferView", 4}}}};
+  return g;
+}
+
+TEST(Gltf, SparseAccessorsReplaceTheirElements) {
+  test::TempDir dir;
+  Warnings w;
+  const Mesh m = load_mesh(sparse_triangle(2).write_glb(dir, "sparse"), w);
+  ASSERT_EQ(m.positions.size(), 3u);
+  EXPECT_TRUE(m.positions[0].isApprox(Vec3f(1, 2, 3), 1e-6f));
+  EXPECT_TRUE(m.positions[2].isApprox(Vec3f(1, 8, 3), 1e-6f)) << m.positions[2].transpose();
+  ASSERT_EQ(m.uvs.size(), 3u);
+  EXPECT_TRUE(m.uvs[0].isApprox(Vec2f(0, 1)));  // zeros: glTF's (0, 0)
+  EXPECT_TRUE(m.uvs[1].isApprox(Vec2f(0, 1)));  // index 2 only: vertex 1 keeps zeros
+  EXPECT_TRUE(m.uvs[2].isApprox(Vec2f(1, 1))) << m.uvs[2].transpose();
+  try {
+    load_mesh(sparse_triangle(5).write_glb(dir, "bad"), w);
+    ADD_FAILURE() << "a sparse index out of range was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.glb: $.accessors[0].sparse.indices: index 5 at 0 is out of range"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // A closed box of smooth white metal (glTF's principled material) in a constant environment
 // reflects the environment: L = 0.7 within the standard error, the single-scattering loss at
 // α = 0.0025 being far below it.

@@ -146,31 +146,101 @@ class Accessors {
       throw InputError(fmt::format("{}: {}", path_, semantic),
                        fmt::format("accessor {} out of range ({} accessors)", index, model_.accessors.size()));
     const tinygltf::Accessor& a = model_.accessors[std::size_t(index)];
-    if (a.sparse.isSparse) throw InputError(where(index, semantic), "sparse accessors are not supported");
     if (tinygltf::GetNumComponentsInType(std::uint32_t(a.type)) != components)
       throw InputError(where(index, semantic), fmt::format("expected {} components per element", components));
-    if (a.bufferView < 0 || a.bufferView >= int(model_.bufferViews.size()))
-      throw InputError(where(index, semantic), "no buffer view holds its data");
-    const tinygltf::BufferView& view = model_.bufferViews[std::size_t(a.bufferView)];
-    if (view.buffer < 0 || view.buffer >= int(model_.buffers.size()))
-      throw InputError(where(index, semantic), fmt::format("buffer view {} names no buffer", a.bufferView));
-    const int stride = a.ByteStride(view);
+    if (a.count == 0) throw InputError(where(index, semantic), "no elements");
     const std::uint64_t element =
         std::uint64_t(tinygltf::GetComponentSizeInBytes(std::uint32_t(a.componentType))) * std::uint64_t(components);
-    if (stride <= 0 || a.count == 0) throw InputError(where(index, semantic), "no elements, or a bad stride");
-    const std::uint64_t end = std::uint64_t(a.byteOffset) + std::uint64_t(stride) * (a.count - 1) + element;
-    if (end > view.byteLength ||
-        view.byteOffset + view.byteLength > model_.buffers[std::size_t(view.buffer)].data.size())
-      throw InputError(where(index, semantic), "its data runs past the end of its buffer view or buffer");
+    if (a.bufferView >= 0 || !a.sparse.isSparse) {  // glTF: without a view, the elements are zeros
+      const tinygltf::BufferView& view = checked_view(a.bufferView, where(index, semantic));
+      const int stride = a.ByteStride(view);
+      if (stride <= 0) throw InputError(where(index, semantic), "a bad stride");
+      in_view(view, a.byteOffset, std::uint64_t(stride) * (a.count - 1) + element, where(index, semantic));
+    }
+    if (a.sparse.isSparse) check_sparse(a, element, fmt::format("{}: $.accessors[{}].sparse", path_, index));
     return a;
   }
 
+  const tinygltf::BufferView& checked_view(int view_index, const std::string& where) const {
+    if (view_index < 0 || view_index >= int(model_.bufferViews.size()))
+      throw InputError(where, "no buffer view holds its data");
+    const tinygltf::BufferView& view = model_.bufferViews[std::size_t(view_index)];
+    if (view.buffer < 0 || view.buffer >= int(model_.buffers.size()))
+      throw InputError(where, fmt::format("buffer view {} names no buffer", view_index));
+    return view;
+  }
+
+  // `bytes` from `offset` lie within the view, and the view within its buffer.
+  void in_view(const tinygltf::BufferView& view, std::uint64_t offset, std::uint64_t bytes,
+               const std::string& where) const {
+    if (offset + bytes > view.byteLength ||
+        view.byteOffset + view.byteLength > model_.buffers[std::size_t(view.buffer)].data.size())
+      throw InputError(where, "its data runs past the end of its buffer view or buffer");
+  }
+
+  // glTF 2.0 §3.6.2.3: `count` indices (unsigned byte, short or int), strictly increasing and below
+  // the accessor's count, and as many values of the accessor's element, tightly packed.
+  void check_sparse(const tinygltf::Accessor& a, std::uint64_t element, const std::string& where) const {
+    const auto& sp = a.sparse;
+    const int ct = sp.indices.componentType;
+    if (ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+      throw InputError(where + ".indices", "component type must be unsigned byte, short or int");
+    if (sp.count < 1 || std::size_t(sp.count) > a.count)
+      throw InputError(where + ".count", fmt::format("{} is not within [1, {}]", sp.count, a.count));
+    const auto n = std::uint64_t(sp.count);
+    const std::uint64_t index_size = tinygltf::GetComponentSizeInBytes(std::uint32_t(ct));
+    in_view(checked_view(sp.indices.bufferView, where + ".indices"), std::uint64_t(sp.indices.byteOffset),
+            n * index_size, where + ".indices");
+    in_view(checked_view(sp.values.bufferView, where + ".values"), std::uint64_t(sp.values.byteOffset), n * element,
+            where + ".values");
+    const std::vector<std::uint32_t> at = sparse_indices(a);
+    for (std::size_t k = 0; k < at.size(); ++k)
+      if (at[k] >= a.count || (k > 0 && at[k] <= at[k - 1]))
+        throw InputError(where + ".indices", fmt::format("index {} at {} is out of range or not increasing", at[k], k));
+  }
+
+  std::vector<std::uint32_t> sparse_indices(const tinygltf::Accessor& a) const {
+    const auto& ix = a.sparse.indices;
+    const unsigned char* p = view_bytes(ix.bufferView) + ix.byteOffset;
+    std::vector<std::uint32_t> out(std::size_t(a.sparse.count));
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      if (ix.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) out[k] = p[k];
+      if (ix.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) out[k] = read<std::uint16_t>(p + 2 * k);
+      if (ix.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) out[k] = read<std::uint32_t>(p + 4 * k);
+    }
+    return out;
+  }
+
+  const unsigned char* view_bytes(int view_index) const {
+    const tinygltf::BufferView& view = model_.bufferViews[std::size_t(view_index)];
+    return model_.buffers[std::size_t(view.buffer)].data.data() + view.byteOffset;
+  }
+
+  // f(i, element i's bytes) for every element: the view's, or zeros without one, and a sparse
+  // accessor's values at its indices.
   template <class F>
   void for_each(const tinygltf::Accessor& a, F&& f) const {
-    const tinygltf::BufferView& view = model_.bufferViews[std::size_t(a.bufferView)];
-    const unsigned char* base = model_.buffers[std::size_t(view.buffer)].data.data() + view.byteOffset + a.byteOffset;
-    const std::size_t stride = std::size_t(a.ByteStride(view));
-    for (std::size_t i = 0; i < a.count; ++i) f(i, base + i * stride);
+    static const unsigned char kZeros[64] = {};  // the largest element read here: 4 floats
+    const bool viewed = a.bufferView >= 0;
+    const unsigned char* base = viewed ? view_bytes(a.bufferView) + a.byteOffset : kZeros;
+    const std::size_t stride = viewed ? std::size_t(a.ByteStride(model_.bufferViews[std::size_t(a.bufferView)])) : 0;
+    std::vector<std::uint32_t> at;
+    const unsigned char* values = nullptr;
+    std::size_t element = 0;
+    if (a.sparse.isSparse) {
+      at = sparse_indices(a);
+      values = view_bytes(a.sparse.values.bufferView) + a.sparse.values.byteOffset;
+      element = std::size_t(tinygltf::GetComponentSizeInBytes(std::uint32_t(a.componentType))) *
+                std::size_t(tinygltf::GetNumComponentsInType(std::uint32_t(a.type)));
+    }
+    std::size_t k = 0;  // the next sparse entry
+    for (std::size_t i = 0; i < a.count; ++i) {
+      if (k < at.size() && at[k] == i)
+        f(i, values + element * k++);
+      else
+        f(i, base + i * stride);
+    }
   }
 
   const tinygltf::Model& model_;

@@ -6,7 +6,8 @@
 // one Mesh: glTF's metres and +Y up are insitu's. Primitives of mode TRIANGLES (4, the default);
 // other modes are skipped with a warning. POSITION, NORMAL, TEXCOORD_0 and TEXCOORD_1 (float, or
 // a signed or unsigned byte or short, normalized or not: KHR_mesh_quantization) and the indices
-// (unsigned byte, short or int) are read with their bounds checked; UVs are turned to OBJ's
+// (unsigned byte, short or int) are read with their bounds checked, sparse accessors included
+// (glTF 2.0 §3.6.2.3: zeros without a buffer view); UVs are turned to OBJ's
 // convention (v = 1 − v, render/texture.h). Draco and meshopt compression: render/gltf_decompress.h.
 // Materials: render/gltf_materials.h.
 //
