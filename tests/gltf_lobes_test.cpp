@@ -1,6 +1,7 @@
 // glTF's material extensions and modes beyond metal/roughness (render/gltf_materials.h):
-// KHR_materials_clearcoat, KHR_materials_sheen, emission with KHR_materials_emissive_strength, and alphaMode MASK and
-// BLEND as cut-outs (render/embree_scene.h), read from the file and rendered.
+// KHR_materials_clearcoat, KHR_materials_sheen, KHR_materials_specular, emission with
+// KHR_materials_emissive_strength, and alphaMode MASK and BLEND as cut-outs (render/embree_scene.h),
+// read from the file and rendered.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +13,7 @@
 #include "cube_fixture.h"
 #include "gltf_fixture.h"
 #include "integrators/registry.h"
+#include "render/bsdf.h"
 #include "render/embree_scene.h"
 #include "render/gltf_mesh.h"
 #include "test_util.h"
@@ -70,7 +72,7 @@ TEST(GltfLobes, ExtensionsAndModesAreRead) {
       {"normalTexture", {{"index", 0}}},
       {"extensions",
        {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}},
-        {"KHR_materials_specular", {{"specularFactor", 0.5}}},
+        {"KHR_materials_iridescence", {{"iridescenceFactor", 0.5}}},
         {"KHR_materials_clearcoat",
          {{"clearcoatFactor", 0.7}, {"clearcoatRoughnessFactor", 0.2}, {"clearcoatTexture", {{"index", 0}}}}},
         {"KHR_materials_sheen",
@@ -103,10 +105,87 @@ TEST(GltfLobes, ExtensionsAndModesAreRead) {
   EXPECT_FLOAT_EQ(mat.normal_strength, 1.0f);  // glTF's default scale
   // What is read goes unremarked; the extension insitu lacks is named.
   ASSERT_EQ(w.items.size(), 1u);
-  EXPECT_NE(w.items[0].find("not rendered yet: KHR_materials_specular"), std::string::npos) << w.items[0];
+  EXPECT_NE(w.items[0].find("not rendered yet: KHR_materials_iridescence"), std::string::npos) << w.items[0];
   EXPECT_EQ(w.items[0].find("normalTexture"), std::string::npos) << w.items[0];
   EXPECT_EQ(w.items[0].find("clearcoat"), std::string::npos) << w.items[0];
   EXPECT_EQ(w.items[0].find("sheen"), std::string::npos) << w.items[0];
+}
+
+// KHR_materials_specular as Blender 3.4's importer reads it: Specular = (lum(c) − t)/(1 − t) ·
+// F0(ior)/0.08 with lum = 0.3 R + 0.6 G + 0.1 B, × specularFactor. For c = (1, 0.7, 0.45),
+// lum = 0.765: 0.765 · 0.04/0.08 = 0.3825 at ior 1.5; at ior 2, F0 = 1/9: 1.0625; with t = 0.5,
+// (0.765 − 0.5)/0.5 = 0.53 → 0.265; × specularFactor 0.5 → 0.19125.
+TEST(GltfLobes, SpecularIsReadAsBlenderReadsIt) {
+  test::TempDir dir;
+  auto read = [&](const json& more) {
+    json ext = {{"specularColorFactor", {1, 0.7, 0.45}}};
+    if (more.is_object()) ext.merge_patch(more);  // ({} is null: a merge would replace ext)
+    json material = {{"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.2, 0.08, 1}}}},
+                     {"extensions", {{"KHR_materials_specular", ext}}}};
+    if (more.contains("ior")) material["extensions"]["KHR_materials_ior"] = {{"ior", more["ior"]}};
+    if (more.contains("t")) material["extensions"]["KHR_materials_transmission"] = {{"transmissionFactor", more["t"]}};
+    Warnings w;
+    const Material m = load_mesh(write_quad(dir, "s", material), w).materials[0];
+    EXPECT_TRUE(w.items.empty());
+    return m;
+  };
+  EXPECT_NEAR(read({}).specular, 0.3825f, 1e-6f);
+  EXPECT_NEAR(read({{"ior", 2.0}}).specular, 1.0625f, 1e-5f);
+  EXPECT_NEAR(read({{"t", 0.5}}).specular, 0.265f, 1e-6f);
+  EXPECT_NEAR(read({{"specularFactor", 0.5}}).specular, 0.19125f, 1e-6f);
+  // The tint against this base colour (lum 0.278): ĉ_s − 1 = (0.30719, −0.08497, −0.41176),
+  // ĉ_b − 1 = (0.79856, −0.28058, −0.71223), their ratios (0.38468, 0.30283, 0.57813), whose
+  // lum is 0.35492.
+  const Material m = read({});
+  EXPECT_NEAR(m.specular_tint(Rgb(0.5f, 0.2f, 0.08f)), 0.35492f, 1e-4f);
+  EXPECT_EQ(m.specular_tint(Rgb(0.3f, 0.3f, 0.3f)), 1.0f);  // a grey base: Blender's 1
+  Material plain;
+  EXPECT_EQ(plain.specular_tint(Rgb(0.5f, 0.2f, 0.08f)), 0.0f);  // no extension, no tint
+  Material white = m;
+  white.specular_colour = Rgb::Ones();
+  EXPECT_EQ(white.specular_tint(Rgb(0.5f, 0.2f, 0.08f)), 0.0f);  // a white colour asks for none
+}
+
+TEST(GltfLobes, SpecularTexturesAndBadFactorsAreNamed) {
+  test::TempDir dir;
+  const json images = {{"images", {{{"uri", write_alpha_png(dir)}}}}, {"textures", {{{"source", 0}}}}};
+  Warnings w;
+  load_mesh(
+      write_quad(dir, "t", {{"extensions", {{"KHR_materials_specular", {{"specularColorTexture", {{"index", 0}}}}}}}},
+                 images),
+      w);
+  ASSERT_EQ(w.items.size(), 1u);
+  EXPECT_NE(w.items[0].find("not rendered yet: KHR_materials_specular.specularColorTexture"), std::string::npos)
+      << w.items[0];
+  try {
+    load_mesh(
+        write_quad(dir, "b", {{"extensions", {{"KHR_materials_specular", {{"specularColorFactor", {1, -1, 1}}}}}}}), w);
+    ADD_FAILURE() << "a negative specular colour was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("b.gltf: $.materials[0].extensions.KHR_materials_specular.specularColorFactor"),
+        std::string::npos)
+        << e.what();
+  }
+}
+
+// Cycles's tint (svm/closure.h): F0 = 0.08 s (1 − st + st · base/lum(base)). At normal incidence
+// with ωi = ωo only F changes with the tint, by 0.08 s · st · (base/lum − 1) · (1 − F_h), so the
+// difference of two evaluations is proportional, channel by channel, to base/lum − 1: for base
+// (0.8, 0.4, 0.2), lum 0.5, that is (0.6, −0.2, −0.6). A grey base has no hue: no change.
+TEST(GltfLobes, SpecularTintTurnsTheDielectricTowardTheBaseHue) {
+  const Vec3f n(0, 0, 1);
+  auto f = [&](const Rgb& base, float tint) {
+    PrincipledParams p{base, 0.0f, 0.3f, 0.5f};
+    p.specular_tint = tint;
+    return Bsdf::principled(p).eval(n, n);
+  };
+  const Rgb base(0.8f, 0.4f, 0.2f), d = f(base, 1) - f(base, 0);
+  EXPECT_GT(d[0], 0.0f);
+  EXPECT_NEAR(d[0] / d[2], -1.0f, 1e-4f);
+  EXPECT_NEAR(d[1] / d[2], 1.0f / 3.0f, 1e-4f);
+  const Rgb grey(0.4f, 0.4f, 0.4f), dg = f(grey, 1) - f(grey, 0);
+  EXPECT_LT(dg.abs().maxCoeff(), 1e-6f * f(grey, 0).maxCoeff());
 }
 
 // A texture with alpha filters its colour associated: halfway between a white texel that is there

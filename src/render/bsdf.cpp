@@ -21,9 +21,12 @@ Rgb schlick(const Rgb& f0, float cos_theta) { return f0 + (Rgb::Ones() - f0) * s
 
 // Cycles drops a closure whose weight is below CLOSURE_WEIGHT_CUTOFF.
 constexpr float kWeightCutoff = 1e-5f;
+// A glass index within this of 1 is taken as 1 + it (Bsdf::principled).
+constexpr float kIndexMatched = 1e-3f;
+// Specular's ceiling: F0 = 0.08·s stays below 1 (Cycles's ior = 2/(1 − √F0) − 1).
+constexpr float kMaxSpecular = 12.4f;
 // The clear coat: index of refraction 1.5, Smith masking at a fixed α (Disney 2012); a mirror
 // where α² ≤ 10⁻⁷ (bsdf_microfacet.h: "alpha_x * alpha_y <= 1e-7f").
-constexpr float kIndexMatched = 1e-3f;
 constexpr float kCoatEta = 1.5f, kCoatMaskingAlpha = 0.25f, kCoatMirrorAlpha2 = 1e-7f, kMirrorAlpha = 1e-3f;
 
 }  // namespace
@@ -48,7 +51,8 @@ Bsdf::Bsdf(const Rgb& diffuse, const Rgb& f0, float alpha)
 Bsdf Bsdf::principled(const PrincipledParams& p) {
   const Rgb base = p.base.max(0.0f);
   const float m = std::clamp(p.metallic, 0.0f, 1.0f), r = std::clamp(p.roughness, 0.0f, 1.0f);
-  const float s = std::clamp(p.specular, 0.0f, 1.0f), c = std::clamp(p.clearcoat, 0.0f, 1.0f);
+  // Specular may exceed 1 (F0 up to 0.08·s; Blender's importer gives s > 1 for an index above 1.5).
+  const float s = std::clamp(p.specular, 0.0f, kMaxSpecular), c = std::clamp(p.clearcoat, 0.0f, 1.0f);
   const float rc = std::clamp(p.clearcoat_roughness, 0.0f, 1.0f);
   const float t = std::clamp(p.transmission, 0.0f, 1.0f), T = t * (1 - m);
   Bsdf b;
@@ -56,7 +60,12 @@ Bsdf Bsdf::principled(const PrincipledParams& p) {
   b.diffuse_ = base * ((1 - m) * (1 - t));
   b.specular_weight_ = s > kWeightCutoff || m > kWeightCutoff ? 1 - T : 0.0f;
   if (b.specular_weight_ <= kWeightCutoff) b.specular_weight_ = 0;
-  b.f0_ = (0.08f * s * (1 - m) + base * m).min(1.0f);
+  // Cycles (svm/closure.h): F0 = 0.08 s · (1 − st + st · base / lum(base)) (1 − m) + base · m,
+  // lum = 0.3 R + 0.6 G + 0.1 B (the hue of the base, 1 for black), each channel within [0, 1].
+  const float st = std::clamp(p.specular_tint, 0.0f, 1.0f);
+  const float lum = 0.3f * base[0] + 0.6f * base[1] + 0.1f * base[2];
+  const Rgb tint = Rgb::Constant(1 - st) + (lum > 0 ? Rgb(base / lum) : Rgb::Ones()) * st;
+  b.f0_ = (0.08f * s * tint * (1 - m) + base * m).min(1.0f);
   b.roughness_ = r;
   b.alpha_ = std::max(kMirrorAlpha, r * r);
   b.f0_dielectric_ = std::min(0.08f * s, 0.999f);
@@ -91,10 +100,19 @@ Bsdf Bsdf::from_material(const Material& m, const UvSets& uv, bool inside) {
   if (m.principled) {
     const Rgb mr = m.map_metallic_roughness.sample(uv);  // glTF: G roughness, B metallic
     const Rgb cc = m.map_clearcoat.sample(uv), ccr = m.map_clearcoat_roughness.sample(uv);  // R, G
-    return principled({base, m.metallic * mr[2], m.roughness * mr[1], m.specular, m.clearcoat * cc[0],
-                       m.clearcoat_roughness * ccr[1], m.sheen * m.map_sheen.sample(uv),
+    PrincipledParams p{base,
+                       m.metallic * mr[2],
+                       m.roughness * mr[1],
+                       m.specular,
+                       m.clearcoat * cc[0],
+                       m.clearcoat_roughness * ccr[1],
+                       m.sheen * m.map_sheen.sample(uv),
                        m.sheen_roughness * m.map_sheen_roughness.sample_alpha(uv),
-                       m.transmission * m.map_transmission.sample(uv)[0], m.ior, inside});
+                       m.transmission * m.map_transmission.sample(uv)[0],
+                       m.ior,
+                       inside};
+    p.specular_tint = m.specular_tint(base);
+    return principled(p);
   }
   // Walter et al. 2007: α = √(2/(Ns + 2)).
   const float alpha = std::sqrt(2.0f / (std::max(0.0f, m.ns) + 2.0f));

@@ -71,7 +71,8 @@ struct PrincipledParams {
   Rgb sheen = Rgb::Zero();  // the Velvet BSDF's colour (KHR_materials_sheen's sheenColor)
   float sheen_roughness = 0.0f;
   float transmission = 0.0f, ior = 1.5f;
-  bool inside = false;  // seen from inside (a back face): the glass's index is 1/ior
+  bool inside = false;         // seen from inside (a back face): the glass's index is 1/ior
+  float specular_tint = 0.0f;  // the dielectric's F0 tinted toward the base colour's hue
 };
 
 struct BsdfSample {

@@ -114,6 +114,8 @@ class MaterialReader {
     if (auto it = g.extensions.find("KHR_materials_sheen"); it != g.extensions.end())
       read_sheen(it->second, m, where + ".extensions.KHR_materials_sheen");
     read_glass(g, m, where + ".extensions");
+    if (auto it = g.extensions.find("KHR_materials_specular"); it != g.extensions.end())
+      read_specular(it->second, m, where + ".extensions.KHR_materials_specular");
     unrendered(g, m.name);
     return m;
   }
@@ -176,6 +178,33 @@ class MaterialReader {
         colour = unit_rgb(it->second.Get("attenuationColor"), ext + ".attenuationColor");
       if (thickness > 0 && distance > 0) m.absorption = (Rgb::Ones() - colour) / distance;
     }
+  }
+
+  // KHR_materials_specular as Blender 3.4's importer reads it (its constant path, after the glass:
+  // it needs the transmission and the index):
+  //   Specular = (lum(specularColorFactor) − t)/(1 − t) · F0(ior)/0.08,  F0 = ((ior − 1)/(ior + 1))²,
+  // lum = 0.3 R + 0.6 G + 0.1 B, t the transmission factor (left out where t = 1, where Blender
+  // divides by 0), at least 0; and the Specular Tint from the colour (Material::specular_tint).
+  // specularFactor scales Specular, as glTF defines it; Blender 3.4's importer drops it. The
+  // textures are named by unrendered().
+  static void read_specular(const tinygltf::Value& ext, Material& m, const std::string& where) {
+    const float factor = number(ext, "specularFactor", 1.0f, where);
+    if (!(factor >= 0)) throw InputError(where + ".specularFactor", "must be ≥ 0");
+    Rgb colour = Rgb::Ones();
+    if (ext.Has("specularColorFactor")) {
+      const tinygltf::Value& c = ext.Get("specularColorFactor");
+      for (int k = 0; k < 3; ++k) {
+        const double x = c.IsArray() && c.ArrayLen() == 3 && c.Get(k).IsNumber() ? c.Get(k).GetNumberAsDouble() : -1;
+        if (!(x >= 0 && std::isfinite(x)))
+          throw InputError(where + ".specularColorFactor", "must be 3 finite numbers ≥ 0");
+        colour[k] = float(x);
+      }
+    }
+    const float lum = 0.3f * colour[0] + 0.6f * colour[1] + 0.1f * colour[2], t = m.transmission;
+    const float f0 = std::pow((m.ior - 1) / (m.ior + 1), 2.0f);
+    m.specular = std::max(0.0f, factor * (t < 1 ? (lum - t) / (1 - t) : lum) * f0 / 0.08f);
+    m.specular_colour = colour;
+    m.has_specular_colour = true;
   }
 
   // Three numbers within [0, 1].
@@ -282,13 +311,17 @@ class MaterialReader {
   void unrendered(const tinygltf::Material& g, const std::string& name) {
     static const std::set<std::string> kRead = {"KHR_materials_clearcoat", "KHR_materials_emissive_strength",
                                                 "KHR_materials_sheen",     "KHR_materials_transmission",
-                                                "KHR_materials_ior",       "KHR_materials_volume"};
+                                                "KHR_materials_ior",       "KHR_materials_volume",
+                                                "KHR_materials_specular"};
     std::vector<std::string> what;
     for (const auto& [ext, value] : g.extensions)
       if (!kRead.count(ext)) what.push_back(ext);
     if (auto it = g.extensions.find("KHR_materials_clearcoat");
         it != g.extensions.end() && it->second.Has("clearcoatNormalTexture"))
       what.push_back("KHR_materials_clearcoat.clearcoatNormalTexture");
+    if (auto it = g.extensions.find("KHR_materials_specular"); it != g.extensions.end())
+      for (const char* key : {"specularTexture", "specularColorTexture"})
+        if (it->second.Has(key)) what.push_back(std::string("KHR_materials_specular.") + key);
     if (what.empty()) return;
     std::string list;
     for (const std::string& w : what) list += (list.empty() ? "" : ", ") + w;

@@ -6,10 +6,12 @@
 //   metallicFactor × texture B, roughnessFactor × texture G (linear) → metallic, roughness
 //   KHR_materials_transmission × texture R, KHR_materials_ior         → transmission, IOR (glass)
 //   KHR_materials_volume (a thickness): attenuationColor, _Distance    → σ_a = (1 − colour)/distance
-//   KHR_materials_specular                                            → not yet: specular 0.5
+//   KHR_materials_specular: specularColorFactor (× specularFactor)   → specular, specular tint
+//   KHR_materials_clearcoat, _sheen, _emissive_strength, normalTexture, alphaMode (read below)
 // Textures through texCoord 0 or 1 and KHR_texture_transform (render/texture.h), repeating.
-// What a material uses and insitu does not render (emission, alpha, normal and occlusion maps,
-// other extensions, wrap modes other than REPEAT) is a warning naming the material.
+// What a material uses and insitu does not render (the clear coat's normal map, the specular
+// extension's textures, other extensions, wrap modes other than REPEAT) is a warning naming the
+// material.
 #pragma once
 #include <string>
 #include <vector>

@@ -23,6 +23,30 @@ float Material::opacity(const UvSets& uv) const {
   if (alpha_mode == AlphaMode::kMask) return a >= alpha_cutoff ? 1.0f : 0.0f;
   return std::clamp(a, 0.0f, 1.0f);
 }
+
+// Blender 3.4's importer (io_scene_gltf2/blender/imp/gltf2_blender_KHR_materials_specular.py):
+//   tint = clamp(lum((ĉ_s − 1) / (ĉ_b − 1)), 0, 1),  ĉ = c / lum(c),  lum(c) = 0.3 R + 0.6 G + 0.1 B,
+// per channel, with c_s the specular colour and c_b the base colour (ĉ = c where lum(c) = 0); 1
+// where the base is grey (ĉ_b = 1). A channel's 0/0 counts 0 and x/0 ±∞, as numpy's nan_to_num
+// in the importer's per-texel path. Blender bakes that path into a texture; this is the same
+// formula at the shading point.
+float Material::specular_tint(const Rgb& base) const {
+  if (!has_specular_colour) return 0.0f;
+  auto hue = [](const Rgb& c) {
+    const float lum = 0.3f * c[0] + 0.6f * c[1] + 0.1f * c[2];
+    return lum > 0 ? Rgb(c / lum) : c;
+  };
+  const Rgb s = hue(specular_colour) - 1.0f, b = hue(base) - 1.0f;
+  if ((b == 0.0f).all()) return 1.0f;
+  const float kBig = 1e30f, weight[3] = {0.3f, 0.6f, 0.1f};
+  double tint = 0;
+  for (int k = 0; k < 3; ++k) {
+    const float r = b[k] != 0 ? s[k] / b[k] : (s[k] == 0 ? 0.0f : std::copysign(kBig, s[k]));
+    tint += double(weight[k]) * double(r);
+  }
+  return float(std::clamp(tint, 0.0, 1.0));
+}
+
 namespace fs = std::filesystem;
 
 namespace {

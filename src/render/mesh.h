@@ -53,6 +53,12 @@ struct Material {
   Texture map_normal;
   float normal_strength = 1.0f;
 
+  // KHR_materials_specular as Blender 3.4's importer reads it: `specular` above from its colour's
+  // luminance and the index, and the Principled BSDF's Specular Tint from its colour against the
+  // base colour at each point (specular_tint). Without the extension, no tint.
+  bool has_specular_colour = false;
+  Rgb specular_colour = Rgb::Ones();  // specularColorFactor
+
   Rgb emission = Rgb::Zero();  // emitted radiance, in the environment's units (Cycles's strength 1)
   Texture map_emission;        // multiplies emission
 
@@ -66,6 +72,8 @@ struct Material {
   Rgb emitted(const UvSets& uv) const { return emission * map_emission.sample(uv); }
   // The probability that a ray meets the surface here: 1 or 0 for opaque and mask, alpha for blend.
   float opacity(const UvSets& uv) const;
+  // The Specular Tint in [0, 1] over a base colour (0 without KHR_materials_specular).
+  float specular_tint(const Rgb& base) const;
   bool cutout() const { return alpha_mode != AlphaMode::kOpaque; }
 };
 
