@@ -233,6 +233,16 @@ TEST(Gltf, SparseAccessorsReplaceTheirElements) {
               std::string::npos)
         << e.what();
   }
+  GltfTriangle huge = sparse_triangle(2);  // nothing but this bounds a view-less accessor's memory
+  huge.doc["accessors"][2]["count"] = 1 << 25;
+  try {
+    load_mesh(huge.write_glb(dir, "huge"), w);
+    ADD_FAILURE() << "a view-less accessor of 2^25 elements was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("$.accessors[2] (TEXCOORD_0): 33554432 elements without a buffer view"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 // A closed box of smooth white metal (glTF's principled material) in a constant environment

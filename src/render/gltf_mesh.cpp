@@ -149,14 +149,22 @@ class Accessors {
     if (tinygltf::GetNumComponentsInType(std::uint32_t(a.type)) != components)
       throw InputError(where(index, semantic), fmt::format("expected {} components per element", components));
     if (a.count == 0) throw InputError(where(index, semantic), "no elements");
-    const std::uint64_t element =
-        std::uint64_t(tinygltf::GetComponentSizeInBytes(std::uint32_t(a.componentType))) * std::uint64_t(components);
+    const int component_size = tinygltf::GetComponentSizeInBytes(std::uint32_t(a.componentType));
+    if (component_size <= 0) throw InputError(where(index, semantic), "an unknown component type");
+    const std::uint64_t element = std::uint64_t(component_size) * std::uint64_t(components);
     if (a.bufferView >= 0 || !a.sparse.isSparse) {  // glTF: without a view, the elements are zeros
       const tinygltf::BufferView& view = checked_view(a.bufferView, where(index, semantic));
       const int stride = a.ByteStride(view);
       if (stride <= 0) throw InputError(where(index, semantic), "a bad stride");
+      if (a.count > view.byteLength) throw InputError(where(index, semantic), "more elements than its view has bytes");
       in_view(view, a.byteOffset, std::uint64_t(stride) * (a.count - 1) + element, where(index, semantic));
     }
+    // Without a view nothing bounds the count but this (memory stays bounded; 16.7 M elements is
+    // far beyond any piece of furniture).
+    constexpr std::size_t kMaxViewless = std::size_t(1) << 24;
+    if (a.bufferView < 0 && a.count > kMaxViewless)
+      throw InputError(where(index, semantic),
+                       fmt::format("{} elements without a buffer view (at most {})", a.count, kMaxViewless));
     if (a.sparse.isSparse) check_sparse(a, element, fmt::format("{}: $.accessors[{}].sparse", path_, index));
     return a;
   }
@@ -173,8 +181,8 @@ class Accessors {
   // `bytes` from `offset` lie within the view, and the view within its buffer.
   void in_view(const tinygltf::BufferView& view, std::uint64_t offset, std::uint64_t bytes,
                const std::string& where) const {
-    if (offset + bytes > view.byteLength ||
-        view.byteOffset + view.byteLength > model_.buffers[std::size_t(view.buffer)].data.size())
+    const std::uint64_t length = view.byteLength, buffer = model_.buffers[std::size_t(view.buffer)].data.size();
+    if (offset > length || bytes > length - offset || view.byteOffset > buffer || length > buffer - view.byteOffset)
       throw InputError(where, "its data runs past the end of its buffer view or buffer");
   }
 
@@ -188,6 +196,7 @@ class Accessors {
       throw InputError(where + ".indices", "component type must be unsigned byte, short or int");
     if (sp.count < 1 || std::size_t(sp.count) > a.count)
       throw InputError(where + ".count", fmt::format("{} is not within [1, {}]", sp.count, a.count));
+    if (sp.indices.byteOffset < 0 || sp.values.byteOffset < 0) throw InputError(where, "a negative byteOffset");
     const auto n = std::uint64_t(sp.count);
     const std::uint64_t index_size = tinygltf::GetComponentSizeInBytes(std::uint32_t(ct));
     in_view(checked_view(sp.indices.bufferView, where + ".indices"), std::uint64_t(sp.indices.byteOffset),
