@@ -8,6 +8,7 @@
 
 #include "cli_util.h"
 #include "gltf_fixture.h"
+#include "obj_sphere.h"
 #include "core/image.h"
 #include "light/preview.h"
 #include "interop/blender_export.h"
@@ -253,11 +254,29 @@ Comparison compare_with_cycles(ExportFixture& fx, int spp, bool mirror_world = f
 //
 // "glTF principled": the ball as a glTF sphere of a half-metallic, moderately rough material, which
 // Blender's own glTF importer turns into its Principled BSDF: insitu's principled model
-// (render/bsdf.h) against Cycles's, lobe by lobe, under the same bound.
+// (render/bsdf.h) against Cycles's, lobe by lobe, under the same bound. "MTL principled": the ball
+// as an OBJ of the MTL PBR extension (a half-metal, its roughness from a grey data map, under a
+// normal map), which the export builds as Cycles's Principled BSDF (render/obj_materials.h).
 TEST(BlenderExport, CyclesRendersTheExportedSceneAsInsituDoes) {
   if (!have_blender()) GTEST_SKIP() << "blender is not installed (apt-get install blender)";
-  for (const std::string variant : {"distant", "room box", "glTF principled", "mirrored world"}) {
+  for (const std::string variant : {"distant", "room box", "glTF principled", "MTL principled", "mirrored world"}) {
     ExportFixture fx;
+    if (variant == "MTL principled") {
+      Image grey(8, 8, 3), normals(8, 8, 3);
+      const Vec3f tilted = Vec3f(0.3f, 0, 1).normalized();
+      for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+          const bool odd = (x + y) % 2;
+          grey.set_rgb(x, y, Rgb::Constant(odd ? 0.4f : 0.8f));
+          const Vec3f n(odd ? tilted.x() : -tilted.x(), 0, tilted.z());
+          normals.set_rgb(x, y, Rgb((n.x() + 1) / 2, (n.y() + 1) / 2, (n.z() + 1) / 2));
+        }
+      write_image(fx.dir.file("rough.png"), grey);
+      write_image(fx.dir.file("normals.png"), normals);
+      test::write_obj_sphere(fx.dir, "ball", Vec3f(0, 0.2f, 0), 0.2f,
+                             "Kd 0.3 0.5 0.8\nKs 0.5 0.5 0.5\nPm 0.4\nPr 0.6\nmap_Pr rough.png\nnorm normals.png\n");
+      fx.scene["objects"] = {{{"mesh", "ball.obj"}}};
+    }
     if (variant == "glTF principled") {
       const json material = {
           {"pbrMetallicRoughness",

@@ -39,11 +39,29 @@ bool any_normals(const Mesh& m) {
 // α = r², so r = α^½.
 double blender_roughness(float ns) { return std::sqrt(std::sqrt(2.0 / (std::max(0.0f, ns) + 2.0))); }
 
+std::string py_path(const Texture& t) {
+  return py_string(t.path.empty() ? "" : std::filesystem::absolute(t.path).lexically_normal().string());
+}
+
+// What either MTL model adds (blender_prelude.py's surface_extras): emission and a normal map.
+std::string extras_entries(const Material& m) {
+  return fmt::format("\"emission\": {}, \"emission_texture\": {}, \"normal_texture\": {}, \"normal_strength\": {:.9g}",
+                     py_rgb(m.emission), py_path(m.map_emission), py_path(m.map_normal), m.normal_strength);
+}
+
+// An OBJ's material in Blender: the obj model's surface_material, or the principled model's
+// principled_material (render/obj_materials.h), with the same values and maps.
 std::string material_line(const Material& m, const std::string& object_name) {
+  const std::string name = py_string(object_name + ": " + m.name);
+  if (!m.principled)
+    return fmt::format("surface_material({}, {}, {}, {}, {:.9g}, {{{}}})", name, py_rgb(m.kd), py_path(m.map_kd),
+                       py_rgb(m.ks), blender_roughness(m.ns), extras_entries(m));
   return fmt::format(
-      "surface_material({}, {}, {}, {}, {:.9g})", py_string(object_name + ": " + m.name), py_rgb(m.kd),
-      py_string(m.map_kd.path.empty() ? "" : std::filesystem::absolute(m.map_kd.path).lexically_normal().string()),
-      py_rgb(m.ks), blender_roughness(m.ns));
+      "principled_material({}, {{\"base\": {}, \"base_texture\": {}, \"metallic\": {:.9g}, \"metallic_texture\": {}, "
+      "\"roughness\": {:.9g}, \"roughness_texture\": {}, \"specular\": {:.9g}, \"clearcoat\": {:.9g}, "
+      "\"clearcoat_roughness\": {:.9g}, {}}})",
+      name, py_rgb(m.kd), py_path(m.map_kd), m.metallic, py_path(m.map_metallic), m.roughness, py_path(m.map_roughness),
+      m.specular, m.clearcoat, m.clearcoat_roughness, extras_entries(m));
 }
 
 }  // namespace

@@ -101,11 +101,12 @@ def rgb_node(nt, blend, a, b):
     return n.outputs["Color"]
 
 
-def surface_material(name, kd, texture="", ks=(0.0, 0.0, 0.0), roughness=1.0):
+def surface_material(name, kd, texture="", ks=(0.0, 0.0, 0.0), roughness=1.0, extras=None):
     """insitu's BSDF (src/render/bsdf.h): Lambertian rho_d = Kd x map_Kd; with Ks > 0 a GGX lobe
     of alpha = sqrt(2 / (Ns + 2)) (Blender's roughness is sqrt(alpha)) and Schlick's Fresnel
     F = Ks + (1 - Ks)(1 - cos)^5, the diffuse lobe weighted by 1 - F. Blender's nodes see the
-    normal's cosine, not the half-vector's: the glossy weighting is an approximation."""
+    normal's cosine, not the half-vector's: the glossy weighting is an approximation. extras: the
+    MTL's emission and normal map (surface_extras)."""
     mat, nt, out = new_material(name)
     diff = nt.nodes.new("ShaderNodeBsdfDiffuse")
     diff.inputs["Roughness"].default_value = 0.0
@@ -115,11 +116,8 @@ def surface_material(name, kd, texture="", ks=(0.0, 0.0, 0.0), roughness=1.0):
         tex.image = load_image(texture, False)
         base = rgb_node(nt, "MULTIPLY", tuple(kd), tex.outputs["Color"])
     if max(ks) <= 0.0:
-        if isinstance(base, tuple):
-            diff.inputs["Color"].default_value = (*base, 1.0)
-        else:
-            nt.links.new(base, diff.inputs["Color"])
-        nt.links.new(diff.outputs["BSDF"], out.inputs["Surface"])
+        set_input(nt, diff.inputs["Color"], base)
+        surface_extras(nt, out, diff.outputs["BSDF"], [diff.inputs["Normal"]], extras)
         return mat
     facing = nt.nodes.new("ShaderNodeLayerWeight")  # Facing = 1 - |n.v| at blend 0.5
     facing.inputs["Blend"].default_value = 0.5
@@ -140,8 +138,85 @@ def surface_material(name, kd, texture="", ks=(0.0, 0.0, 0.0), roughness=1.0):
     add = nt.nodes.new("ShaderNodeAddShader")
     nt.links.new(diff.outputs["BSDF"], add.inputs[0])
     nt.links.new(glossy.outputs["BSDF"], add.inputs[1])
-    nt.links.new(add.outputs["Shader"], out.inputs["Surface"])
+    normals = [diff.inputs["Normal"], glossy.inputs["Normal"], facing.inputs["Normal"]]
+    surface_extras(nt, out, add.outputs["Shader"], normals, extras)
     return mat
+
+
+def principled_material(name, p):
+    """An MTL material of the PBR extension as insitu reads it (src/render/obj_materials.h): a
+    Principled BSDF (GGX, as insitu's) whose inputs are p's values, each times its map where it
+    has one (a grey map through Cycles's colour-to-float conversion, its luminance, as insitu's);
+    and the emission and normal map of surface_extras."""
+    mat, nt, out = new_material(name)
+    bsdf = nt.nodes.new("ShaderNodeBsdfPrincipled")
+    bsdf.distribution = "GGX"
+    set_input(nt, bsdf.inputs["Base Color"], mapped(nt, tuple(p["base"]), p.get("base_texture", ""), True))
+    for key, socket in (("metallic", "Metallic"), ("roughness", "Roughness")):
+        set_input(nt, bsdf.inputs[socket], mapped(nt, p[key], p.get(key + "_texture", ""), False))
+    bsdf.inputs["Specular"].default_value = p["specular"]
+    bsdf.inputs["Clearcoat"].default_value = p["clearcoat"]
+    bsdf.inputs["Clearcoat Roughness"].default_value = p["clearcoat_roughness"]
+    surface_extras(nt, out, bsdf.outputs["BSDF"], [bsdf.inputs["Normal"]], p)
+    return mat
+
+
+def surface_extras(nt, out, shader, normal_inputs, extras):
+    """The shader to the output, with what an MTL adds to either model: a tangent-space normal map
+    (extras["normal_texture"], data, of Normal Map strength extras["normal_strength"]) for the
+    normal_inputs, and an emission of colour extras["emission"] x extras["emission_texture"]."""
+    extras = extras or {}
+    if extras.get("normal_texture"):
+        nmap = nt.nodes.new("ShaderNodeNormalMap")
+        nmap.space = "TANGENT"
+        nmap.uv_map = "UVMap"
+        nmap.inputs["Strength"].default_value = extras.get("normal_strength", 1.0)
+        nt.links.new(data_image(nt, extras["normal_texture"]).outputs["Color"], nmap.inputs["Color"])
+        for socket in normal_inputs:
+            nt.links.new(nmap.outputs["Normal"], socket)
+    emission = tuple(extras.get("emission", (0.0, 0.0, 0.0)))
+    if max(emission) > 0.0:
+        emit = nt.nodes.new("ShaderNodeEmission")
+        emit.inputs["Strength"].default_value = 1.0
+        set_input(nt, emit.inputs["Color"], mapped(nt, emission, extras.get("emission_texture", ""), True))
+        add = nt.nodes.new("ShaderNodeAddShader")
+        nt.links.new(shader, add.inputs[0])
+        nt.links.new(emit.outputs["Emission"], add.inputs[1])
+        shader = add.outputs["Shader"]
+    nt.links.new(shader, out.inputs["Surface"])
+
+
+def data_image(nt, path):
+    """An image texture node of data (roughness, metallic, a normal map): its stored values."""
+    tex = nt.nodes.new("ShaderNodeTexImage")
+    tex.image = bpy.data.images.load(path, check_existing=False)
+    tex.image.colorspace_settings.name = "Non-Color"
+    return tex
+
+
+def mapped(nt, value, texture, colour):
+    """value, times an image's colour (colour) or its value (a grey map) where texture names one."""
+    if not texture:
+        return value
+    if colour:
+        tex = nt.nodes.new("ShaderNodeTexImage")
+        tex.image = load_image(texture, False)
+        return rgb_node(nt, "MULTIPLY", value, tex.outputs["Color"])
+    times = nt.nodes.new("ShaderNodeMath")
+    times.operation = "MULTIPLY"
+    times.inputs[0].default_value = value
+    nt.links.new(data_image(nt, texture).outputs["Color"], times.inputs[1])
+    return times.outputs["Value"]
+
+
+def set_input(nt, socket, value):
+    """A node input from a number, an RGB tuple or another node's output."""
+    if isinstance(value, tuple):
+        socket.default_value = (*value, 1.0)
+    elif isinstance(value, (int, float)):
+        socket.default_value = value
+    else:
+        nt.links.new(value, socket)
 
 
 def box_emission_material(world_path, capture):

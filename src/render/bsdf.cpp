@@ -100,9 +100,12 @@ Bsdf Bsdf::from_material(const Material& m, const UvSets& uv, bool inside) {
   if (m.principled) {
     const Rgb mr = m.map_metallic_roughness.sample(uv);  // glTF: G roughness, B metallic
     const Rgb cc = m.map_clearcoat.sample(uv), ccr = m.map_clearcoat_roughness.sample(uv);  // R, G
+    // MTL's grey maps as Cycles converts a colour to a float: its luminance (Rec. 709).
+    auto grey = [&](const Texture& t) { return t ? luminance(t.sample(uv)) : 1.0f; };
+    const float metallic_map = grey(m.map_metallic), roughness_map = grey(m.map_roughness);
     PrincipledParams p{base,
-                       m.metallic * mr[2],
-                       m.roughness * mr[1],
+                       m.metallic * mr[2] * metallic_map,
+                       m.roughness * mr[1] * roughness_map,
                        m.specular,
                        m.clearcoat * cc[0],
                        m.clearcoat_roughness * ccr[1],

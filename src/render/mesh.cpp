@@ -1,5 +1,8 @@
 #include "core/output_paths.h"
 #include "render/mesh.h"
+#include "render/obj_materials.h"
+#include "render/obj_statements.h"
+#include "render/tangents.h"
 
 #include <tiny_obj_loader.h>
 
@@ -51,39 +54,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using namespace obj_text;
+
 // ---- The validating pass -------------------------------------------------------------------
 
 struct ObjScan {
   std::vector<int> face_lines;       // line of every `f` statement, in file order
   std::vector<std::string> mtllibs;  // the MTL files it names
 };
-
-std::vector<std::string> split_ws(const std::string& s) {
-  std::istringstream is(s);
-  std::vector<std::string> out;
-  std::string tok;
-  while (is >> tok) out.push_back(tok);
-  return out;
-}
-
-[[noreturn]] void fail(const std::string& path, int line, const std::string& what) {
-  throw InputError(fmt::format("{}:{}", path, line), what);
-}
-
-void check_numbers(const std::string& path, int line, const std::vector<std::string>& tok, std::size_t min_count,
-                   std::size_t max_count, const char* what) {
-  if (tok.size() - 1 < min_count)
-    fail(path, line, fmt::format("{} needs {} numbers, has {}", what, min_count, tok.size() - 1));
-  for (std::size_t k = 1; k < tok.size() && k <= max_count; ++k) {
-    const char* s = tok[k].c_str();
-    char* end = nullptr;
-    errno = 0;
-    const double x = std::strtod(s, &end);
-    if (end == s || *end != '\0') fail(path, line, fmt::format("{}: '{}' is not a number", what, tok[k]));
-    if (!std::isfinite(x) || errno == ERANGE || std::abs(x) > 1e30)
-      fail(path, line, fmt::format("{}: '{}' is not a finite number", what, tok[k]));
-  }
-}
 
 // One index of a face corner: 1-based, negative counts back from the latest; must name an
 // element defined before this line.
@@ -96,17 +74,6 @@ void check_index(const std::string& path, int line, const std::string& text, lon
   const long resolved = idx > 0 ? idx : count + idx + 1;
   if (resolved < 1 || resolved > count)
     fail(path, line, fmt::format("face {} index {} out of range ({} defined so far)", kind, idx, count));
-}
-
-// Calls f(line number, tokens) for each non-empty line of an OBJ or MTL file, comments removed.
-template <typename F>
-void for_each_statement(std::ifstream& in, F&& f) {
-  std::string line;
-  for (int lineno = 1; std::getline(in, line); ++lineno) {
-    if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-    const auto tok = split_ws(line);
-    if (!tok.empty()) f(lineno, tok);
-  }
 }
 
 ObjScan scan_obj(const std::string& path) {
@@ -143,64 +110,6 @@ ObjScan scan_obj(const std::string& path) {
     }
   });
   return scan;
-}
-
-// The MTL values insitu uses, checked line by line before tinyobjloader (which reads "nan" and
-// negative values silently): Kd and Ks are reflectances in [0, 1], Ns a finite exponent ≥ 0,
-// d an opacity in [0, 1].
-void scan_mtl(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return;  // a missing MTL is tinyobjloader's warning
-  for_each_statement(in, [&](int lineno, const std::vector<std::string>& tok) {
-    const std::string& kw = tok[0];
-    const bool colour = kw == "Kd" || kw == "Ks" || kw == "Ka" || kw == "Ke";
-    if (!colour && kw != "Ns" && kw != "d") return;
-    if (colour && tok.size() > 1 && tok[1] == "spectral") return;
-    check_numbers(path, lineno, tok, colour ? (tok.size() == 2 ? 1 : 3) : 1, 3, kw.c_str());
-    for (std::size_t k = 1; k < tok.size() && k <= 3; ++k) {
-      const double v = std::strtod(tok[k].c_str(), nullptr);
-      if ((kw == "Kd" || kw == "Ks" || kw == "d") && (v < 0 || v > 1))
-        fail(path, lineno,
-             fmt::format("{} {} is outside [0, 1] ({})", kw, tok[k], kw == "d" ? "an opacity" : "a reflectance"));
-      if ((kw == "Ka" || kw == "Ke" || kw == "Ns") && v < 0)
-        fail(path, lineno, fmt::format("{} {} is negative", kw, tok[k]));
-    }
-  });
-}
-
-// ---- Conversion from tinyobjloader ----------------------------------------------------------
-
-// Where an OBJ's MTL files and their textures are read: beside the OBJ, as tinyobjloader's
-// mtl_search_path makes it. load_obj, convert_material and obj_dependencies all ask here, so the
-// files a batch checks before loading are the files loading reads.
-std::string beside_obj(const fs::path& base_dir, const std::string& name) { return (base_dir / name).string(); }
-
-// The texture files a material reads.
-std::vector<std::string> material_files(const tinyobj::material_t& m, const fs::path& base_dir) {
-  std::vector<std::string> files;
-  if (!m.diffuse_texname.empty()) files.push_back(beside_obj(base_dir, m.diffuse_texname));
-  return files;
-}
-
-Material convert_material(const tinyobj::material_t& m, const fs::path& base_dir, const std::string& obj_path) {
-  Material out;
-  out.name = m.name;
-  out.kd = Rgb(float(m.diffuse[0]), float(m.diffuse[1]), float(m.diffuse[2]));
-  out.ks = Rgb(float(m.specular[0]), float(m.specular[1]), float(m.specular[2]));
-  out.ns = float(m.shininess);
-  out.d = float(m.dissolve);
-  const std::string where = fmt::format("{}: material '{}'", obj_path, m.name);
-  if (!out.kd.allFinite() || (out.kd < 0).any()) throw InputError(where, "Kd must be finite and non-negative");
-  if (!m.diffuse_texname.empty()) {
-    const std::string tex = beside_obj(base_dir, m.diffuse_texname);
-    try {
-      set_colour_image(out.map_kd, read_image_file(tex, PixelGrid::kAsStored));
-      out.map_kd.path = tex;
-    } catch (const InputError& e) {
-      throw e.with_context(where + ": map_Kd");
-    }
-  }
-  return out;
 }
 
 }  // namespace
@@ -337,7 +246,8 @@ Mesh load_obj(const std::string& path, Warnings& warnings) {
                                        ext.empty() ? "no extension" : ext));
   const ObjScan scan = scan_obj(path);
   const fs::path base_dir = fs::path(path).parent_path();
-  for (const auto& m : scan.mtllibs) scan_mtl(beside_obj(base_dir, m));
+  MtlStatements statements;
+  for (const auto& m : scan.mtllibs) scan_mtl(beside_obj(base_dir, m), statements);
 
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;  // we fan polygons ourselves so each triangle keeps its line
@@ -367,7 +277,7 @@ Mesh load_obj(const std::string& path, Warnings& warnings) {
   for (std::size_t i = 0; i + 1 < attrib.texcoords.size(); i += 2)
     mesh.uvs.emplace_back(attrib.texcoords[i], attrib.texcoords[i + 1]);
   for (const auto& m : reader.GetMaterials()) {
-    mesh.materials.push_back(convert_material(m, base_dir, path));
+    mesh.materials.push_back(convert_material(m, statements[m.name], base_dir, path, warnings));
     for (std::string& f : material_files(m, base_dir)) mesh.files.push_back(std::move(f));
   }
   const int default_material = int(mesh.materials.size());
@@ -375,6 +285,8 @@ Mesh load_obj(const std::string& path, Warnings& warnings) {
 
   add_triangles(reader.GetShapes(), scan, default_material, path, mesh, warnings);
   if (mesh.triangles.empty()) throw InputError(path, "no triangles (the mesh has no usable faces)");
+  if (std::any_of(mesh.materials.begin(), mesh.materials.end(), [](const Material& m) { return bool(m.map_normal); }))
+    mesh.tangents = mikktspace_tangents(mesh, 0);
   return mesh;
 }
 

@@ -1,4 +1,4 @@
-// Triangle meshes from OBJ + MTL (tinyobjloader does the parsing).
+// Triangle meshes from OBJ + MTL (tinyobjloader does the parsing; render/obj_materials.h the MTL).
 //
 // Before tinyobjloader reads a file, a validating pass over its text checks what tinyobjloader
 // lets through silently, so that every error names its line: non-finite or missing coordinates
@@ -20,7 +20,8 @@
 
 namespace insitu {
 
-// A surface's material. OBJ's MTL gives the first block (the `obj` model of render/bsdf.h); glTF
+// A surface's material. OBJ's MTL gives the first block (the `obj` model of render/bsdf.h), or
+// with the PBR extension's statements the principled model (render/obj_materials.h); glTF always
 // gives the principled model (Cycles 3.4's Principled BSDF, render/bsdf.h),
 // whose parameters are Cycles's own: base colour, metallic, roughness r (α = r²), specular
 // (F0 = 0.08 · specular for a dielectric; 0.5 is glTF's ior 1.5).
@@ -34,7 +35,8 @@ struct Material {
 
   bool principled = false;  // the principled model, with the parameters below
   float metallic = 0.0f, roughness = 0.5f, specular = 0.5f;
-  Texture map_metallic_roughness;  // glTF's: G multiplies roughness, B metallic
+  Texture map_metallic_roughness;       // glTF's: G multiplies roughness, B metallic
+  Texture map_roughness, map_metallic;  // MTL's map_Pr and map_Pm: their grey (luminance) multiplies
   float clearcoat = 0.0f, clearcoat_roughness = 0.0f;
   Texture map_clearcoat, map_clearcoat_roughness;  // glTF's: R multiplies clearcoat, G its roughness
   Rgb sheen = Rgb::Zero();                         // KHR_materials_sheen's colour (a Velvet BSDF)

@@ -56,4 +56,9 @@ void set_colour_image(Texture& t, const ImageFile& file) {
   t.srgb = file.display_referred;
 }
 
+void set_data_image(Texture& t, const ImageFile& file) {
+  set_colour_image(t, file);
+  t.srgb = false;
+}
+
 }  // namespace insitu

@@ -54,5 +54,8 @@ struct Texture {
 // A colour texture's image from its file: an integer file keeps its sRGB-encoded values (srgb set),
 // a float file is linear. Negative and non-finite values become 0.
 void set_colour_image(Texture& t, const ImageFile& file);
+// A data texture's image (roughness, metallic, a normal map): its stored values, k/255 for 8 bits,
+// whatever the file's encoding. Negative and non-finite values become 0.
+void set_data_image(Texture& t, const ImageFile& file);
 
 }  // namespace insitu

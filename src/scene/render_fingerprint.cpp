@@ -29,7 +29,7 @@ void add_meshes(Fnv1a& h, const EmbreeScene* scene) {
       h.bytes(mat.kd.data(), sizeof(Rgb)), h.bytes(mat.ks.data(), sizeof(Rgb)), h.value(mat.ns);
       add_texture(h, mat.map_kd);
       h.value(mat.principled), h.value(mat.metallic), h.value(mat.roughness), h.value(mat.specular);
-      add_texture(h, mat.map_metallic_roughness);
+      add_texture(h, mat.map_metallic_roughness), add_texture(h, mat.map_roughness), add_texture(h, mat.map_metallic);
       h.value(mat.clearcoat), h.value(mat.clearcoat_roughness);
       add_texture(h, mat.map_clearcoat), add_texture(h, mat.map_clearcoat_roughness);
       h.bytes(mat.emission.data(), sizeof(Rgb)), add_texture(h, mat.map_emission);

@@ -67,6 +67,38 @@ MATERIALS = {
                                                               "attenuationColor": [0.35, 0.7, 0.9]}}}),
 }
 
+# The OBJ path (src/render/obj_materials.h): a sphere whose MTL uses the PBR extension, built in
+# Cycles by insitu's export as a Principled BSDF. A half-metal whose roughness comes from a grey
+# checker map (data), without and with a lacquer, and a normal-mapped steel (normal_mapped's ridges,
+# as `norm`).
+MTL_MATERIALS = {
+    "mtl_mapped_half_metal": "Kd 0.3 0.5 0.8\nKs 0.5 0.5 0.5\nPm 0.4\nPr 0.6\nmap_Pr rough_checker.png\n",
+    "mtl_coated_half_metal": "Kd 0.3 0.5 0.8\nKs 0.5 0.5 0.5\nPm 0.4\nPr 0.6\nmap_Pr rough_checker.png\nPc 1\n"
+                             "Pcr 0.1\n",
+    "mtl_normal_mapped_steel": "Kd 0.56 0.57 0.58\nPm 1\nPr 0.35\nnorm ridges.png\n",
+}
+
+
+def write_obj(out, name, mtl):
+    """The sphere as name.obj (OBJ's UVs: v up) of material "m", whose statements are mtl."""
+    pos, nor, uv, idx = sphere()
+    lines = ["mtllib %s.mtl" % name]
+    for i in range(len(pos) // 3):
+        lines.append("v %.9g %.9g %.9g" % tuple(pos[3 * i:3 * i + 3]))
+        lines.append("vn %.9g %.9g %.9g" % tuple(nor[3 * i:3 * i + 3]))
+        lines.append("vt %.9g %.9g" % (uv[2 * i], 1 - uv[2 * i + 1]))
+    lines.append("usemtl m")
+    for i in range(0, len(idx), 3):
+        lines.append("f " + " ".join("%d/%d/%d" % ((k + 1,) * 3) for k in idx[i:i + 3]))
+    with open(os.path.join(out, name + ".obj"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    with open(os.path.join(out, name + ".mtl"), "w") as f:
+        f.write("newmtl m\n" + mtl)
+    ridges_normal_png(os.path.join(out, "ridges.png"))
+    subprocess.check_call(["oiiotool", "--pattern", "checker:width=32:height=32:color1=0.8,0.8,0.8:color2=0.3,0.3,0.3",
+                           "256x256", "3", "-d", "uint8", "-o", os.path.join(out, "rough_checker.png")])
+
+
 
 def sphere(rings=48, segments=96):
     """A UV sphere of radius 0.5: positions, normals, glTF UVs (v down), uint32 indices."""
@@ -170,21 +202,25 @@ def main():
     subprocess.check_call(["oiiotool", "--pattern", "constant:color=0,0,0", "320x240", "3", "-d", "uint8", "-o",
                            os.path.join(out, "black.png")])
     only = [m for m in os.environ.get("MATERIALS_ONLY", "").split(",") if m]
-    for name, (base, metallic, roughness, texture, more) in MATERIALS.items():
+    for name in list(MATERIALS) + list(MTL_MATERIALS):
         if only and name not in only:
             continue
-        write_gltf(out, name, base, metallic, roughness, texture, more)
+        if name in MTL_MATERIALS:
+            write_obj(out, name, MTL_MATERIALS[name])
+        else:
+            write_gltf(out, name, *MATERIALS[name])
+        mesh = name + (".obj" if name in MTL_MATERIALS else ".gltf")
         scene = {"photo": "black.png",
                  "camera": {"eye": [0.0, 0.45, 3.4], "look": [0.0, 0.0, 0.0], "hfov_deg": 30},
                  # 1024² faces (the HDRI's 1024 × 512 upsampled): finer than the polished lobes, so that
                  # insitu's nearest-texel cube and Cycles's bilinear world differ below the materials.
                  "environment": {"image": hdri, "face_size": 1024},
-                 "objects": [{"mesh": name + ".gltf", "rotate": 30}],
+                 "objects": [{"mesh": mesh, "rotate": 30}],
                  "render": {"integrator": "path", "spp": 1024, "max_depth": 8},
                  "output": {"image": "insitu_" + name + ".exr", "layers": "none"}}
         with open(os.path.join(out, name + ".json"), "w") as f:
             json.dump(scene, f, indent=1)
-    print("materials: wrote", len(only) if only else len(MATERIALS), "scenes to", out)
+    print("materials: wrote", len(only) if only else len(MATERIALS) + len(MTL_MATERIALS), "scenes to", out)
 
 
 if __name__ == "__main__":

@@ -1,0 +1,173 @@
+#include "render/obj_materials.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "render/obj_statements.h"
+
+namespace insitu {
+namespace fs = std::filesystem;
+using namespace obj_text;
+
+namespace {
+
+bool has(const std::set<std::string>& statements, const char* key) { return statements.count(key) > 0; }
+
+// The statements that make a material principled (the PBR extension's).
+bool principled_statements(const std::set<std::string>& statements) {
+  for (const char* key : {"Pr", "Pm", "Ps", "Pc", "Pcr", "aniso", "anisor", "map_Pr", "map_Pm", "map_Ps", "norm"})
+    if (has(statements, key)) return true;
+  return false;
+}
+
+// One value's range, by keyword: reflectances and opacity in [0, 1], the PBR factors in [0, 1],
+// the ambient and emitted colours and the exponent ≥ 0.
+void check_range(const std::string& path, int line, const std::string& kw, const std::string& text) {
+  static const std::set<std::string> kUnit = {"Kd", "Ks", "d", "Pr", "Pm", "Ps", "Pc", "Pcr", "aniso"};
+  const double v = std::strtod(text.c_str(), nullptr);
+  if (kUnit.count(kw) && (v < 0 || v > 1)) {
+    const char* what = kw == "d" ? "an opacity" : (kw == "Kd" || kw == "Ks") ? "a reflectance" : "a factor";
+    fail(path, line, fmt::format("{} {} is outside [0, 1] ({})", kw, text, what));
+  }
+  if ((kw == "Ka" || kw == "Ke" || kw == "Ns") && v < 0) fail(path, line, fmt::format("{} {} is negative", kw, text));
+}
+
+// A texture of the material, read beside the OBJ: colour (sRGB where the file is 8-bit) or data.
+Texture read_texture(const std::string& name, bool colour, const fs::path& base_dir, const std::string& where,
+                     const char* statement) {
+  Texture t;
+  const std::string file = beside_obj(base_dir, name);
+  try {
+    const ImageFile image = read_image_file(file, PixelGrid::kAsStored);
+    colour ? set_colour_image(t, image) : set_data_image(t, image);
+    t.path = file;
+  } catch (const InputError& e) {
+    throw e.with_context(where + ": " + statement);
+  }
+  return t;
+}
+
+// A normal map points out of the surface: over its texels, the mean of 2b − 1 exceeds ½, and its
+// channels are not all equal (a grey image is a height map).
+bool is_normal_map(const Texture& t) {
+  const Image& img = *t.image;
+  double z = 0;
+  bool grey = true;
+  const int step = std::max(1, std::max(img.width, img.height) / 64);
+  std::size_t n = 0;
+  for (int j = 0; j < img.height; j += step)
+    for (int i = 0; i < img.width; i += step, ++n) {
+      const Rgb c = img.rgb(i, j);
+      z += 2.0 * c[2] - 1.0;
+      grey = grey && c[0] == c[1] && c[1] == c[2];
+    }
+  return !grey && z > 0.5 * double(n);
+}
+
+// `norm`, or map_Bump where its image is a normal map; -bm is the Normal Map node's strength.
+void read_normal_map(const tinyobj::material_t& m, Material& out, const fs::path& base_dir, const std::string& where,
+                     Warnings& warnings) {
+  if (!m.normal_texname.empty()) {
+    out.map_normal = read_texture(m.normal_texname, false, base_dir, where, "norm");
+    out.normal_strength = float(m.normal_texopt.bump_multiplier);
+  } else if (!m.bump_texname.empty()) {
+    Texture bump = read_texture(m.bump_texname, false, base_dir, where, "map_Bump");
+    if (!is_normal_map(bump)) {
+      warnings.add(where, "map_Bump is a height map (grey, or not pointing out of the surface): not rendered");
+      return;
+    }
+    out.map_normal = std::move(bump);
+    out.normal_strength = float(m.bump_texopt.bump_multiplier);
+  }
+  if (!std::isfinite(out.normal_strength) || out.normal_strength < 0)
+    throw InputError(where, "the normal map's -bm must be a finite number ≥ 0");
+}
+
+// Ke × map_Ke (sRGB), both models; Ke is 1 where only the map is given.
+void read_emission(const tinyobj::material_t& m, const std::set<std::string>& statements, Material& out,
+                   const fs::path& base_dir, const std::string& where) {
+  out.emission = Rgb(float(m.emission[0]), float(m.emission[1]), float(m.emission[2]));
+  if (m.emissive_texname.empty()) return;
+  out.map_emission = read_texture(m.emissive_texname, true, base_dir, where, "map_Ke");
+  if (!has(statements, "Ke")) out.emission = Rgb::Ones();
+}
+
+// The principled parameters (the header's table).
+void read_principled(const tinyobj::material_t& m, const std::set<std::string>& statements, Material& out,
+                     const fs::path& base_dir, const std::string& where, Warnings& warnings) {
+  out.principled = true;
+  if (has(statements, "Pr"))
+    out.roughness = float(m.roughness);
+  else if (!m.roughness_texname.empty() || !has(statements, "Ns"))
+    out.roughness = 1.0f;
+  else
+    out.roughness = 1.0f - std::sqrt(std::clamp(float(m.shininess), 0.0f, 1000.0f) / 1000.0f);
+  out.metallic = has(statements, "Pm") ? float(m.metallic) : m.metallic_texname.empty() ? 0.0f : 1.0f;
+  out.specular = has(statements, "Ks") ? out.ks.mean() : 0.5f;
+  out.clearcoat = float(m.clearcoat_thickness);
+  out.clearcoat_roughness = float(m.clearcoat_roughness);
+  if (!m.roughness_texname.empty())
+    out.map_roughness = read_texture(m.roughness_texname, false, base_dir, where, "map_Pr");
+  if (!m.metallic_texname.empty())
+    out.map_metallic = read_texture(m.metallic_texname, false, base_dir, where, "map_Pm");
+  std::string unread;
+  for (const char* key : {"Ps", "map_Ps", "aniso", "anisor"})
+    if (has(statements, key)) unread += fmt::format("{}{}", unread.empty() ? "" : ", ", key);
+  if (!unread.empty())
+    warnings.add(where, fmt::format("not rendered: {} (insitu's principled material has no sheen weight or "
+                                    "anisotropy; docs/materials.md)",
+                                    unread));
+}
+
+}  // namespace
+
+void scan_mtl(const std::string& path, MtlStatements& out) {
+  std::ifstream in(path);
+  if (!in) return;  // a missing MTL is tinyobjloader's warning
+  std::set<std::string>* current = nullptr;
+  static const std::set<std::string> kColours = {"Kd", "Ks", "Ka", "Ke"};
+  static const std::set<std::string> kScalars = {"Ns", "d", "Pr", "Pm", "Ps", "Pc", "Pcr", "aniso", "anisor"};
+  for_each_statement(in, [&](int lineno, const std::vector<std::string>& tok) {
+    const std::string& kw = tok[0];
+    if (kw == "newmtl") {
+      current = &out[tok.size() > 1 ? tok[1] : std::string()];
+      return;
+    }
+    if (current) current->insert(kw);
+    const bool colour = kColours.count(kw) > 0;
+    if (!colour && !kScalars.count(kw)) return;
+    if (colour && tok.size() > 1 && tok[1] == "spectral") return;
+    check_numbers(path, lineno, tok, colour ? (tok.size() == 2 ? 1 : 3) : 1, colour ? 3 : 1, kw.c_str());
+    for (std::size_t k = 1; k < tok.size() && k <= (colour ? 3u : 1u); ++k) check_range(path, lineno, kw, tok[k]);
+  });
+}
+
+std::string beside_obj(const fs::path& base_dir, const std::string& name) { return (base_dir / name).string(); }
+
+std::vector<std::string> material_files(const tinyobj::material_t& m, const fs::path& base_dir) {
+  std::vector<std::string> files;
+  for (const std::string* name : {&m.diffuse_texname, &m.emissive_texname, &m.normal_texname, &m.bump_texname,
+                                  &m.roughness_texname, &m.metallic_texname})
+    if (!name->empty()) files.push_back(beside_obj(base_dir, *name));
+  return files;
+}
+
+Material convert_material(const tinyobj::material_t& m, const std::set<std::string>& statements,
+                          const fs::path& base_dir, const std::string& obj_path, Warnings& warnings) {
+  Material out;
+  out.name = m.name;
+  out.kd = Rgb(float(m.diffuse[0]), float(m.diffuse[1]), float(m.diffuse[2]));
+  out.ks = Rgb(float(m.specular[0]), float(m.specular[1]), float(m.specular[2]));
+  out.ns = float(m.shininess);
+  out.d = float(m.dissolve);
+  const std::string where = fmt::format("{}: material '{}'", obj_path, m.name);
+  if (!out.kd.allFinite() || (out.kd < 0).any()) throw InputError(where, "Kd must be finite and non-negative");
+  if (!m.diffuse_texname.empty()) out.map_kd = read_texture(m.diffuse_texname, true, base_dir, where, "map_Kd");
+  read_emission(m, statements, out, base_dir, where);
+  read_normal_map(m, out, base_dir, where, warnings);
+  if (principled_statements(statements)) read_principled(m, statements, out, base_dir, where, warnings);
+  return out;
+}
+
+}  // namespace insitu

@@ -1,0 +1,195 @@
+// MTL materials (render/obj_materials.h): the PBR extension's statements as Blender 3.4's OBJ
+// importer sets its Principled BSDF (the expected values are its rules, computed by hand), the
+// classic model kept, maps, normal maps, range errors by line, and what is named as not rendered.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/colour.h"
+#include "core/image.h"
+#include "interop/blender_meshes.h"
+#include "obj_sphere.h"
+#include "render/mesh.h"
+#include "test_util.h"
+
+namespace insitu {
+namespace {
+
+using test::TempDir;
+using test::write_obj_sphere;
+
+Mesh mtl_sphere(const TempDir& dir, const std::string& mtl, Warnings& w) {
+  return load_obj(write_obj_sphere(dir, "ball", Vec3f::Zero(), 1.0f, mtl, 8), w);
+}
+
+const Material& mtl_first(const Mesh& m) { return m.materials[std::size_t(m.triangles[0].material)]; }
+
+// A w × h image of one colour, 8-bit PNG (k/255 as stored).
+void write_flat_mtl_png(const std::string& path, const Rgb& c, int w = 4, int h = 4) {
+  Image img(w, h, 3);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) img.set_rgb(x, y, c);
+  write_image(path, img);
+}
+
+bool mtl_warned(const Warnings& w, const std::string& text) {
+  return std::any_of(w.items.begin(), w.items.end(), [&](const std::string& s) { return s.find(text) != s.npos; });
+}
+
+TEST(ObjMaterials, PbrStatementsMakeThePrincipledModel) {
+  TempDir dir;
+  Warnings w;
+  const Mesh m =
+      mtl_sphere(dir, "Kd 0.2 0.3 0.4\nKs 0.6 0.6 0.3\nPr 0.3\nPm 0.7\nPc 0.5\nPcr 0.2\nKe 0.1 0.2 0.3\n", w);
+  const Material& mat = mtl_first(m);
+  EXPECT_TRUE(mat.principled);
+  EXPECT_TRUE(mat.kd.isApprox(Rgb(0.2f, 0.3f, 0.4f)));
+  EXPECT_FLOAT_EQ(mat.roughness, 0.3f);
+  EXPECT_FLOAT_EQ(mat.metallic, 0.7f);
+  EXPECT_FLOAT_EQ(mat.specular, 0.5f);  // the mean of Ks, as Blender's importer
+  EXPECT_FLOAT_EQ(mat.clearcoat, 0.5f);
+  EXPECT_FLOAT_EQ(mat.clearcoat_roughness, 0.2f);
+  EXPECT_TRUE(mat.emission.isApprox(Rgb(0.1f, 0.2f, 0.3f)));
+  EXPECT_TRUE(w.items.empty()) << w.items.front();
+}
+
+TEST(ObjMaterials, AClassicMaterialStaysClassicAndEmits) {
+  TempDir dir;
+  Warnings w;
+  const Material mat = mtl_first(mtl_sphere(dir, "Kd 0.5 0.5 0.5\nKs 0.04 0.04 0.04\nNs 100\nKe 2 1 0\n", w));
+  EXPECT_FALSE(mat.principled);
+  EXPECT_FLOAT_EQ(mat.ns, 100.0f);
+  EXPECT_TRUE(mat.emission.isApprox(Rgb(2, 1, 0)));
+}
+
+// Without Pr, Blender's 1 − √(Ns/1000), or 1 without Ns; without Ks, Cycles's default 0.5; a map
+// alone stands for its value (1 × the map).
+TEST(ObjMaterials, WhatAPbrMaterialLeavesOutFollowsTheRules) {
+  TempDir dir;
+  write_flat_mtl_png(dir.file("grey.png"), Rgb::Constant(0.5f));
+  Warnings w;
+  const Material with_ns = mtl_first(mtl_sphere(dir, "Pm 0\nNs 250\n", w));
+  EXPECT_FLOAT_EQ(with_ns.roughness, 1.0f - std::sqrt(0.25f));
+  EXPECT_FLOAT_EQ(with_ns.specular, 0.5f);
+  const Material huge_ns = mtl_first(mtl_sphere(dir, "Pm 0\nNs 5000\n", w));
+  EXPECT_FLOAT_EQ(huge_ns.roughness, 0.0f);
+  const Material bare = mtl_first(mtl_sphere(dir, "Pc 1\n", w));
+  EXPECT_FLOAT_EQ(bare.roughness, 1.0f);
+  EXPECT_FLOAT_EQ(bare.metallic, 0.0f);
+  const Material maps = mtl_first(mtl_sphere(dir, "Ns 250\nmap_Pr grey.png\nmap_Pm grey.png\n", w));
+  EXPECT_TRUE(maps.principled);
+  EXPECT_FLOAT_EQ(maps.roughness, 1.0f);
+  EXPECT_FLOAT_EQ(maps.metallic, 1.0f);
+  ASSERT_TRUE(maps.map_roughness && maps.map_metallic);
+  // Data, not colour: the stored 128/255, not its sRGB decoding (0.216).
+  EXPECT_NEAR(maps.map_roughness.sample({Vec2f(0.3f, 0.6f), Vec2f::Zero()})[0], 128.0f / 255.0f, 1e-6f);
+  EXPECT_FALSE(maps.map_roughness.srgb);
+}
+
+TEST(ObjMaterials, AMapMultipliesItsStatementsValue) {
+  TempDir dir;
+  write_flat_mtl_png(dir.file("grey.png"), Rgb::Constant(0.5f));
+  write_flat_mtl_png(dir.file("glow.png"), Rgb(1.0f, 0.5f, 0.0f));
+  Warnings w;
+  const Material mat = mtl_first(mtl_sphere(dir, "Pr 0.8\nmap_Pr grey.png\nKe 2 2 2\nmap_Ke glow.png\n", w));
+  EXPECT_FLOAT_EQ(mat.roughness, 0.8f);
+  const UvSets uv{Vec2f(0.5f, 0.5f), Vec2f::Zero()};
+  EXPECT_TRUE(mat.map_emission.srgb);  // a colour
+  EXPECT_NEAR(mat.emitted(uv)[1], 2.0f * srgb_to_linear(128.0f / 255.0f), 1e-5f);
+  const Material only_map = mtl_first(mtl_sphere(dir, "Pr 0.5\nmap_Ke glow.png\n", w));
+  EXPECT_NEAR(only_map.emitted(uv)[0], 1.0f, 1e-6f);
+}
+
+TEST(ObjMaterials, NormGivesANormalMapWithTangents) {
+  TempDir dir;
+  write_flat_mtl_png(dir.file("n.png"), Rgb(0.6f, 0.5f, 1.0f));
+  Warnings w;
+  const Mesh m = mtl_sphere(dir, "Pr 0.4\nnorm -bm 0.7 n.png\n", w);
+  const Material& mat = mtl_first(m);
+  ASSERT_TRUE(mat.map_normal);
+  EXPECT_FLOAT_EQ(mat.normal_strength, 0.7f);
+  EXPECT_FALSE(mat.map_normal.srgb);
+  EXPECT_EQ(m.tangents.size(), 3 * m.triangles.size());
+  // The sphere's UVs run along +u eastward: every tangent is a unit vector with a sign.
+  for (const Vec4f& t : m.tangents) {
+    EXPECT_NEAR(t.head<3>().norm(), 1.0f, 1e-4f);
+    EXPECT_EQ(std::abs(t.w()), 1.0f);
+  }
+}
+
+// map_Bump holds a normal map where Blender's exporter writes one; a grey height map is named.
+TEST(ObjMaterials, MapBumpIsANormalMapOnlyWhereItsImageIsOne) {
+  TempDir dir;
+  write_flat_mtl_png(dir.file("n.png"), Rgb(0.5f, 0.5f, 1.0f));
+  write_flat_mtl_png(dir.file("height.png"), Rgb::Constant(0.7f));
+  Warnings w;
+  const Mesh normal = mtl_sphere(dir, "Kd 0.5 0.5 0.5\nmap_Bump -bm 0.5 n.png\n", w);
+  EXPECT_TRUE(mtl_first(normal).map_normal);
+  EXPECT_FALSE(mtl_first(normal).principled);
+  EXPECT_FLOAT_EQ(mtl_first(normal).normal_strength, 0.5f);
+  EXPECT_FALSE(normal.tangents.empty());
+  EXPECT_TRUE(w.items.empty());
+  const Mesh height = mtl_sphere(dir, "Kd 0.5 0.5 0.5\nbump height.png\n", w);
+  EXPECT_FALSE(mtl_first(height).map_normal);
+  EXPECT_TRUE(height.tangents.empty());
+  EXPECT_TRUE(mtl_warned(w, "map_Bump is a height map"));
+}
+
+TEST(ObjMaterials, SheenAndAnisotropyAreNamedAsNotRendered) {
+  TempDir dir;
+  Warnings w;
+  mtl_sphere(dir, "Pr 0.5\nPs 0.3\naniso 0.5\nanisor 0.25\n", w);
+  EXPECT_TRUE(mtl_warned(w, "not rendered: Ps, aniso, anisor"));
+}
+
+TEST(ObjMaterials, OutOfRangeValuesNameTheLine) {
+  TempDir dir;
+  for (const auto& [statement, message] :
+       std::vector<std::pair<std::string, std::string>>{{"Pr 1.5", "Pr 1.5 is outside [0, 1]"},
+                                                        {"Pm -0.1", "Pm -0.1 is outside [0, 1]"},
+                                                        {"Pc nan", "not a finite number"},
+                                                        {"anisor x", "'x' is not a number"},
+                                                        {"Ke -1 0 0", "Ke -1 is negative"}}) {
+    Warnings w;
+    try {
+      mtl_sphere(dir, "Kd 0.5 0.5 0.5\n" + statement + "\n", w);
+      ADD_FAILURE() << statement << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where(), dir.file("ball.mtl") + ":3") << statement;  // after "newmtl m", Kd
+      EXPECT_NE(e.message().find(message), std::string::npos) << e.what();
+    }
+  }
+  Warnings w;
+  write_flat_mtl_png(dir.file("n.png"), Rgb(0.5f, 0.5f, 1.0f));
+  EXPECT_THROW(mtl_sphere(dir, "norm missing.png\n", w), InputError);
+}
+
+TEST(ObjMaterials, DependenciesListEveryMap) {
+  TempDir dir;
+  for (const char* f : {"r.png", "m.png", "n.png", "e.png"}) write_flat_mtl_png(dir.file(f), Rgb(0.5f, 0.5f, 1.0f));
+  const std::string obj =
+      write_obj_sphere(dir, "ball", Vec3f::Zero(), 1, "map_Pr r.png\nmap_Pm m.png\nnorm n.png\nmap_Ke e.png\n", 4);
+  std::vector<std::string> names;
+  for (const std::string& f : obj_dependencies(obj)) names.push_back(std::filesystem::path(f).filename().string());
+  for (const char* f : {"ball.mtl", "r.png", "m.png", "n.png", "e.png"})
+    EXPECT_NE(std::find(names.begin(), names.end(), f), names.end()) << f;
+}
+
+// The export carries the principled values and maps to blender_prelude.py's principled_material.
+TEST(ObjMaterials, TheExportNamesThePrincipledMaterial) {
+  TempDir dir;
+  write_flat_mtl_png(dir.file("grey.png"), Rgb::Constant(0.5f));
+  Warnings w;
+  const Mesh m = mtl_sphere(dir, "Kd 0.2 0.3 0.4\nPr 0.25\nmap_Pr grey.png\nPm 0.5\nPc 1\nKe 0 0 0\n", w);
+  std::string bytes;
+  const std::string line = blender_mesh(m, "ball", std::nullopt, bytes);
+  EXPECT_NE(line.find("principled_material(\"ball: m\""), std::string::npos) << line;
+  EXPECT_NE(line.find("\"roughness\": 0.25"), std::string::npos) << line;
+  EXPECT_NE(line.find("\"metallic\": 0.5"), std::string::npos) << line;
+  EXPECT_NE(line.find("\"clearcoat\": 1"), std::string::npos) << line;
+  EXPECT_NE(line.find("grey.png"), std::string::npos) << line;
+}
+
+}  // namespace
+}  // namespace insitu
