@@ -9,6 +9,10 @@
 #include <cmath>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <exception>
 
 namespace insitu {
 namespace fs = std::filesystem;
@@ -35,9 +39,32 @@ class GltfImages {
       throw InputError(fmt::format("{}: $.textures[{}].source", path_, texture),
                        source < 0 ? "no source image (an extension's image format insitu does not read)"
                                   : fmt::format("image {} out of range ({} images)", source, model_.images.size()));
+    if (auto failed = failed_.find(source); failed != failed_.end()) std::rethrow_exception(failed->second);
     auto it = decoded_.find(source);
     if (it == decoded_.end()) it = decoded_.emplace(source, decode(source)).first;
     return it->second;
+  }
+
+  // Decodes every image a texture names, side by side (a 4k PNG takes most of a second). An image
+  // that fails keeps its error until get() asks for it, as if it were decoded then.
+  void decode_named() {
+    std::vector<int> sources;
+    for (const tinygltf::Texture& t : model_.textures)
+      if (t.source >= 0 && t.source < int(model_.images.size())) sources.push_back(t.source);
+    std::sort(sources.begin(), sources.end());
+    sources.erase(std::unique(sources.begin(), sources.end()), sources.end());
+    std::vector<Decoded> images(sources.size());
+    std::vector<std::exception_ptr> errors(sources.size());
+    tbb::parallel_for(std::size_t(0), sources.size(), [&](std::size_t k) {
+      try {
+        images[k] = decode(sources[k]);
+      } catch (...) {
+        errors[k] = std::current_exception();
+      }
+    });
+    for (std::size_t k = 0; k < sources.size(); ++k)
+      errors[k] ? void(failed_.emplace(sources[k], errors[k]))
+                : void(decoded_.emplace(sources[k], std::move(images[k])));
   }
 
  private:
@@ -64,6 +91,7 @@ class GltfImages {
   const tinygltf::Model& model_;
   std::string path_;
   std::map<int, Decoded> decoded_;
+  std::map<int, std::exception_ptr> failed_;
 };
 
 // KHR_texture_transform's matrix on glTF's UVs, after F(u, v) = (u, 1 − v) (render/texture.h):
@@ -89,6 +117,8 @@ class MaterialReader {
  public:
   MaterialReader(const tinygltf::Model& model, const std::string& path, Warnings& warnings)
       : model_(model), path_(path), warnings_(warnings), images_(model, path) {}
+
+  void decode_images() { images_.decode_named(); }
 
   Material read(int index) {
     const tinygltf::Material& g = model_.materials[std::size_t(index)];
@@ -338,6 +368,7 @@ class MaterialReader {
 
 std::vector<Material> gltf_materials(const tinygltf::Model& model, const std::string& path, Warnings& warnings) {
   MaterialReader reader(model, path, warnings);
+  if (!model.materials.empty()) reader.decode_images();
   std::vector<Material> out;
   for (int i = 0; i < int(model.materials.size()); ++i) out.push_back(reader.read(i));
   Material fallback;  // glTF 2.0 §3.9.6: the default material
