@@ -118,6 +118,28 @@ void BM_LoadGltf(benchmark::State& state) {
 }
 BENCHMARK(BM_LoadGltf)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 
+// One 4096² noise PNG decoded from memory as a texture: as floats (0, read_image_memory, how
+// textures were read before 2026-11-29) and as its bytes (1, read_texture_memory, how they are).
+//   build/bench/insitu_bench --benchmark_filter=DecodeTexture
+void BM_DecodeTexture(benchmark::State& state) {
+  const fs::path dir = fs::temp_directory_path() / "insitu-bench-gltf";
+  fs::create_directories(dir);
+  const std::string png = noise_png(dir, "decode.png", 4096, 3);
+  const std::vector<unsigned char> bytes(png.begin(), png.end());
+  double peak_mb = 0;
+  for (auto _ : state) {
+    bench::PeakMemory peak;
+    const ImageFile file = state.range(0)
+                               ? read_texture_memory("t.png", bytes, AlphaChannel::kKeep)
+                               : read_image_memory("t.png", bytes, PixelGrid::kAsStored, AlphaChannel::kKeep);
+    benchmark::DoNotOptimize(file.stored.data.data());
+    benchmark::DoNotOptimize(file.stored_bytes.data.data());
+    peak_mb = peak.peak_mb();
+  }
+  state.counters["peak_MB"] = peak_mb;
+}
+BENCHMARK(BM_DecodeTexture)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(5);
+
 // Geometry alone, the same 99 904 triangles: plain floats (0), meshopt with quantized attributes
 // as gltfpack writes them (1), Draco at 14/10/12 bits (2). The counter file_kB is the .glb's size.
 //   build/bench/insitu_bench --benchmark_filter=LoadCompressedGltf

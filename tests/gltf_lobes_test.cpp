@@ -193,17 +193,43 @@ TEST(GltfLobes, SpecularTintTurnsTheDielectricTowardTheBaseHue) {
 // no texel is there, the plain mean.
 TEST(GltfLobes, ColourIsFilteredByAlpha) {
   Texture t;
-  auto image = std::make_shared<Image>(2, 1, 3, 0.0f);
-  image->set_rgb(0, 0, Rgb(1, 0.5f, 0.25f));
-  auto alpha = std::make_shared<Image>(2, 1, 1, 0.0f);
-  *alpha->at(0, 0) = 1.0f;
+  auto image = std::make_shared<Texels>(Image(2, 1, 3, 0.0f));
+  image->floats.set_rgb(0, 0, Rgb(1, 0.5f, 0.25f));
+  auto alpha = std::make_shared<Texels>(Image(2, 1, 1, 0.0f));
+  *alpha->floats.at(0, 0) = 1.0f;
   t.image = image, t.alpha = alpha;
   t.image_from_uv = Texture::obj_convention();
   const UvSets midway = {Vec2f(0.5f, 0.5f), Vec2f::Zero()};
   EXPECT_TRUE(t.sample(midway).isApprox(Rgb(1, 0.5f, 0.25f), 1e-6f)) << t.sample(midway).transpose();
   EXPECT_NEAR(t.sample_alpha(midway), 0.5f, 1e-6f);
-  *alpha->at(0, 0) = 0.0f;
+  *alpha->floats.at(0, 0) = 0.0f;
   EXPECT_TRUE(t.sample(midway).isApprox(Rgb(0.5f, 0.25f, 0.125f), 1e-6f)) << t.sample(midway).transpose();
+}
+
+// A texture held as an 8-bit file's bytes samples as the same texels held as floats k/255 (the
+// obviously correct form): colour, sRGB-encoded colour, and colour filtered by an alpha channel.
+TEST(GltfLobes, ByteTexelsSampleAsTheirFloats) {
+  const int w = 5, h = 3;
+  ByteImage rgb{w, h, 3, {}}, a{w, h, 1, {}};
+  for (int i = 0; i < w * h * 3; ++i) rgb.data.push_back(std::uint8_t((i * 97 + 13) % 256));
+  for (int i = 0; i < w * h; ++i) a.data.push_back(std::uint8_t((i * 53 + 200) % 256));
+  auto floats_of = [](const ByteImage& b) {
+    Image f(b.width, b.height, b.channels);
+    for (std::size_t i = 0; i < b.data.size(); ++i) f.data[i] = float(b.data[i]) / 255.0f;
+    return std::make_shared<const Texels>(std::move(f));
+  };
+  for (bool srgb : {false, true})
+    for (bool with_alpha : {false, true}) {
+      Texture bytes, floats;
+      bytes.image = std::make_shared<const Texels>(rgb), floats.image = floats_of(rgb);
+      if (with_alpha) bytes.alpha = std::make_shared<const Texels>(a), floats.alpha = floats_of(a);
+      bytes.srgb = floats.srgb = srgb;
+      for (int k = 0; k < 50; ++k) {
+        const UvSets uv = {Vec2f(0.137f * float(k) - 2.0f, 0.071f * float(k * k % 17)), Vec2f::Zero()};
+        ASSERT_TRUE(bytes.sample(uv).isApprox(floats.sample(uv), 1e-6f)) << k;
+        ASSERT_NEAR(bytes.sample_alpha(uv), floats.sample_alpha(uv), 1e-6f) << k;
+      }
+    }
 }
 
 TEST(GltfLobes, BadValuesAreRefusedWithTheirPath) {

@@ -108,6 +108,45 @@ TEST(Image, GreyIsRepeatedIntoRgb) {
     for (int c = 0; c < 3; ++c) ASSERT_EQ(img.data[i * 3 + c], grey[i]);
 }
 
+// A texture keeps an 8-bit file's bytes: exactly the bytes written, colour and alpha, whether read
+// from the file or from memory, and the float reading of the same file is those bytes / 255. A
+// 16-bit file is read as floats.
+TEST(Image, TextureKeepsAnEightBitFilesBytes) {
+  test::TempDir dir;
+  const int w = 7, h = 5;
+  std::vector<float> rgba(std::size_t(w) * h * 4);
+  for (std::size_t i = 0; i < rgba.size(); ++i) rgba[i] = float((i * 37 + 11) % 256) / 255.0f;
+  OIIO::ImageSpec spec(w, h, 4, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:UnassociatedAlpha", 1);  // the colour written as given, not divided by alpha
+  write_with_oiio(dir.file("t.png"), spec, rgba);
+  std::ifstream in(dir.file("t.png"), std::ios::binary);
+  const std::vector<unsigned char> encoded((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const Image floats = read_image_file(dir.file("t.png"), PixelGrid::kAsStored).stored;
+  for (const ImageFile& file : {read_texture_file(dir.file("t.png"), AlphaChannel::kKeep),
+                                read_texture_memory("t.png", encoded, AlphaChannel::kKeep)}) {
+    ASSERT_TRUE(file.stored.empty() && file.alpha.empty());
+    ASSERT_EQ(file.stored_bytes.width, w);
+    ASSERT_EQ(file.stored_bytes.height, h);
+    ASSERT_EQ(file.stored_bytes.channels, 3);
+    ASSERT_EQ(file.alpha_bytes.channels, 1);
+    EXPECT_TRUE(file.display_referred);
+    for (std::size_t p = 0; p < std::size_t(w) * h; ++p) {
+      for (std::size_t c = 0; c < 3; ++c) {
+        ASSERT_EQ(file.stored_bytes.data[p * 3 + c], ((p * 4 + c) * 37 + 11) % 256);
+        ASSERT_FLOAT_EQ(float(file.stored_bytes.data[p * 3 + c]) / 255.0f, floats.data[p * 3 + c]);
+      }
+      ASSERT_EQ(file.alpha_bytes.data[p], ((p * 4 + 3) * 37 + 11) % 256);
+    }
+  }
+  EXPECT_TRUE(read_texture_file(dir.file("t.png")).alpha_bytes.empty());  // not asked for
+  write_with_oiio(dir.file("t16.png"), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::UINT16),
+                  std::vector<float>(w * h * 3, 0.5f));
+  const ImageFile sixteen = read_texture_file(dir.file("t16.png"));
+  EXPECT_TRUE(sixteen.stored_bytes.empty());
+  ASSERT_EQ(sixteen.stored.data.size(), std::size_t(w) * h * 3);
+  EXPECT_NEAR(sixteen.stored.data[0], 32768.0f / 65535.0f, 1e-6f);
+}
+
 // Where the stored pixel (x, y) of a w × h image is shown under EXIF orientation o, from the
 // tag's definition (TIFF 6.0, tag 274: which visual side the 0th row and the 0th column are).
 std::pair<int, int> shown_at(int o, int x, int y, int w, int h) {
@@ -202,6 +241,7 @@ TEST(Image, TruncatedHugePngFailsWithoutAllocatingItsHeaderSize) {
   ASSERT_TRUE(reset_peak_rss());
   const long before_mb = peak_resident_mb();
   EXPECT_THROW(read_image_file(path), InputError);
+  EXPECT_THROW(read_texture_file(path), InputError);                      // the same, read as bytes
   EXPECT_LT(peak_resident_mb() - before_mb, 1024) << "peak resident MB";  // the header implies 3.7 GB
 }
 

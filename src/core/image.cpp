@@ -14,6 +14,7 @@
 #include <cassert>
 #include <cmath>
 #include <functional>
+#include <type_traits>
 #include <cstdlib>
 #include <filesystem>
 #include <fmt/format.h>
@@ -75,82 +76,115 @@ std::string one_line(std::string s) {
 }
 
 // Reads the image (from `bytes` when given, `path` then naming it and its format by its
-// extension); read_image_file() wraps it in a StderrCapture.
+// extension); read_image_file() wraps it in a StderrCapture. With `texels_as_bytes`, an 8-bit
+// file's pixels go to ImageFile::stored_bytes and alpha_bytes.
 ImageFile read_image_file_quietly(const std::string& path, PixelGrid grid, AlphaChannel alpha,
-                                  const std::vector<unsigned char>* bytes = nullptr);
+                                  const std::vector<unsigned char>* bytes = nullptr, bool texels_as_bytes = false);
+
+// Runs read(), dropping what the C libraries printed if it fails (StderrCapture).
+template <class Read>
+ImageFile read_capturing_stderr(Read read) {
+  StderrCapture capture;
+  try {
+    return read();
+  } catch (...) {
+    capture.failed();
+    throw;
+  }
+}
 
 }  // namespace
 
 ImageFile read_image_file(const std::string& path, PixelGrid grid) {
   require_existing(path);
-  StderrCapture capture;
-  try {
-    return read_image_file_quietly(path, grid, AlphaChannel::kDrop);
-  } catch (...) {
-    capture.failed();
-    throw;
-  }
+  return read_capturing_stderr([&] { return read_image_file_quietly(path, grid, AlphaChannel::kDrop); });
 }
 
 ImageFile read_image_memory(const std::string& name, const std::vector<unsigned char>& bytes, PixelGrid grid,
                             AlphaChannel alpha) {
-  StderrCapture capture;
-  try {
-    return read_image_file_quietly(name, grid, alpha, &bytes);
-  } catch (...) {
-    capture.failed();
-    throw;
-  }
+  return read_capturing_stderr([&] { return read_image_file_quietly(name, grid, alpha, &bytes); });
+}
+
+ImageFile read_texture_file(const std::string& path, AlphaChannel alpha) {
+  require_existing(path);
+  return read_capturing_stderr(
+      [&] { return read_image_file_quietly(path, PixelGrid::kAsStored, alpha, nullptr, true); });
+}
+
+ImageFile read_texture_memory(const std::string& name, const std::vector<unsigned char>& bytes, AlphaChannel alpha) {
+  return read_capturing_stderr(
+      [&] { return read_image_file_quietly(name, PixelGrid::kAsStored, alpha, &bytes, true); });
 }
 
 namespace {
 
-// Reads the image's first three channels (one channel, repeated, for grey) as float RGB, a band
-// of rows at a time: memory grows only with rows that really decode, so a truncated file whose
-// header declares 100 megapixels fails at its first missing band instead of after allocating and
-// filling gigabytes (what the image fuzzer found). With `alpha`, also the alpha channel, where
-// the header names one among the first four.
-Image decode_rgb(ImageInput& in, const std::string& path, Image* alpha = nullptr) {
+// Reads the image's first three channels (one channel, repeated, for grey) as RGB of type T (float,
+// or uint8_t for an 8-bit file's bytes), a band of rows at a time: memory grows only with rows that
+// really decode, so a truncated file whose header declares 100 megapixels fails at its first
+// missing band instead of after allocating and filling gigabytes (what the image fuzzer found).
+// With `alpha`, also the alpha channel, where the header names one among the first four.
+template <class T>
+struct DecodedPixels {
+  std::vector<T> rgb, alpha;
+};
+
+template <class T>
+DecodedPixels<T> decode_pixels(ImageInput& in, const std::string& path, bool want_alpha) {
+  const TypeDesc type = std::is_same_v<T, float> ? TypeDesc::FLOAT : TypeDesc::UINT8;
   const ImageSpec& spec = in.spec();
   const int colour_channels = spec.nchannels >= 3 ? 3 : 1;
   const int alpha_channel =
-      alpha && spec.alpha_channel >= colour_channels && spec.alpha_channel < 4 ? spec.alpha_channel : -1;
+      want_alpha && spec.alpha_channel >= colour_channels && spec.alpha_channel < 4 ? spec.alpha_channel : -1;
   const int channels_read = std::max(colour_channels, alpha_channel + 1);
   const bool tiled = spec.tile_width > 0;
   const int tile_rows = std::max(1, spec.tile_height);
   const int band_rows = tiled ? tile_rows * std::max(1, 64 / tile_rows) : 64;
   const std::size_t row_values = std::size_t(spec.width) * channels_read;
-  std::vector<float> rgb;
-  rgb.reserve(std::size_t(spec.width) * spec.height * 3);
-  std::vector<float> band, opacity;
-  if (alpha_channel >= 0) opacity.reserve(std::size_t(spec.width) * spec.height);
+  DecodedPixels<T> out;
+  out.rgb.reserve(std::size_t(spec.width) * spec.height * 3);
+  std::vector<T> band;
+  if (alpha_channel >= 0) out.alpha.reserve(std::size_t(spec.width) * spec.height);
   for (int y0 = 0; y0 < spec.height; y0 += band_rows) {
     const int y1 = std::min(spec.height, y0 + band_rows);
     band.resize(row_values * std::size_t(y1 - y0));
-    const bool ok = tiled ? in.read_tiles(0, 0, spec.x, spec.x + spec.width, spec.y + y0, spec.y + y1, spec.z,
-                                          spec.z + 1, 0, channels_read, TypeDesc::FLOAT, band.data())
-                          : in.read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, channels_read, TypeDesc::FLOAT,
-                                              band.data());
+    const bool ok =
+        tiled ? in.read_tiles(0, 0, spec.x, spec.x + spec.width, spec.y + y0, spec.y + y1, spec.z, spec.z + 1, 0,
+                              channels_read, type, band.data())
+              : in.read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, channels_read, type, band.data());
     if (!ok) throw InputError(path, "cannot decode image: " + one_line(in.geterror()));
     // A truncated file may decode "successfully" with its missing rows grey: the reader's error
     // says so.
     if (in.has_error()) throw InputError(path, "truncated or corrupt image: " + one_line(in.geterror()));
-    const std::size_t first = rgb.size();
-    rgb.resize(first + band.size() / channels_read * 3);
+    const std::size_t first = out.rgb.size();
+    out.rgb.resize(first + band.size() / channels_read * 3);
     for (std::size_t i = 0, o = first; i < band.size(); i += channels_read, o += 3) {
-      for (int c = 0; c < 3; ++c) rgb[o + c] = band[i + (colour_channels == 3 ? c : 0)];
-      if (alpha_channel >= 0) opacity.push_back(band[i + std::size_t(alpha_channel)]);
+      for (int c = 0; c < 3; ++c) out.rgb[o + c] = band[i + (colour_channels == 3 ? c : 0)];
+      if (alpha_channel >= 0) out.alpha.push_back(band[i + std::size_t(alpha_channel)]);
     }
   }
-  if (alpha_channel >= 0) {
-    *alpha = Image(spec.width, spec.height, 1);
-    alpha->data = std::move(opacity);
-  }
-  Image img(0, 0, 3);
-  img.width = spec.width;
-  img.height = spec.height;
-  img.data = std::move(rgb);
-  return img;
+  return out;
+}
+
+template <class Pixels, class T>
+Pixels pixels_of(const ImageSpec& spec, int channels, std::vector<T> data) {
+  Pixels p;
+  p.width = spec.width, p.height = spec.height, p.channels = channels;
+  p.data = std::move(data);
+  return p;
+}
+
+// The image's RGB as floats, and its alpha into *alpha where asked for and present.
+Image decode_rgb(ImageInput& in, const std::string& path, Image* alpha = nullptr) {
+  DecodedPixels<float> d = decode_pixels<float>(in, path, alpha != nullptr);
+  if (!d.alpha.empty()) *alpha = pixels_of<Image>(in.spec(), 1, std::move(d.alpha));
+  return pixels_of<Image>(in.spec(), 3, std::move(d.rgb));
+}
+
+// The same as bytes, for an 8-bit file.
+ByteImage decode_rgb_bytes(ImageInput& in, const std::string& path, ByteImage* alpha = nullptr) {
+  DecodedPixels<std::uint8_t> d = decode_pixels<std::uint8_t>(in, path, alpha != nullptr);
+  if (!d.alpha.empty()) *alpha = pixels_of<ByteImage>(in.spec(), 1, std::move(d.alpha));
+  return pixels_of<ByteImage>(in.spec(), 3, std::move(d.rgb));
 }
 
 // The header's size is checked before anything is allocated: a 100000² header, or a header of a
@@ -225,7 +259,7 @@ Image reoriented(Image img, int orientation, const std::string& path) {
 }
 
 ImageFile read_image_file_quietly(const std::string& path, PixelGrid grid, AlphaChannel alpha,
-                                  const std::vector<unsigned char>* bytes) {
+                                  const std::vector<unsigned char>* bytes, bool texels_as_bytes) {
   std::optional<Filesystem::IOMemReader> memory;
   if (bytes) {
     const auto ext = fs::path(path).extension();
@@ -262,7 +296,10 @@ ImageFile read_image_file_quietly(const std::string& path, PixelGrid grid, Alpha
     file.exposure.focal_35mm_mm = f35;
   file.orientation = grid == PixelGrid::kAsDisplayed ? exif_orientation(spec) : 1;
   const bool keep_alpha = alpha == AlphaChannel::kKeep && grid == PixelGrid::kAsStored;
-  file.stored = reoriented(decode_rgb(*in, path, keep_alpha ? &file.alpha : nullptr), file.orientation, path);
+  if (texels_as_bytes && spec.format.basetype == TypeDesc::UINT8)  // as stored: no orientation to apply
+    file.stored_bytes = decode_rgb_bytes(*in, path, keep_alpha ? &file.alpha_bytes : nullptr);
+  else
+    file.stored = reoriented(decode_rgb(*in, path, keep_alpha ? &file.alpha : nullptr), file.orientation, path);
   in->close();
   return file;
 }

@@ -24,9 +24,9 @@ class GltfImages {
   GltfImages(const tinygltf::Model& model, std::string path) : model_(model), path_(std::move(path)) {}
 
   struct Decoded {
-    std::shared_ptr<const Image> stored;  // as stored (k/255 for 8 bits), non-finite and negative values 0
-    std::shared_ptr<const Image> alpha;   // its alpha channel, or null
-    bool display_referred = false;        // integer pixels: sRGB-encoded where they are colour
+    std::shared_ptr<const Texels> stored;  // as stored (k/255 for 8 bits), non-finite and negative values 0
+    std::shared_ptr<const Texels> alpha;   // its alpha channel, or null
+    bool display_referred = false;         // integer pixels: sRGB-encoded where they are colour
   };
 
   // The image of texture `texture`, shared by every texture of the same source.
@@ -74,15 +74,8 @@ class GltfImages {
     const bool jpeg = img.image.size() >= 2 && img.image[0] == 0xFF && img.image[1] == 0xD8;
     try {
       // The encoded bytes, kept by the loader (gltf_mesh.cpp), decoded by OpenImageIO.
-      ImageFile file = read_image_memory(jpeg ? "embedded.jpg" : "embedded.png", img.image, PixelGrid::kAsStored,
-                                         AlphaChannel::kKeep);
-      sanitize(file.stored);
-      Decoded d{std::make_shared<const Image>(std::move(file.stored)), nullptr, file.display_referred};
-      if (!file.alpha.empty()) {
-        sanitize(file.alpha);
-        d.alpha = std::make_shared<const Image>(std::move(file.alpha));
-      }
-      return d;
+      ImageFile file = read_texture_memory(jpeg ? "embedded.jpg" : "embedded.png", img.image, AlphaChannel::kKeep);
+      return Decoded{texels_of(file), alpha_texels_of(file), file.display_referred};
     } catch (const InputError& e) {
       throw InputError(fmt::format("{}: $.images[{}]", path_, index), e.message());
     }

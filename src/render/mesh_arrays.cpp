@@ -29,11 +29,11 @@ Material material_of(const MeshArrays& a, const std::string& name) {
     if (a.map_kd_width < 1 || a.map_kd_height < 1)
       throw InputError(name + ": map_kd", fmt::format("a texture of {}x{} texels", a.map_kd_width, a.map_kd_height));
     if (!a.uvs) throw InputError(name + ": map_kd", "a texture needs UVs to be sampled by");
-    auto texture = std::make_shared<Image>(a.map_kd_width, a.map_kd_height, 3);
-    const std::size_t n = texture->data.size();
+    Image texture(a.map_kd_width, a.map_kd_height, 3);
+    const std::size_t n = texture.data.size();
     check_finite(a.map_kd, n, name, "map_kd");
-    texture->data.assign(a.map_kd, a.map_kd + n);
-    m.map_kd.image = texture;
+    texture.data.assign(a.map_kd, a.map_kd + n);
+    m.map_kd.image = std::make_shared<const Texels>(std::move(texture));
   }
   return m;
 }

@@ -39,8 +39,8 @@ Texture read_texture(const std::string& name, bool colour, const fs::path& base_
   Texture t;
   const std::string file = beside_obj(base_dir, name);
   try {
-    const ImageFile image = read_image_file(file, PixelGrid::kAsStored);
-    colour ? set_colour_image(t, image) : set_data_image(t, image);
+    ImageFile image = read_texture_file(file);
+    colour ? set_colour_image(t, std::move(image)) : set_data_image(t, std::move(image));
     t.path = file;
   } catch (const InputError& e) {
     throw e.with_context(where + ": " + statement);
@@ -51,13 +51,13 @@ Texture read_texture(const std::string& name, bool colour, const fs::path& base_
 // A normal map points out of the surface: over its texels, the mean of 2b − 1 exceeds ½, and its
 // channels are not all equal (a grey image is a height map).
 bool is_normal_map(const Texture& t) {
-  const Image& img = *t.image;
+  const Texels& img = *t.image;
   double z = 0;
   bool grey = true;
-  const int step = std::max(1, std::max(img.width, img.height) / 64);
+  const int step = std::max(1, std::max(img.width(), img.height()) / 64);
   std::size_t n = 0;
-  for (int j = 0; j < img.height; j += step)
-    for (int i = 0; i < img.width; i += step, ++n) {
+  for (int j = 0; j < img.height(); j += step)
+    for (int i = 0; i < img.width(); i += step, ++n) {
       const Rgb c = img.rgb(i, j);
       z += 2.0 * c[2] - 1.0;
       grey = grey && c[0] == c[1] && c[1] == c[2];

@@ -13,12 +13,14 @@ void add_camera(Fnv1a& h, const Camera& c) {
   h.bytes(c.R_cam_from_world.data(), 9 * sizeof(double)), h.bytes(c.t_cam_from_world.data(), 3 * sizeof(double));
 }
 
+void add_texels(Fnv1a& h, const Texels& t) { h.array(t.bytes.data), h.array(t.floats.data); }
+
 void add_texture(Fnv1a& h, const Texture& t) {
   h.value(bool(t));
   if (!t) return;
-  h.array(t.image->data), h.value(t.texcoord), h.bytes(t.image_from_uv.data(), 6 * sizeof(float));
+  add_texels(h, *t.image), h.value(t.texcoord), h.bytes(t.image_from_uv.data(), 6 * sizeof(float));
   h.value(bool(t.alpha));
-  if (t.alpha) h.array(t.alpha->data);
+  if (t.alpha) add_texels(h, *t.alpha);
 }
 
 void add_meshes(Fnv1a& h, const EmbreeScene* scene) {
