@@ -271,6 +271,41 @@ TEST(BsdfTest, ClearCoatWeighsItsSamplesAsCycles) {
   }
 }
 
+// A coat about its own normal n_c, tilted 25° from the shading normal +z (a normal map bends the
+// rest, bsdf.h: set_coat_normal), is the untilted coat turned: its f is the untilted f of the
+// directions in n_c's frame (0 below n_c), its samples follow the turned GGX visible-normal density
+// (those below +z are no sample), and its pdf is the untilted pdf so turned.
+TEST(BsdfTest, ClearCoatAboutItsOwnNormalIsTheCoatTurned) {
+  const float tilt = float(deg_to_rad(25.0f));
+  const Vec3f n_coat(std::sin(tilt), 0.0f, std::cos(tilt));
+  const Frame coat_frame(n_coat);
+  for (float rc : {0.3f, 0.6f})
+    for (float theta : {10.0f, 60.0f, -60.0f}) {
+      Bsdf tilted = coat_only(1.0f, rc);
+      tilted.set_coat_normal(n_coat);
+      const Bsdf plain = coat_only(1.0f, rc);
+      const Vec3f wo = direction_at(theta);
+      const Vec3f wo_c = coat_frame.to_local(wo);
+      for (int k = 0; k < 200; ++k) {
+        Sampler s(41, std::uint64_t(k), 0);
+        const float z = s.next(), phi = 2 * kPiF * s.next(), r = std::sqrt(1 - z * z);
+        const Vec3f wi(r * std::cos(phi), r * std::sin(phi), z);
+        const Vec3f wi_c = coat_frame.to_local(wi);
+        const float f = wi_c.z() > 0 && wo_c.z() > 0 ? plain.eval(wo_c, wi_c)[0] : 0.0f;
+        ASSERT_NEAR(tilted.eval(wo, wi)[0], f, 1e-5f * f + 1e-7f) << rc << " " << theta << " " << k;
+        const float pdf = wi_c.z() > 0 && wo_c.z() > 0 ? plain.pdf(wo_c, wi_c) : 0.0f;
+        ASSERT_NEAR(tilted.pdf(wo, wi), pdf, 1e-4f * pdf + 1e-6f) << rc << " " << theta << " " << k;
+      }
+      double chi2 = 0;
+      EXPECT_LT(
+          chi2_score(
+              tilted, wo, [&](const Vec3f& wi) { return ggx::reflection_pdf(wo_c, coat_frame.to_local(wi), rc * rc); },
+              &chi2),
+          4.0)
+          << "rc " << rc << " theta " << theta << " chi2 " << chi2;
+    }
+}
+
 // A smooth coat is Cycles's mirror: it reflects ¼·c·F_d(cos θ, 1.5) (Fresnel's equations; G ≈ 1
 // at α = 10⁻³), e.g. 0.01 head-on for c = 1.
 TEST(BsdfTest, SmoothClearCoatReflectsAQuarterOfFresnel) {

@@ -21,8 +21,10 @@ using nlohmann::json;
 const Rgb kTexel(165.0f / 255, 110.0f / 255, 235.0f / 255);
 
 // A unit floor quad (normal +y) mapped u = x, v_gltf = 1 + z (so v up the image is −z), its
-// material a normal map of the texel above with `scale`; with `tangent`, a TANGENT attribute.
-std::string write_mapped_quad(const test::TempDir& dir, double scale, const std::vector<float>& tangent = {}) {
+// material a normal map of the texel above with `scale` (or `material`, its texture 0 the texel);
+// with `tangent`, a TANGENT attribute.
+std::string write_mapped_quad(const test::TempDir& dir, double scale, const std::vector<float>& tangent = {},
+                              const json& material = nullptr) {
   Image texel(1, 1, 3, 0.0f);
   texel.set_rgb(0, 0, kTexel);
   write_image(dir.file("n.png"), texel);
@@ -44,28 +46,33 @@ std::string write_mapped_quad(const test::TempDir& dir, double scale, const std:
     accessors.push_back({{"bufferView", 2}, {"componentType", 5126}, {"count", 4}, {"type", "VEC4"}});
     attributes["TANGENT"] = 4;
   }
-  const json doc = {{"asset", {{"version", "2.0"}}},
-                    {"scene", 0},
-                    {"scenes", {{{"nodes", {0}}}}},
-                    {"nodes", {{{"mesh", 0}}}},
-                    {"meshes", {{{"primitives", {{{"attributes", attributes}, {"indices", 3}, {"material", 0}}}}}}},
-                    {"materials", {{{"normalTexture", {{"index", 0}, {"scale", scale}}}}}},
-                    {"textures", {{{"source", 0}}}},
-                    {"images", {{{"uri", "n.png"}}}},
-                    {"accessors", accessors},
-                    {"bufferViews", views},
-                    {"buffers", {{{"uri", "q.bin"}, {"byteLength", bin.size()}}}}};
+  const json doc = {
+      {"asset", {{"version", "2.0"}}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"meshes", {{{"primitives", {{{"attributes", attributes}, {"indices", 3}, {"material", 0}}}}}}},
+      {"materials", {material.is_null() ? json{{"normalTexture", {{"index", 0}, {"scale", scale}}}} : material}},
+      {"textures", {{{"source", 0}}}},
+      {"images", {{{"uri", "n.png"}}}},
+      {"accessors", accessors},
+      {"bufferViews", views},
+      {"buffers", {{{"uri", "q.bin"}, {"byteLength", bin.size()}}}}};
   std::ofstream(dir.file("q.bin"), std::ios::binary) << bin;
   return dir.write("q.gltf", doc.dump());
 }
 
-Vec3f shading_normal(const std::string& path, float from_y) {
-  Warnings w;
+SurfacePoint surface_from(const std::string& path, float from_y, Warnings& w) {
   EmbreeScene scene({load_mesh(path, w)});
   const Ray ray{Vec3f(0.3f, from_y, -0.6f), Vec3f(0, from_y > 0 ? -1.0f : 1.0f, 0)};
   const Hit hit = scene.intersect(ray);
   EXPECT_TRUE(hit.valid());
-  return scene.surface(ray, hit).ns_world;
+  return scene.surface(ray, hit);
+}
+
+Vec3f shading_normal(const std::string& path, float from_y) {
+  Warnings w;
+  return surface_from(path, from_y, w).ns_world;
 }
 
 // The map's frame: t = ∂p/∂u = +x, n = +y, b = n × t = −z (= ∂p/∂v, v up the image); the normal is
@@ -91,6 +98,31 @@ TEST(GltfNormalMap, TheScaleIsBlendersStrength) {
     const Vec3f expected = (n + float(s) * (full - n)).normalized();
     EXPECT_TRUE(shading_normal(write_mapped_quad(d, s), 1).isApprox(expected, 1e-5f)) << "scale " << s;
   }
+}
+
+// The clear coat keeps the smooth normal however the normal map bends the rest
+// (KHR_materials_clearcoat: "no normal mapping is applied to the clear coat layer"), and takes
+// its own map's, clearcoatNormalTexture's, with its scale as the strength, where it has one;
+// that map bends the coat alone. Both are rendered: no warning names them.
+TEST(GltfNormalMap, TheClearCoatHasItsOwnNormal) {
+  const Vec3f n(0, 1, 0);
+  test::TempDir a, b;
+  const Vec3f mapped = shading_normal(write_mapped_quad(a, 1.0), 1);
+  Warnings w;
+  const json base_mapped = {{"normalTexture", {{"index", 0}}},
+                            {"extensions", {{"KHR_materials_clearcoat", {{"clearcoatFactor", 1.0}}}}}};
+  const SurfacePoint over_map = surface_from(write_mapped_quad(a, 1.0, {}, base_mapped), 1, w);
+  EXPECT_TRUE(over_map.ns_world.isApprox(mapped, 1e-5f));
+  EXPECT_TRUE(over_map.n_coat_world.isApprox(n, 1e-6f)) << over_map.n_coat_world.transpose();
+  const json coat_mapped = {
+      {"extensions",
+       {{"KHR_materials_clearcoat",
+         {{"clearcoatFactor", 1.0}, {"clearcoatNormalTexture", {{"index", 0}, {"scale", 0.5}}}}}}}};
+  const SurfacePoint own = surface_from(write_mapped_quad(b, 1.0, {}, coat_mapped), -1, w);
+  EXPECT_TRUE(own.ns_world.isApprox(-n, 1e-6f));
+  EXPECT_TRUE(own.n_coat_world.isApprox(-(n + 0.5f * (mapped - n)).normalized(), 1e-5f))
+      << own.n_coat_world.transpose();
+  for (const std::string& item : w.items) EXPECT_EQ(item.find("not rendered"), std::string::npos) << item;
 }
 
 // A file's TANGENT is its frame: tangent −z with w = +1 gives b = n × t = (0, 1, 0) × (0, 0, −1) = −x.

@@ -252,6 +252,12 @@ class PathIntegrator final : public Integrator {
       const Vec3f n_closure = valid_reflection_normal(sp.ng_world, -ray.dir, sp.ns_world);
       const Frame frame(n_closure);
       if (n_closure != sp.n_smooth_world) bsdf.set_smooth_normal(frame.to_local(sp.n_smooth_world));
+      // The clear coat has its own normal: the smooth one where a normal map bends the rest, or its
+      // own map's (render/bsdf.h).
+      if (sp.material->clearcoat > 0 && sp.n_coat_world != sp.ns_world) {
+        const Vec3f n_coat = valid_reflection_normal(sp.ng_world, -ray.dir, sp.n_coat_world);
+        if (n_coat != n_closure) bsdf.set_coat_normal(frame.to_local(n_coat).normalized());
+      }
       const Vec3f wo = frame.to_local(-ray.dir);
       // Rays leave from the side they go to: a refraction from behind the surface.
       const Vec3f origin = offset_origin(sp.p_world, sp.ng_world);

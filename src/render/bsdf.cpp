@@ -135,9 +135,11 @@ Rgb Bsdf::diffuse(const Vec3f& wo, const Vec3f& wi) const {
   return diffuse_ * (((1 - 0.5f * fv) * (1 - 0.5f * fl) + rr * (fl + fv + fl * fv * (rr - 1))) / kPiF);
 }
 
-Rgb Bsdf::coat(const Vec3f& wo, const Vec3f& wi) const {
-  const Vec3f h = (wo + wi).normalized();
+Rgb Bsdf::coat(const Vec3f& wo_local, const Vec3f& wi_local) const {
+  const Vec3f wo = to_coat(wo_local), wi = to_coat(wi_local);
   const float co = wo.z(), ci = wi.z();
+  if (co <= 0 || ci <= 0) return Rgb::Zero();
+  const Vec3f h = (wo + wi).normalized();
   const float D = coat_ggx_ ? ggx::d(h.z(), coat_alpha_) : gtr1::d(h.z(), coat_alpha_);
   const float a_g = coat_ggx_ ? coat_alpha_ : kCoatMaskingAlpha;
   const float G = ggx::g1(co, a_g) * ggx::g1(ci, a_g);
@@ -160,21 +162,26 @@ Rgb Bsdf::glass(const Vec3f& wo, const Vec3f& wi) const {
 
 // Cycles's density for the coat, pdf = G1(ωo; 0.25) D₁(h) / (4 |ωo·n|), which is not the density
 // its samples are drawn from (GGX's visible normals at α_c; render/gtr1.h).
-float Bsdf::coat_pdf(const Vec3f& wo, const Vec3f& wi) const {
-  if (coat_ggx_) return ggx::reflection_pdf(wo, wi, coat_alpha_);
+float Bsdf::coat_pdf(const Vec3f& wo_local, const Vec3f& wi_local) const {
+  const Vec3f wo = to_coat(wo_local), wi = to_coat(wi_local);
   if (wo.z() <= 0 || wi.z() <= 0) return 0;
+  if (coat_ggx_) return ggx::reflection_pdf(wo, wi, coat_alpha_);
   const Vec3f h = (wo + wi).normalized();
   return ggx::g1(wo.z(), kCoatMaskingAlpha) * gtr1::d(h.z(), coat_alpha_) / (4 * wo.z());
 }
 
-Bsdf::LobeOdds Bsdf::lobe_odds(float cos_o) const {
+Bsdf::LobeOdds Bsdf::lobe_odds(const Vec3f& wo) const {
+  const float cos_o = wo.z();
   LobeOdds odds;
   if (!glossy_) return odds;
   if (!principled_) {
     odds.specular = std::clamp(schlick(f0_, cos_o).maxCoeff(), 0.05f, 0.95f);
     return odds;
   }
-  const float w_s = specular_weight_ * fresnel(cos_o).mean(), w_c = coat_ * fresnel_dielectric(cos_o, kCoatEta);
+  // The coat's Fresnel at its own normal (none where ωo is below it).
+  const float cos_coat = coat_ > 0 ? to_coat(wo).z() : 0.0f;
+  const float w_s = specular_weight_ * fresnel(cos_o).mean();
+  const float w_c = cos_coat > 0 ? coat_ * fresnel_dielectric(cos_coat, kCoatEta) : 0.0f;
   const float w_d = diffuse_.mean() > kWeightCutoff ? diffuse_.mean() : 0.0f, w_v = sheen_.mean();
   float w_r = 0, w_t = 0;
   if (glass_ > 0) {
@@ -220,7 +227,7 @@ Rgb Bsdf::eval(const Vec3f& wo, const Vec3f& wi) const {
 
 float Bsdf::pdf(const Vec3f& wo, const Vec3f& wi) const {
   if (!glossy_) return wo.z() <= 0 || wi.z() <= 0 ? 0 : wi.z() / kPiF;
-  return mixture_pdf(lobe_odds(wo.z()), wo, wi);
+  return mixture_pdf(lobe_odds(wo), wo, wi);
 }
 
 // Σ_lobes odds · density; the diffuse lobe takes the odds the others leave.
@@ -242,12 +249,16 @@ float Bsdf::mixture_pdf(const LobeOdds& odds, const Vec3f& wo, const Vec3f& wi) 
 bool Bsdf::sample(const Vec3f& wo, float u_lobe, float u1, float u2, BsdfSample* out) const {
   if (wo.z() <= 0) return false;
   Vec3f wi;
-  const LobeOdds odds = lobe_odds(wo.z());
+  const LobeOdds odds = lobe_odds(wo);
   const float to_sheen = odds.specular + odds.coat, to_glass = to_sheen + odds.sheen;
-  if (u_lobe < to_sheen) {
-    const bool coat_lobe = u_lobe >= odds.specular;
-    const Vec3f h = ggx::sample_visible_normal(wo, coat_lobe ? coat_alpha_ : alpha_, u1, u2);
+  if (u_lobe < odds.specular) {
+    const Vec3f h = ggx::sample_visible_normal(wo, alpha_, u1, u2);
     wi = 2 * wo.dot(h) * h - wo;
+  } else if (u_lobe < to_sheen) {  // the coat, about its own normal (odds.coat > 0: ωo above it)
+    const Vec3f wo_c = to_coat(wo);
+    const Vec3f h = ggx::sample_visible_normal(wo_c, coat_alpha_, u1, u2);
+    const Vec3f wi_c = 2 * wo_c.dot(h) * h - wo_c;
+    wi = coat_tilted_ ? coat_frame_.to_world(wi_c) : wi_c;
   } else if (u_lobe < to_glass) {
     wi = uniform_hemisphere_local(u1, u2);
   } else if (u_lobe < to_glass + odds.reflect + odds.refract) {

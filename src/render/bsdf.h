@@ -110,6 +110,15 @@ class Bsdf {
     smooth_n_ = n_smooth;
     bump_ = true;
   }
+  // The clear coat's own normal in this BSDF's frame, where it is not +z: Cycles's Clearcoat Normal,
+  // which glTF's importer leaves unconnected, so that the coat keeps the smooth normal (bent to a
+  // valid reflection) while a normal map bends the other lobes, as KHR_materials_clearcoat asks.
+  // The coat is evaluated, weighed and sampled about it; a coat direction below +z is no sample,
+  // as for every lobe but the refraction.
+  void set_coat_normal(const Vec3f& n_coat) {
+    coat_frame_ = Frame(n_coat);
+    coat_tilted_ = true;
+  }
 
  private:
   Bsdf() = default;
@@ -123,7 +132,8 @@ class Bsdf {
     float specular = 0, coat = 0, sheen = 0, reflect = 0, refract = 0;  // the rest: diffuse
     float others() const { return specular + coat + sheen + reflect + refract; }
   };
-  LobeOdds lobe_odds(float cos_o) const;
+  LobeOdds lobe_odds(const Vec3f& wo) const;
+  Vec3f to_coat(const Vec3f& w) const { return coat_tilted_ ? coat_frame_.to_local(w) : w; }
   float mixture_pdf(const LobeOdds& odds, const Vec3f& wo, const Vec3f& wi) const;
   bool principled_ = false;
   Rgb diffuse_ = Rgb::Zero(), f0_ = Rgb::Zero();  // principled: base·(1 − m) and c0
@@ -132,7 +142,9 @@ class Bsdf {
   float roughness_ = 0.0f, eta_ = 1.5f, f0_dielectric_ = 0.04f;  // principled only
   float coat_ = 0.0f, coat_alpha_ = 1.0f;                        // ¼·c, α_c
   bool coat_ggx_ = false;                                        // a mirror coat: GGX at α = 10⁻³
-  Rgb sheen_ = Rgb::Zero();                                      // the velvet lobe's colour
+  bool coat_tilted_ = false;                                     // the coat about coat_frame_'s normal
+  Frame coat_frame_{Vec3f::UnitZ()};
+  Rgb sheen_ = Rgb::Zero();  // the velvet lobe's colour
   float sheen_sigma_ = 1.0f;
   float specular_weight_ = 1.0f;                                // 1 − T
   float glass_ = 0.0f, glass_alpha_ = 1.0f, glass_eta_ = 1.5f;  // T, α, η from ωo's side

@@ -194,12 +194,14 @@ SurfacePoint EmbreeScene::surface(const Ray& ray, const Hit& hit) const {
     if (ns.squaredNorm() > 0) n = ns;
   }
   sp.ns_world = n.normalized();
-  Vec3f mapped = Vec3f::Zero();
-  if (sp.material->map_normal && !mesh.tangents.empty()) {
+  // A tangent-space map's normal (zero without the map or tangents).
+  auto mapped_by = [&](const Texture& map) -> Vec3f {
+    if (!map || mesh.tangents.empty()) return Vec3f::Zero();
     Vec4f t = Vec4f::Zero();
     for (int k = 0; k < 3; ++k) t += w[k] * mesh.tangents[3 * std::size_t(hit.triangle) + std::size_t(k)];
-    mapped = tangent_space_normal(n, t, sp.material->map_normal.sample(sp.uv));
-  }
+    return tangent_space_normal(n, t, map.sample(sp.uv));
+  };
+  Vec3f mapped = mapped_by(sp.material->map_normal), coat_mapped = mapped_by(sp.material->map_clearcoat_normal);
   // The shading normals are brought to the side of the geometric one (winding may differ), then,
   // two-sided, all three face the incoming ray.
   const float to_winding = sp.ns_world.dot(sp.ng_world) < 0 ? -1.0f : 1.0f;
@@ -208,10 +210,15 @@ SurfacePoint EmbreeScene::surface(const Ray& ray, const Hit& hit) const {
   sp.backfacing = to_ray < 0;
   sp.ns_world *= to_winding * to_ray;
   mapped *= to_winding * to_ray;
-  sp.n_smooth_world = sp.ns_world;
+  coat_mapped *= to_winding * to_ray;
+  sp.n_smooth_world = sp.n_coat_world = sp.ns_world;
   if (mapped.squaredNorm() > 0) {
     mapped = with_strength(sp.ns_world, mapped, sp.material->normal_strength);
     if (mapped.squaredNorm() > 0) sp.ns_world = mapped;
+  }
+  if (coat_mapped.squaredNorm() > 0) {
+    coat_mapped = with_strength(sp.n_smooth_world, coat_mapped, sp.material->clearcoat_normal_strength);
+    if (coat_mapped.squaredNorm() > 0) sp.n_coat_world = coat_mapped;
   }
   return sp;
 }

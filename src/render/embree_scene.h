@@ -27,6 +27,7 @@ struct SurfacePoint {
   Vec3f ng_world;        // geometric normal
   Vec3f ns_world;        // shading normal: interpolated (the geometric one where the mesh has none), then mapped
   Vec3f n_smooth_world;  // the interpolated normal before the normal map (Cycles's sd->N)
+  Vec3f n_coat_world;    // the clear coat's: the smooth one, or its own map's (Material::map_clearcoat_normal)
   UvSets uv = {Vec2f::Zero(), Vec2f::Zero()};
   const Material* material = nullptr;
   bool backfacing = false;  // the ray met the triangle's back (its winding's normal faced away from it)

@@ -290,8 +290,10 @@ class MaterialReader {
     }
   }
 
-  // KHR_materials_clearcoat: the coat's factor (× R) and roughness (× G). Its normal texture is
-  // reported by unrendered().
+  // KHR_materials_clearcoat: the coat's factor (× R) and roughness (× G), and its own normal map,
+  // whose `scale` is the Normal Map node's strength as for normalTexture (Blender's Clearcoat
+  // Normal). The tangents are those of one UV set per material (Material::tangent_map): a coat map
+  // on another set than the normal map's is read with the normal map's tangents, and warned.
   void read_clearcoat(const tinygltf::Value& ext, Material& m, const std::string& where) {
     m.clearcoat = number(ext, "clearcoatFactor", 0.0f, where);
     m.clearcoat_roughness = number(ext, "clearcoatRoughnessFactor", 0.0f, where);
@@ -300,6 +302,14 @@ class MaterialReader {
     m.map_clearcoat = texture(texture_info(ext, "clearcoatTexture"), false, where + ".clearcoatTexture");
     m.map_clearcoat_roughness =
         texture(texture_info(ext, "clearcoatRoughnessTexture"), false, where + ".clearcoatRoughnessTexture");
+    const std::string normal_where = where + ".clearcoatNormalTexture";
+    m.map_clearcoat_normal = texture(texture_info(ext, "clearcoatNormalTexture"), false, normal_where);
+    if (!m.map_clearcoat_normal) return;
+    m.clearcoat_normal_strength = number(ext.Get("clearcoatNormalTexture"), "scale", 1.0f, normal_where);
+    if (m.map_normal && m.map_normal.texcoord != m.map_clearcoat_normal.texcoord)
+      warnings_.add(normal_where, fmt::format("on TEXCOORD_{}, the normal map on TEXCOORD_{}: insitu bends it along "
+                                              "the normal map's tangents",
+                                              m.map_clearcoat_normal.texcoord, m.map_normal.texcoord));
   }
 
   // A texture; its alpha channel is kept for colour textures (the base colour's opacity) and where
@@ -339,9 +349,6 @@ class MaterialReader {
     std::vector<std::string> what;
     for (const auto& [ext, value] : g.extensions)
       if (!kRead.count(ext)) what.push_back(ext);
-    if (auto it = g.extensions.find("KHR_materials_clearcoat");
-        it != g.extensions.end() && it->second.Has("clearcoatNormalTexture"))
-      what.push_back("KHR_materials_clearcoat.clearcoatNormalTexture");
     if (auto it = g.extensions.find("KHR_materials_specular"); it != g.extensions.end())
       for (const char* key : {"specularTexture", "specularColorTexture"})
         if (it->second.Has(key)) what.push_back(std::string("KHR_materials_specular.") + key);

@@ -384,13 +384,13 @@ class MeshBuilder {
     }
   }
 
-  // The tangents of the normal maps' UV sets (render/tangents.h), where some material has a normal
-  // map: the file's TANGENT where a triangle's three vertices have it, MikkTSpace's elsewhere.
+  // The tangents of the normal maps' UV sets (render/tangents.h, Material::tangent_map), where some
+  // material has a normal map: the file's TANGENT where a triangle's three vertices have it, MikkTSpace's elsewhere.
   void tangents() {
     std::array<std::vector<Vec4f>, 2> generated;
     for (std::size_t f = 0; f < out_.triangles.size(); ++f) {
       const Triangle& tri = out_.triangles[f];
-      const Texture& map = out_.materials[std::size_t(tri.material)].map_normal;
+      const Texture& map = out_.materials[std::size_t(tri.material)].tangent_map();
       if (!map) continue;
       if (out_.tangents.empty()) out_.tangents.assign(3 * out_.triangles.size(), Vec4f(1, 0, 0, 1));
       const bool in_file =

@@ -285,7 +285,8 @@ Mesh load_obj(const std::string& path, Warnings& warnings) {
 
   add_triangles(reader.GetShapes(), scan, default_material, path, mesh, warnings);
   if (mesh.triangles.empty()) throw InputError(path, "no triangles (the mesh has no usable faces)");
-  if (std::any_of(mesh.materials.begin(), mesh.materials.end(), [](const Material& m) { return bool(m.map_normal); }))
+  if (std::any_of(mesh.materials.begin(), mesh.materials.end(),
+                  [](const Material& m) { return bool(m.tangent_map()); }))
     mesh.tangents = mikktspace_tangents(mesh, 0);
   return mesh;
 }

@@ -54,6 +54,12 @@ struct Material {
   // Normal Map strength: glTF's normalTexture.scale, as Blender imports it.
   Texture map_normal;
   float normal_strength = 1.0f;
+  // The clear coat's own (KHR_materials_clearcoat's clearcoatNormalTexture, Blender's Clearcoat
+  // Normal); without it the coat keeps the smooth normal, however map_normal bends the rest.
+  Texture map_clearcoat_normal;
+  float clearcoat_normal_strength = 1.0f;
+  // The map whose UV set Mesh::tangents follow: the normal map's, else the coat's.
+  const Texture& tangent_map() const { return map_normal ? map_normal : map_clearcoat_normal; }
 
   // KHR_materials_specular as Blender 3.4's importer reads it: `specular` above from its colour's
   // luminance and the index, and the Principled BSDF's Specular Tint from its colour against the

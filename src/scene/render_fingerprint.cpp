@@ -40,6 +40,7 @@ void add_meshes(Fnv1a& h, const EmbreeScene* scene) {
       h.value(mat.alpha_mode), h.value(mat.alpha), h.value(mat.alpha_cutoff);
       h.value(mat.transmission), h.value(mat.ior), h.bytes(mat.absorption.data(), sizeof(Rgb));
       add_texture(h, mat.map_transmission), add_texture(h, mat.map_normal), h.value(mat.normal_strength);
+      add_texture(h, mat.map_clearcoat_normal), h.value(mat.clearcoat_normal_strength);
       h.value(mat.has_specular_colour), h.bytes(mat.specular_colour.data(), sizeof(Rgb));
     }
   }
