@@ -146,17 +146,40 @@ TEST(GltfLobes, SpecularIsReadAsBlenderReadsIt) {
   EXPECT_EQ(white.specular_tint(Rgb(0.5f, 0.2f, 0.08f)), 0.0f);  // a white colour asks for none
 }
 
-TEST(GltfLobes, SpecularTexturesAndBadFactorsAreNamed) {
+// The extension's textures scale its factors (Material::specular_at): the colour by
+// specularColorTexture's sRGB-decoded RGB, the strength by specularTexture's alpha. alpha.png's
+// texels are grey 128/255 (linear ((128/255 + 0.055)/1.055)^2.4) of alpha 0.2 and 0.8, so at
+// their centres Specular = 0.5 · a · lum(c · g) · F0(1.5)/0.08, F0(1.5)/0.08 = 0.5, and the
+// tint is the factor's alone (a grey texture changes no hue). The BSDF uses the same values.
+TEST(GltfLobes, SpecularTexturesScaleTheirFactors) {
   test::TempDir dir;
   const json images = {{"images", {{{"uri", write_alpha_png(dir)}}}}, {"textures", {{{"source", 0}}}}};
+  const json ext = {{"specularFactor", 0.5},
+                    {"specularColorFactor", {1, 0.7, 0.45}},
+                    {"specularTexture", {{"index", 0}}},
+                    {"specularColorTexture", {{"index", 0}}}};
+  const json material = {{"pbrMetallicRoughness",
+                          {{"baseColorFactor", {0.5, 0.2, 0.08, 1}}, {"metallicFactor", 0}, {"roughnessFactor", 0.4}}},
+                         {"extensions", {{"KHR_materials_specular", ext}}}};
   Warnings w;
-  load_mesh(
-      write_quad(dir, "t", {{"extensions", {{"KHR_materials_specular", {{"specularColorTexture", {{"index", 0}}}}}}}},
-                 images),
-      w);
-  ASSERT_EQ(w.items.size(), 1u);
-  EXPECT_NE(w.items[0].find("not rendered yet: KHR_materials_specular.specularColorTexture"), std::string::npos)
-      << w.items[0];
+  const Material m = load_mesh(write_quad(dir, "t", material, images), w).materials[0];
+  EXPECT_TRUE(w.items.empty()) << w.items[0];
+  const float grey = std::pow((128.0f / 255.0f + 0.055f) / 1.055f, 2.4f), lum = 0.765f * grey;
+  const UvSets left = {Vec2f(0.25f, 0.5f), Vec2f::Zero()}, right = {Vec2f(0.75f, 0.5f), Vec2f::Zero()};
+  EXPECT_NEAR(m.specular_at(left, 0.0f), 0.5f * 0.2f * lum * 0.5f, 1e-6f);
+  EXPECT_NEAR(m.specular_at(right, 0.0f), 0.5f * 0.8f * lum * 0.5f, 1e-6f);
+  EXPECT_NEAR(m.specular_tint(m.kd, m.specular_colour_at(left)), 0.35492f, 1e-4f);
+  // The BSDF at the right texel is the principled one of those parameters.
+  PrincipledParams p{m.kd, m.metallic, m.roughness, 0.5f * 0.8f * lum * 0.5f};
+  p.specular_tint = 0.35492f;
+  const Vec3f wo = Vec3f(0.3f, 0.1f, 1).normalized(), wi = Vec3f(-0.4f, 0.2f, 1).normalized();
+  const Rgb expected = Bsdf::principled(p).eval(wo, wi), got = Bsdf::from_material(m, right).eval(wo, wi);
+  EXPECT_LT((got - expected).abs().maxCoeff(), 1e-4f * expected.maxCoeff()) << got.transpose();
+}
+
+TEST(GltfLobes, BadSpecularFactorsAreNamed) {
+  test::TempDir dir;
+  Warnings w;
   try {
     load_mesh(
         write_quad(dir, "b", {{"extensions", {{"KHR_materials_specular", {{"specularColorFactor", {1, -1, 1}}}}}}}), w);

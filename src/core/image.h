@@ -104,8 +104,8 @@ enum class AlphaChannel { kDrop, kKeep };
 ImageFile read_image_memory(const std::string& name, const std::vector<unsigned char>& bytes,
                             PixelGrid grid = PixelGrid::kAsDisplayed, AlphaChannel alpha = AlphaChannel::kDrop);
 // A texture's image, read as stored (PixelGrid::kAsStored) and refused as above: an 8-bit file keeps
-// its bytes (ImageFile::stored_bytes and alpha_bytes), which decode in about a quarter of the time
-// and memory of floats; 16-bit and float files are read as floats.
+// its bytes (ImageFile::stored_bytes and alpha_bytes), which decode in about half the time and a
+// quarter of the memory of floats; 16-bit and float files are read as floats.
 ImageFile read_texture_file(const std::string& path, AlphaChannel alpha = AlphaChannel::kDrop);
 ImageFile read_texture_memory(const std::string& name, const std::vector<unsigned char>& bytes,
                               AlphaChannel alpha = AlphaChannel::kDrop);

@@ -103,18 +103,19 @@ Bsdf Bsdf::from_material(const Material& m, const UvSets& uv, bool inside) {
     // MTL's grey maps as Cycles converts a colour to a float: its luminance (Rec. 709).
     auto grey = [&](const Texture& t) { return t ? luminance(t.sample(uv)) : 1.0f; };
     const float metallic_map = grey(m.map_metallic), roughness_map = grey(m.map_roughness);
+    const float transmission = m.transmission * m.map_transmission.sample(uv)[0];
     PrincipledParams p{base,
                        m.metallic * mr[2] * metallic_map,
                        m.roughness * mr[1] * roughness_map,
-                       m.specular,
+                       m.specular_at(uv, transmission),
                        m.clearcoat * cc[0],
                        m.clearcoat_roughness * ccr[1],
                        m.sheen * m.map_sheen.sample(uv),
                        m.sheen_roughness * m.map_sheen_roughness.sample_alpha(uv),
-                       m.transmission * m.map_transmission.sample(uv)[0],
+                       transmission,
                        m.ior,
                        inside};
-    p.specular_tint = m.specular_tint(base);
+    p.specular_tint = m.specular_tint(base, m.specular_colour_at(uv));
     return principled(p);
   }
   // Walter et al. 2007: α = √(2/(Ns + 2)).

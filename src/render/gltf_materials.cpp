@@ -203,31 +203,27 @@ class MaterialReader {
     }
   }
 
-  // KHR_materials_specular as Blender 3.4's importer reads it (its constant path, after the glass:
-  // it needs the transmission and the index):
-  //   Specular = (lum(specularColorFactor) − t)/(1 − t) · F0(ior)/0.08,  F0 = ((ior − 1)/(ior + 1))²,
-  // lum = 0.3 R + 0.6 G + 0.1 B, t the transmission factor (left out where t = 1, where Blender
-  // divides by 0), at least 0; and the Specular Tint from the colour (Material::specular_tint).
-  // specularFactor scales Specular, as glTF defines it; Blender 3.4's importer drops it. The
-  // textures are named by unrendered().
-  static void read_specular(const tinygltf::Value& ext, Material& m, const std::string& where) {
-    const float factor = number(ext, "specularFactor", 1.0f, where);
-    if (!(factor >= 0)) throw InputError(where + ".specularFactor", "must be ≥ 0");
-    Rgb colour = Rgb::Ones();
+  // KHR_materials_specular (Material::specular_at, after the glass: it needs the transmission and
+  // the index): its factor, colour and their textures, the colour's without its alpha (the alpha
+  // is specularTexture's strength, which may share the image).
+  void read_specular(const tinygltf::Value& ext, Material& m, const std::string& where) {
+    m.specular_factor = number(ext, "specularFactor", 1.0f, where);
+    if (!(m.specular_factor >= 0 && std::isfinite(m.specular_factor)))
+      throw InputError(where + ".specularFactor", "must be a finite number ≥ 0");
     if (ext.Has("specularColorFactor")) {
       const tinygltf::Value& c = ext.Get("specularColorFactor");
       for (int k = 0; k < 3; ++k) {
         const double x = c.IsArray() && c.ArrayLen() == 3 && c.Get(k).IsNumber() ? c.Get(k).GetNumberAsDouble() : -1;
         if (!(x >= 0 && std::isfinite(x)))
           throw InputError(where + ".specularColorFactor", "must be 3 finite numbers ≥ 0");
-        colour[k] = float(x);
+        m.specular_colour[k] = float(x);
       }
     }
-    const float lum = 0.3f * colour[0] + 0.6f * colour[1] + 0.1f * colour[2], t = m.transmission;
-    const float f0 = std::pow((m.ior - 1) / (m.ior + 1), 2.0f);
-    m.specular = std::max(0.0f, factor * (t < 1 ? (lum - t) / (1 - t) : lum) * f0 / 0.08f);
-    m.specular_colour = colour;
     m.has_specular_colour = true;
+    m.specular = m.specular_at(UvSets{}, m.transmission);  // without the textures, read next
+    m.map_specular = texture(texture_info(ext, "specularTexture"), false, where + ".specularTexture", true);
+    m.map_specular_colour = texture(texture_info(ext, "specularColorTexture"), true, where + ".specularColorTexture");
+    m.map_specular_colour.alpha = nullptr;
   }
 
   // Three numbers within [0, 1].
@@ -349,9 +345,6 @@ class MaterialReader {
     std::vector<std::string> what;
     for (const auto& [ext, value] : g.extensions)
       if (!kRead.count(ext)) what.push_back(ext);
-    if (auto it = g.extensions.find("KHR_materials_specular"); it != g.extensions.end())
-      for (const char* key : {"specularTexture", "specularColorTexture"})
-        if (it->second.Has(key)) what.push_back(std::string("KHR_materials_specular.") + key);
     if (what.empty()) return;
     std::string list;
     for (const std::string& w : what) list += (list.empty() ? "" : ", ") + w;

@@ -33,13 +33,13 @@ float Material::opacity(const UvSets& uv) const {
 // where the base is grey (ĉ_b = 1). A channel's 0/0 counts 0 and x/0 ±∞, as numpy's nan_to_num
 // in the importer's per-texel path. Blender bakes that path into a texture; this is the same
 // formula at the shading point.
-float Material::specular_tint(const Rgb& base) const {
+float Material::specular_tint(const Rgb& base, const Rgb& colour) const {
   if (!has_specular_colour) return 0.0f;
   auto hue = [](const Rgb& c) {
     const float lum = 0.3f * c[0] + 0.6f * c[1] + 0.1f * c[2];
     return lum > 0 ? Rgb(c / lum) : c;
   };
-  const Rgb s = hue(specular_colour) - 1.0f, b = hue(base) - 1.0f;
+  const Rgb s = hue(colour) - 1.0f, b = hue(base) - 1.0f;
   if ((b == 0.0f).all()) return 1.0f;
   const float kBig = 1e30f, weight[3] = {0.3f, 0.6f, 0.1f};
   double tint = 0;
@@ -48,6 +48,22 @@ float Material::specular_tint(const Rgb& base) const {
     tint += double(weight[k]) * double(r);
   }
   return float(std::clamp(tint, 0.0, 1.0));
+}
+
+// KHR_materials_specular as Blender 3.4's importer converts it, per point as its texture path
+// does per texel:
+//   Specular = f · a · (lum(c) − t)/(1 − t) · F0(ior)/0.08,  F0 = ((ior − 1)/(ior + 1))²,
+// c = specularColorFactor × specularColorTexture, t the transmission there (left out where t = 1,
+// where Blender divides by 0), at least 0. f · a, specularFactor × specularTexture's alpha, is
+// glTF's and not Blender's: its importer drops both. Blender also reads the colour texture's
+// stored sRGB values in its bake; glTF's colour is linear, and so it is here (docs/scene-file.md).
+float Material::specular_at(const UvSets& uv, float t) const {
+  if (!has_specular_colour) return specular;
+  const Rgb c = specular_colour_at(uv);
+  const float lum = 0.3f * c[0] + 0.6f * c[1] + 0.1f * c[2];
+  const float f0 = std::pow((ior - 1) / (ior + 1), 2.0f);
+  const float strength = specular_factor * map_specular.sample_alpha(uv);  // 1 without the texture
+  return std::max(0.0f, strength * (t < 1 ? (lum - t) / (1 - t) : lum) * f0 / 0.08f);
 }
 
 namespace fs = std::filesystem;

@@ -61,11 +61,15 @@ struct Material {
   // The map whose UV set Mesh::tangents follow: the normal map's, else the coat's.
   const Texture& tangent_map() const { return map_normal ? map_normal : map_clearcoat_normal; }
 
-  // KHR_materials_specular as Blender 3.4's importer reads it: `specular` above from its colour's
-  // luminance and the index, and the Principled BSDF's Specular Tint from its colour against the
-  // base colour at each point (specular_tint). Without the extension, no tint.
+  // KHR_materials_specular as Blender 3.4's importer reads it: the Principled BSDF's Specular from
+  // its colour's luminance, the transmission and the index at each point (specular_at), and its
+  // Specular Tint from its colour against the base colour (specular_tint). Without the extension,
+  // `specular` above and no tint.
   bool has_specular_colour = false;
   Rgb specular_colour = Rgb::Ones();  // specularColorFactor
+  float specular_factor = 1.0f;       // specularFactor
+  Texture map_specular_colour;        // specularColorTexture: sRGB, multiplies specular_colour
+  Texture map_specular;               // specularTexture: its alpha multiplies specular_factor
 
   Rgb emission = Rgb::Zero();  // emitted radiance, in the environment's units (Cycles's strength 1)
   Texture map_emission;        // multiplies emission
@@ -80,8 +84,13 @@ struct Material {
   Rgb emitted(const UvSets& uv) const { return emission * map_emission.sample(uv); }
   // The probability that a ray meets the surface here: 1 or 0 for opaque and mask, alpha for blend.
   float opacity(const UvSets& uv) const;
-  // The Specular Tint in [0, 1] over a base colour (0 without KHR_materials_specular).
-  float specular_tint(const Rgb& base) const;
+  // The Specular Tint in [0, 1] of a specular colour over a base colour (0 without
+  // KHR_materials_specular); the one-argument form for specular_colour.
+  float specular_tint(const Rgb& base, const Rgb& colour) const;
+  float specular_tint(const Rgb& base) const { return specular_tint(base, specular_colour); }
+  Rgb specular_colour_at(const UvSets& uv) const { return specular_colour * map_specular_colour.sample(uv); }
+  // The principled Specular at a point of transmission t (render/mesh.cpp).
+  float specular_at(const UvSets& uv, float t) const;
   bool cutout() const { return alpha_mode != AlphaMode::kOpaque; }
 };
 

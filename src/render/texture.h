@@ -28,7 +28,7 @@
 namespace insitu {
 
 // A texture's texels: an 8-bit file's bytes as stored (k/255: a quarter of the memory of floats,
-// and decoded in about a quarter of the time), or floats (16-bit and float files, and textures given
+// and decoded in about half the time: BM_DecodeTexture), or floats (16-bit and float files, and textures given
 // as arrays). Exactly one of the two holds them.
 struct Texels {
   ByteImage bytes;

@@ -42,6 +42,7 @@ void add_meshes(Fnv1a& h, const EmbreeScene* scene) {
       add_texture(h, mat.map_transmission), add_texture(h, mat.map_normal), h.value(mat.normal_strength);
       add_texture(h, mat.map_clearcoat_normal), h.value(mat.clearcoat_normal_strength);
       h.value(mat.has_specular_colour), h.bytes(mat.specular_colour.data(), sizeof(Rgb));
+      h.value(mat.specular_factor), add_texture(h, mat.map_specular), add_texture(h, mat.map_specular_colour);
     }
   }
 }
