@@ -20,7 +20,7 @@ import make  # noqa: E402  (the UV sphere)
 TRANSMISSION = "KHR_materials_transmission"
 
 
-def write_gltf(name, pos, nor, idx, material):
+def write_gltf(name, pos, nor, idx, material, out_dir=HERE):
     n = len(pos) // 3
     blob = struct.pack("<%df" % len(pos), *pos) + struct.pack("<%df" % len(nor), *nor)
     blob += struct.pack("<%dI" % len(idx), *idx)
@@ -36,7 +36,7 @@ def write_gltf(name, pos, nor, idx, material):
                            {"buffer": 0, "byteOffset": 24 * n, "byteLength": 4 * len(idx)}],
            "buffers": [{"byteLength": len(blob),
                         "uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode()}]}
-    with open(os.path.join(HERE, name + ".gltf"), "w") as f:
+    with open(os.path.join(out_dir, name + ".gltf"), "w") as f:
         json.dump(doc, f)
 
 
