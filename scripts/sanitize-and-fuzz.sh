@@ -102,7 +102,11 @@ fuzz_one() {
        -print_final_stats=1 -artifact_prefix="$build/$target-" >"$log" 2>&1; then
     echo "fuzz: $target: $(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | awk '{print $2}') executions, no crash" > "$results/$target"
   else
-    { echo "fuzz: $target FOUND A CRASH (artifact in $build/$target-*):"; tail -n 40 "$log"; } > "$results/$target"
+    # The report's first line, its stack and summary, then libFuzzer's lines naming the input (its
+    # shadow-byte map would push the stack out of a plain tail).
+    { echo "fuzz: $target FOUND A CRASH (artifact in $build/$target-*):"
+      grep -E '^==[0-9]+==ERROR|^ +#[0-9]+ |^SUMMARY' "$log" | head -n 40
+      grep -E '^(MS:|artifact_prefix|Test unit written)' "$log"; } > "$results/$target"
     found=1
   fi
   rm -rf "$corpus" "$log"

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <fmt/format.h>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -190,6 +191,31 @@ TEST(Gltf, RefusalsNameTheJsonPath) {
   GltfTriangle texcoord;
   texcoord.doc["accessors"][2]["type"] = "VEC3";
   EXPECT_NE(error_of(texcoord).find("$.accessors[2] (TEXCOORD_0): expected 2 components"), std::string::npos);
+}
+
+// A GLB whose BIN chunk declares 8 bytes more than follow its header, the buffer as long as the
+// declared chunk: tinygltf 2.7 alone copies 8 bytes from past the end of the file (fuzz_gltf).
+TEST(Gltf, AGlbBinChunkLongerThanTheFileIsRefused) {
+  test::TempDir dir;
+  Warnings w;
+  GltfTriangle g;
+  g.doc["buffers"][0]["byteLength"] = g.bin.size() + 8;
+  std::string bytes = test::glb(g.doc, g.bin);
+  const std::size_t bin_at = bytes.size() - g.bin.size() - 8;
+  const auto declared = std::uint32_t(g.bin.size() + 8);
+  std::memcpy(bytes.data() + bin_at, &declared, 4);
+  std::ofstream(dir.file("long.glb"), std::ios::binary) << bytes;
+  try {
+    load_mesh(dir.file("long.glb"), w);
+    ADD_FAILURE() << "a BIN chunk running past the end of the file was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(
+        std::string(e.what()).find(fmt::format("long.glb: byte {}: the BIN chunk declares {} bytes, but {} follow",
+                                               bin_at, g.bin.size() + 8, g.bin.size())),
+        std::string::npos)
+        << e.what();
+  }
+  expect_placed(load_mesh(GltfTriangle().write_glb(dir, "whole"), w));  // the chunk whole
 }
 
 // glTF 2.0 §3.6.2.3: a sparse accessor's values replace its elements at its indices; without a

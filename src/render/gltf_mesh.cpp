@@ -48,6 +48,26 @@ std::string file_bytes(const std::string& path) {
   return bytes;
 }
 
+// GLB (glTF 2.0 §4.4): a 12-byte header, the JSON chunk, then an optional BIN chunk of (length,
+// type, bytes). tinygltf 2.7 bounds the BIN chunk's length by the file less its header and JSON
+// chunk, forgetting the BIN chunk's own 8-byte header, and so copies up to 8 bytes past the end of
+// the file (fuzz_gltf found it). The chunk must lie within both the file and its declared length.
+void check_glb_bin_chunk(const std::string& bytes, const std::string& path) {
+  auto u32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    if (at + 4 <= bytes.size()) std::memcpy(&v, bytes.data() + at, 4);
+    return std::uint64_t(v);
+  };
+  const std::uint64_t declared = std::min<std::uint64_t>(u32(8), bytes.size());
+  const std::uint64_t bin_at = 20 + u32(12);
+  if (bin_at + 8 > declared) return;  // no BIN chunk, or one tinygltf refuses itself
+  const std::uint64_t bin_length = u32(bin_at);
+  if (bin_at + 8 + bin_length > declared)
+    throw InputError(
+        fmt::format("{}: byte {}", path, bin_at),
+        fmt::format("the BIN chunk declares {} bytes, but {} follow its header", bin_length, declared - bin_at - 8));
+}
+
 tinygltf::Model parse(const std::string& path, Warnings& warnings) {
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(keep_encoded, nullptr);
@@ -56,7 +76,10 @@ tinygltf::Model parse(const std::string& path, Warnings& warnings) {
   std::string ext = fs::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   const bool binary = ext == ".glb";
-  const std::string bytes = gltf_prepared_for_tinygltf(file_bytes(path), binary);
+  std::string bytes = file_bytes(path);
+  if (binary) check_glb_bin_chunk(bytes, path);
+  bytes = gltf_prepared_for_tinygltf(std::move(bytes), binary);
+  if (binary) check_glb_bin_chunk(bytes, path);  // its JSON chunk rewritten, the BIN chunk moves
   const std::string dir = fs::path(path).parent_path().string();
   const bool ok =
       binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
