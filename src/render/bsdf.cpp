@@ -63,7 +63,7 @@ Bsdf Bsdf::principled(const PrincipledParams& p) {
   // Cycles (svm/closure.h): F0 = 0.08 s · (1 − st + st · base / lum(base)) (1 − m) + base · m,
   // lum = 0.3 R + 0.6 G + 0.1 B (the hue of the base, 1 for black), each channel within [0, 1].
   const float st = std::clamp(p.specular_tint, 0.0f, 1.0f);
-  const float lum = 0.3f * base[0] + 0.6f * base[1] + 0.1f * base[2];
+  const float lum = cycles_tint_luminance(base);
   const Rgb tint = Rgb::Constant(1 - st) + (lum > 0 ? Rgb(base / lum) : Rgb::Ones()) * st;
   b.f0_ = (0.08f * s * tint * (1 - m) + base * m).min(1.0f);
   b.roughness_ = r;

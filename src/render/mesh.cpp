@@ -36,18 +36,15 @@ float Material::opacity(const UvSets& uv) const {
 float Material::specular_tint(const Rgb& base, const Rgb& colour) const {
   if (!has_specular_colour) return 0.0f;
   auto hue = [](const Rgb& c) {
-    const float lum = 0.3f * c[0] + 0.6f * c[1] + 0.1f * c[2];
+    const float lum = cycles_tint_luminance(c);
     return lum > 0 ? Rgb(c / lum) : c;
   };
   const Rgb s = hue(colour) - 1.0f, b = hue(base) - 1.0f;
   if ((b == 0.0f).all()) return 1.0f;
-  const float kBig = 1e30f, weight[3] = {0.3f, 0.6f, 0.1f};
-  double tint = 0;
-  for (int k = 0; k < 3; ++k) {
-    const float r = b[k] != 0 ? s[k] / b[k] : (s[k] == 0 ? 0.0f : std::copysign(kBig, s[k]));
-    tint += double(weight[k]) * double(r);
-  }
-  return float(std::clamp(tint, 0.0, 1.0));
+  const float kBig = 1e30f;  // ±∞ that stays finite through the weighted sum
+  Rgb ratio;
+  for (int k = 0; k < 3; ++k) ratio[k] = b[k] != 0 ? s[k] / b[k] : (s[k] == 0 ? 0.0f : std::copysign(kBig, s[k]));
+  return std::clamp(cycles_tint_luminance(ratio), 0.0f, 1.0f);
 }
 
 // KHR_materials_specular as Blender 3.4's importer converts it, per point as its texture path
@@ -56,12 +53,11 @@ float Material::specular_tint(const Rgb& base, const Rgb& colour) const {
 // c = specularColorFactor × specularColorTexture, t the transmission there (left out where t = 1,
 // where Blender divides by 0), at least 0. f · a, specularFactor × specularTexture's alpha, is
 // glTF's and not Blender's: its importer drops both. Blender also reads the colour texture's
-// stored sRGB values in its bake; glTF's colour is linear, and so it is here (docs/scene-file.md).
+// stored sRGB values in its bake; glTF's colour is linear, and so it is here (docs/materials.md).
 float Material::specular_at(const UvSets& uv, float t) const {
   if (!has_specular_colour) return specular;
-  const Rgb c = specular_colour_at(uv);
-  const float lum = 0.3f * c[0] + 0.6f * c[1] + 0.1f * c[2];
-  const float f0 = std::pow((ior - 1) / (ior + 1), 2.0f);
+  const float lum = cycles_tint_luminance(specular_colour_at(uv));
+  const float r = (ior - 1) / (ior + 1), f0 = r * r;
   const float strength = specular_factor * map_specular.sample_alpha(uv);  // 1 without the texture
   return std::max(0.0f, strength * (t < 1 ? (lum - t) / (1 - t) : lum) * f0 / 0.08f);
 }

@@ -20,6 +20,11 @@
 
 namespace insitu {
 
+// Cycles's approximate luminance, 0.3 R + 0.6 G + 0.1 B, by which its Principled BSDF tints the
+// specular layer (kernel/svm/closure.h) and Blender's glTF importer converts
+// KHR_materials_specular; not Rec.709's luminance (core/math.h), which Cycles's sheen uses.
+inline float cycles_tint_luminance(const Rgb& c) { return 0.3f * c[0] + 0.6f * c[1] + 0.1f * c[2]; }
+
 // A surface's material. OBJ's MTL gives the first block (the `obj` model of render/bsdf.h), or
 // with the PBR extension's statements the principled model (render/obj_materials.h); glTF always
 // gives the principled model (Cycles 3.4's Principled BSDF, render/bsdf.h),
