@@ -28,7 +28,7 @@ TEST(Mesh, GoodQuadWithMaterial) {
   EXPECT_TRUE(red.kd.isApprox(Rgb(0.8f, 0.1f, 0.05f)));
   EXPECT_TRUE(red.ks.isApprox(Rgb(0.04f, 0.04f, 0.04f)));
   EXPECT_FLOAT_EQ(red.ns, 50.0f);
-  EXPECT_FLOAT_EQ(red.d, 1.0f);
+  EXPECT_FALSE(red.cutout());  // no `d`: opaque
   for (const Triangle& t : m.triangles)
     for (int c = 0; c < 3; ++c) {
       EXPECT_GE(t.n[c], 0);

@@ -5,11 +5,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
 
 #include "core/colour.h"
 #include "core/image.h"
+#include "core/sampler.h"
 #include "interop/blender_meshes.h"
 #include "obj_sphere.h"
+#include "render/embree_scene.h"
 #include "render/mesh.h"
 #include "test_util.h"
 
@@ -174,6 +179,62 @@ TEST(ObjMaterials, DependenciesListEveryMap) {
   for (const std::string& f : obj_dependencies(obj)) names.push_back(std::filesystem::path(f).filename().string());
   for (const char* f : {"ball.mtl", "r.png", "m.png", "n.png", "e.png"})
     EXPECT_NE(std::find(names.begin(), names.end(), f), names.end()) << f;
+}
+
+// `d` and `map_d` as Blender 3.4's importer links them to the Principled BSDF's Alpha: a
+// stochastic opacity of d × map_d's alpha channel, or × its grey (as data) where it has none, in
+// either model; `Tr` ignored, as Blender does. A quad of opacity a is met by a fraction a of the
+// rays straight through it (binomial, 4σ).
+TEST(ObjMaterials, DAndMapDAreAStochasticOpacity) {
+  TempDir dir;
+  Image rgba(4, 4, 4, 1.0f);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) rgba.at(x, y)[3] = 64.0f / 255;
+  write_image(dir.file("cut.png"), rgba);
+  write_flat_mtl_png(dir.file("grey.png"), Rgb::Constant(128.0f / 255));
+  const UvSets uv{Vec2f(0.3f, 0.6f), Vec2f::Zero()};
+  Warnings w;
+  const Material d = mtl_first(mtl_sphere(dir, "Kd 1 1 1\nd 0.25\n", w));
+  EXPECT_FALSE(d.principled);
+  EXPECT_EQ(d.alpha_mode, Material::AlphaMode::kBlend);
+  EXPECT_FLOAT_EQ(d.opacity(uv), 0.25f);
+  EXPECT_FALSE(mtl_warned(w, "fully transparent"));
+  mtl_sphere(dir, "d 0\n", w);
+  EXPECT_TRUE(mtl_warned(w, "material 'm': d 0: the surface is fully transparent"));
+  for (const char* opaque : {"d 1\n", "Tr 0.75\n", "Kd 1 1 1\n"})
+    EXPECT_FALSE(mtl_first(mtl_sphere(dir, opaque, w)).cutout()) << opaque;
+  const Material alpha = mtl_first(mtl_sphere(dir, "Pr 0.5\nd 0.5\nmap_d cut.png\n", w));
+  EXPECT_TRUE(alpha.principled);
+  EXPECT_NEAR(alpha.opacity(uv), 0.5f * 64 / 255, 1e-6f);
+  const Material grey = mtl_first(mtl_sphere(dir, "map_d grey.png\n", w));
+  EXPECT_NEAR(grey.opacity(uv), 128.0f / 255, 1e-6f);  // as stored: data, not sRGB-decoded
+  std::vector<std::string> names;
+  for (const std::string& f : obj_dependencies(dir.file("ball.obj")))
+    names.push_back(std::filesystem::path(f).filename().string());
+  EXPECT_NE(std::find(names.begin(), names.end(), "grey.png"), names.end());
+  EXPECT_THROW(mtl_sphere(dir, "map_d missing.png\n", w), InputError);
+  std::string bytes;  // the export's opacity (blender_prelude.py's opaque_by)
+  const std::string line =
+      blender_mesh(mtl_sphere(dir, "Pr 0.5\nd 0.5\nmap_d cut.png\n", w), "ball", std::nullopt, bytes);
+  EXPECT_NE(line.find("\"opacity\": 0.5, \"opacity_texture\": \""), std::string::npos) << line;
+  EXPECT_NE(line.find("cut.png\", \"opacity_channel\": \"Alpha\""), std::string::npos) << line;
+
+  // Rays straight down through a unit quad at z = 0 (the OBJ's own, not a sphere: one crossing).
+  const int n = 20000;
+  for (float a : {0.0f, 0.3f, 0.75f}) {
+    std::ofstream(dir.file("quad.mtl")) << fmt::format("newmtl m\nKd 1 1 1\nd {}\n", a);
+    std::ofstream(dir.file("quad.obj")) << "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl m\nf 1 2 3 4\n";
+    std::vector<Mesh> meshes;
+    meshes.push_back(load_obj(dir.file("quad.obj"), w));
+    const EmbreeScene scene(std::move(meshes));
+    double hit = 0;
+    for (int k = 0; k < n; ++k) {
+      Sampler s(3, std::uint64_t(k), 0);
+      const Ray ray{Vec3f(0.05f + 0.9f * s.next(), 0.05f + 0.9f * s.next(), 1.0f), Vec3f(0, 0, -1)};
+      hit += scene.intersect(ray, 0.0f, 2.0f).valid();
+    }
+    EXPECT_NEAR(hit / n, a, 4 * std::sqrt(a * (1 - a) / n) + 1e-9) << a;
+  }
 }
 
 // The export carries the principled values and maps to blender_prelude.py's principled_material.

@@ -43,10 +43,14 @@ std::string py_path(const Texture& t) {
   return py_string(t.path.empty() ? "" : std::filesystem::absolute(t.path).lexically_normal().string());
 }
 
-// What either MTL model adds (blender_prelude.py's surface_extras): emission and a normal map.
+// What either MTL model adds (blender_prelude.py's surface_extras): emission, a normal map, and
+// the opacity of `d` and `map_d` (its alpha channel, or its grey where it has none).
 std::string extras_entries(const Material& m) {
-  return fmt::format("\"emission\": {}, \"emission_texture\": {}, \"normal_texture\": {}, \"normal_strength\": {:.9g}",
-                     py_rgb(m.emission), py_path(m.map_emission), py_path(m.map_normal), m.normal_strength);
+  return fmt::format(
+      "\"emission\": {}, \"emission_texture\": {}, \"normal_texture\": {}, \"normal_strength\": {:.9g}, "
+      "\"opacity\": {:.9g}, \"opacity_texture\": {}, \"opacity_channel\": {}",
+      py_rgb(m.emission), py_path(m.map_emission), py_path(m.map_normal), m.normal_strength,
+      m.cutout() ? m.alpha : 1.0f, py_path(m.map_opacity), py_string(m.map_opacity.alpha ? "Alpha" : "Color"));
 }
 
 // An OBJ's material in Blender: the obj model's surface_material, or the principled model's

@@ -164,7 +164,8 @@ def principled_material(name, p):
 def surface_extras(nt, out, shader, normal_inputs, extras):
     """The shader to the output, with what an MTL adds to either model: a tangent-space normal map
     (extras["normal_texture"], data, of Normal Map strength extras["normal_strength"]) for the
-    normal_inputs, and an emission of colour extras["emission"] x extras["emission_texture"]."""
+    normal_inputs, an emission of colour extras["emission"] x extras["emission_texture"], and the
+    opacity of opaque_by."""
     extras = extras or {}
     if extras.get("normal_texture"):
         nmap = nt.nodes.new("ShaderNodeNormalMap")
@@ -183,7 +184,29 @@ def surface_extras(nt, out, shader, normal_inputs, extras):
         nt.links.new(shader, add.inputs[0])
         nt.links.new(emit.outputs["Emission"], add.inputs[1])
         shader = add.outputs["Shader"]
-    nt.links.new(shader, out.inputs["Surface"])
+    nt.links.new(opaque_by(nt, shader, extras), out.inputs["Surface"])
+
+
+def opaque_by(nt, shader, extras):
+    """The shader where the surface is there, a Transparent BSDF elsewhere, by the opacity
+    extras["opacity"] (MTL's d) x the image extras["opacity_texture"] (map_d, data) through its
+    extras["opacity_channel"] output: "Alpha", or "Color" (its grey, Cycles's colour-to-float
+    conversion). This is how Cycles renders the Principled BSDF's Alpha."""
+    opacity, texture = extras.get("opacity", 1.0), extras.get("opacity_texture", "")
+    if opacity >= 1.0 and not texture:
+        return shader
+    mix = nt.nodes.new("ShaderNodeMixShader")
+    if texture:
+        times = nt.nodes.new("ShaderNodeMath")
+        times.operation = "MULTIPLY"
+        times.inputs[0].default_value = opacity
+        nt.links.new(data_image(nt, texture).outputs[extras.get("opacity_channel", "Color")], times.inputs[1])
+        nt.links.new(times.outputs["Value"], mix.inputs["Fac"])
+    else:
+        mix.inputs["Fac"].default_value = opacity
+    nt.links.new(nt.nodes.new("ShaderNodeBsdfTransparent").outputs["BSDF"], mix.inputs[1])
+    nt.links.new(shader, mix.inputs[2])
+    return mix.outputs["Shader"]
 
 
 def data_image(nt, path):

@@ -22,7 +22,8 @@ namespace insitu {
 
 float Material::opacity(const UvSets& uv) const {
   if (alpha_mode == AlphaMode::kOpaque) return 1.0f;
-  const float a = alpha * map_kd.sample_alpha(uv);
+  float a = alpha * map_kd.sample_alpha(uv);
+  if (map_opacity) a *= map_opacity.alpha ? map_opacity.sample_alpha(uv) : luminance(map_opacity.sample(uv));
   if (alpha_mode == AlphaMode::kMask) return a >= alpha_cutoff ? 1.0f : 0.0f;
   return std::clamp(a, 0.0f, 1.0f);
 }

@@ -35,7 +35,6 @@ struct Material {
   Rgb kd = Rgb(0.8f, 0.8f, 0.8f);  // diffuse reflectance, the base colour (linear)
   Rgb ks = Rgb::Zero();            // specular reflectance, kept for the glossy lobe
   float ns = 0.0f;                 // Phong exponent
-  float d = 1.0f;                  // dissolve (opacity)
   Texture map_kd;                  // multiplies kd
 
   bool principled = false;  // the principled model, with the parameters below
@@ -84,6 +83,10 @@ struct Material {
   enum class AlphaMode { kOpaque, kMask, kBlend };
   AlphaMode alpha_mode = AlphaMode::kOpaque;
   float alpha = 1.0f, alpha_cutoff = 0.5f;  // alpha: the base colour's, times map_kd's alpha channel
+  // MTL's opacity, as Blender 3.4's OBJ importer links `map_d` to the Principled BSDF's Alpha:
+  // alpha (`d`) times its alpha channel, or its grey (luminance, as data) where it has none.
+  // (An MTL's map_Kd keeps no alpha channel: the importer leaves it out.)
+  Texture map_opacity;
 
   Rgb base_colour(const UvSets& uv) const { return kd * map_kd.sample(uv); }
   Rgb emitted(const UvSets& uv) const { return emission * map_emission.sample(uv); }

@@ -93,6 +93,29 @@ void read_emission(const tinyobj::material_t& m, const std::set<std::string>& st
   if (!has(statements, "Ke")) out.emission = Rgb::Ones();
 }
 
+// `d` and `map_d`: a stochastic opacity (Material::opacity) wherever either makes the surface
+// less than opaque, as Cycles renders the Principled BSDF's Alpha that Blender's importer links
+// them to. map_d keeps its alpha channel (the importer links the image's Alpha); without one its
+// grey is the opacity. `Tr`, which exporters write as 1 − d or as d, is ignored, as Blender does
+// (tinyobjloader reads it as 1 − d where `d` is absent). scan_mtl has checked d within [0, 1].
+void read_opacity(const tinyobj::material_t& m, const std::set<std::string>& statements, Material& out,
+                  const fs::path& base_dir, const std::string& where, Warnings& warnings) {
+  out.alpha = has(statements, "d") ? float(m.dissolve) : 1.0f;
+  if (out.alpha == 0) warnings.add(where, "d 0: the surface is fully transparent, and not seen");
+  if (!m.alpha_texname.empty()) {
+    const std::string file = beside_obj(base_dir, m.alpha_texname);
+    try {
+      ImageFile image = read_texture_file(file, AlphaChannel::kKeep);
+      out.map_opacity.alpha = alpha_texels_of(image);
+      set_data_image(out.map_opacity, std::move(image));
+      out.map_opacity.path = file;
+    } catch (const InputError& e) {
+      throw e.with_context(where + ": map_d");
+    }
+  }
+  if (out.alpha < 1 || out.map_opacity) out.alpha_mode = Material::AlphaMode::kBlend;
+}
+
 // The principled parameters (the header's table).
 void read_principled(const tinyobj::material_t& m, const std::set<std::string>& statements, Material& out,
                      const fs::path& base_dir, const std::string& where, Warnings& warnings) {
@@ -148,7 +171,7 @@ std::string beside_obj(const fs::path& base_dir, const std::string& name) { retu
 std::vector<std::string> material_files(const tinyobj::material_t& m, const fs::path& base_dir) {
   std::vector<std::string> files;
   for (const std::string* name : {&m.diffuse_texname, &m.emissive_texname, &m.normal_texname, &m.bump_texname,
-                                  &m.roughness_texname, &m.metallic_texname})
+                                  &m.roughness_texname, &m.metallic_texname, &m.alpha_texname})
     if (!name->empty()) files.push_back(beside_obj(base_dir, *name));
   return files;
 }
@@ -160,10 +183,10 @@ Material convert_material(const tinyobj::material_t& m, const std::set<std::stri
   out.kd = Rgb(float(m.diffuse[0]), float(m.diffuse[1]), float(m.diffuse[2]));
   out.ks = Rgb(float(m.specular[0]), float(m.specular[1]), float(m.specular[2]));
   out.ns = float(m.shininess);
-  out.d = float(m.dissolve);
   const std::string where = fmt::format("{}: material '{}'", obj_path, m.name);
   if (!out.kd.allFinite() || (out.kd < 0).any()) throw InputError(where, "Kd must be finite and non-negative");
   if (!m.diffuse_texname.empty()) out.map_kd = read_texture(m.diffuse_texname, true, base_dir, where, "map_Kd");
+  read_opacity(m, statements, out, base_dir, where, warnings);
   read_emission(m, statements, out, base_dir, where);
   read_normal_map(m, out, base_dir, where, warnings);
   if (principled_statements(statements)) read_principled(m, statements, out, base_dir, where, warnings);

@@ -38,6 +38,7 @@ void add_meshes(Fnv1a& h, const EmbreeScene* scene) {
       h.bytes(mat.sheen.data(), sizeof(Rgb)), h.value(mat.sheen_roughness);
       add_texture(h, mat.map_sheen), add_texture(h, mat.map_sheen_roughness);
       h.value(mat.alpha_mode), h.value(mat.alpha), h.value(mat.alpha_cutoff);
+      add_texture(h, mat.map_opacity);
       h.value(mat.transmission), h.value(mat.ior), h.bytes(mat.absorption.data(), sizeof(Rgb));
       add_texture(h, mat.map_transmission), add_texture(h, mat.map_normal), h.value(mat.normal_strength);
       add_texture(h, mat.map_clearcoat_normal), h.value(mat.clearcoat_normal_strength);
