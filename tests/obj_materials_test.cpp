@@ -155,7 +155,8 @@ TEST(ObjMaterials, OutOfRangeValuesNameTheLine) {
                                                         {"Pm -0.1", "Pm -0.1 is outside [0, 1]"},
                                                         {"Pc nan", "not a finite number"},
                                                         {"anisor x", "'x' is not a number"},
-                                                        {"Ke -1 0 0", "Ke -1 is negative"}}) {
+                                                        {"Ke -1 0 0", "Ke -1 is negative"},
+                                                        {"Tf 1 1.5 1", "Tf 1.5 is outside [0, 1] (a transmittance)"}}) {
     Warnings w;
     try {
       mtl_sphere(dir, "Kd 0.5 0.5 0.5\n" + statement + "\n", w);
@@ -238,6 +239,54 @@ TEST(ObjMaterials, DAndMapDAreAStochasticOpacity) {
 }
 
 // The export carries the principled values and maps to blender_prelude.py's principled_material.
+// Tf (or Kt) and Ni, as Blender 3.4's exporter writes a Principled BSDF's Transmission and IOR with
+// the PBR extension and its importer reads them back: the mean of Tf, and Ni (1.45, a new
+// Principled BSDF's, without it). The classic model has no transmission: its Tf, the filter of
+// what `d` lets through, stays ignored.
+TEST(ObjMaterials, TfAndNiAreThePrincipledGlass) {
+  TempDir dir;
+  Warnings w;
+  const Material glass = mtl_first(mtl_sphere(dir, "Kd 1 1 1\nPr 0\nTf 1 1 1\nNi 1.5\n", w));
+  EXPECT_FLOAT_EQ(glass.transmission, 1.0f);
+  EXPECT_FLOAT_EQ(glass.ior, 1.5f);
+  const Material tinted = mtl_first(mtl_sphere(dir, "Pr 0.3\nTf 0.2 0.5 0.8\n", w));
+  EXPECT_FLOAT_EQ(tinted.transmission, 0.5f);
+  EXPECT_FLOAT_EQ(tinted.ior, 1.45f);
+  EXPECT_FLOAT_EQ(mtl_first(mtl_sphere(dir, "Pr 0.3\nKt 0.25 0.25 0.25\nNi 1.33\n", w)).transmission, 0.25f);
+  const Material classic = mtl_first(mtl_sphere(dir, "Kd 0.5 0.5 0.5\nTf 1 1 1\nNi 1.5\n", w));
+  EXPECT_FALSE(classic.principled);
+  EXPECT_FLOAT_EQ(classic.transmission, 0.0f);
+  EXPECT_TRUE(w.items.empty()) << w.items.front();
+  // Carried into Blender as the Principled BSDF's inputs.
+  std::string bytes;
+  const std::string line = blender_mesh(mtl_sphere(dir, "Pr 0\nTf 1 1 1\nNi 1.5\n", w), "ball", std::nullopt, bytes);
+  EXPECT_NE(line.find("\"transmission\": 1, \"ior\": 1.5"), std::string::npos) << line;
+  // An index that refracts nothing sensible where light passes is refused; where none passes, it
+  // is not read (old exporters write Ni 0 into every material).
+  try {
+    mtl_sphere(dir, "Pr 0\nTf 1 1 1\nNi 0\n", w);
+    ADD_FAILURE() << "Ni 0 was accepted for a glass";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.message().find("Ni 0 with Tf"), std::string::npos) << e.what();
+  }
+  EXPECT_FLOAT_EQ(mtl_first(mtl_sphere(dir, "Pr 0\nTf 0 0 0\nNi 0\n", w)).transmission, 0.0f);
+  EXPECT_FALSE(mtl_first(mtl_sphere(dir, "Kd 0.5 0.5 0.5\nNi 0\n", w)).principled);
+}
+
+// "Kd r" is a grey, as the MTL specification says, whatever the colour statement; the last
+// statement of a material counts.
+TEST(ObjMaterials, AColourOfOneNumberIsAGrey) {
+  TempDir dir;
+  Warnings w;
+  const Material m = mtl_first(mtl_sphere(dir, "Kd 0.5\nKs 0.04\nKe 2\nPr 0.5\nTf 0.3\n", w));
+  EXPECT_TRUE(m.kd.isApprox(Rgb::Constant(0.5f))) << m.kd.transpose();
+  EXPECT_TRUE(m.ks.isApprox(Rgb::Constant(0.04f))) << m.ks.transpose();
+  EXPECT_TRUE(m.emission.isApprox(Rgb::Constant(2.0f))) << m.emission.transpose();
+  EXPECT_FLOAT_EQ(m.transmission, 0.3f);
+  const Material again = mtl_first(mtl_sphere(dir, "Kd 0.5\nKd 0.1 0.2 0.3\n", w));
+  EXPECT_TRUE(again.kd.isApprox(Rgb(0.1f, 0.2f, 0.3f))) << again.kd.transpose();
+}
+
 TEST(ObjMaterials, TheExportNamesThePrincipledMaterial) {
   TempDir dir;
   write_flat_mtl_png(dir.file("grey.png"), Rgb::Constant(0.5f));

@@ -63,9 +63,9 @@ std::string material_line(const Material& m, const std::string& object_name) {
   return fmt::format(
       "principled_material({}, {{\"base\": {}, \"base_texture\": {}, \"metallic\": {:.9g}, \"metallic_texture\": {}, "
       "\"roughness\": {:.9g}, \"roughness_texture\": {}, \"specular\": {:.9g}, \"clearcoat\": {:.9g}, "
-      "\"clearcoat_roughness\": {:.9g}, {}}})",
+      "\"clearcoat_roughness\": {:.9g}, \"transmission\": {:.9g}, \"ior\": {:.9g}, {}}})",
       name, py_rgb(m.kd), py_path(m.map_kd), m.metallic, py_path(m.map_metallic), m.roughness, py_path(m.map_roughness),
-      m.specular, m.clearcoat, m.clearcoat_roughness, extras_entries(m));
+      m.specular, m.clearcoat, m.clearcoat_roughness, m.transmission, m.ior, extras_entries(m));
 }
 
 }  // namespace

@@ -157,6 +157,8 @@ def principled_material(name, p):
     bsdf.inputs["Specular"].default_value = p["specular"]
     bsdf.inputs["Clearcoat"].default_value = p["clearcoat"]
     bsdf.inputs["Clearcoat Roughness"].default_value = p["clearcoat_roughness"]
+    bsdf.inputs["Transmission"].default_value = p.get("transmission", 0.0)
+    bsdf.inputs["IOR"].default_value = p.get("ior", 1.45)
     surface_extras(nt, out, bsdf.outputs["BSDF"], [bsdf.inputs["Normal"]], p)
     return mat
 

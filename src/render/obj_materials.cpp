@@ -24,13 +24,24 @@ bool principled_statements(const std::set<std::string>& statements) {
 // One value's range, by keyword: reflectances and opacity in [0, 1], the PBR factors in [0, 1],
 // the ambient and emitted colours and the exponent ≥ 0.
 void check_range(const std::string& path, int line, const std::string& kw, const std::string& text) {
-  static const std::set<std::string> kUnit = {"Kd", "Ks", "d", "Pr", "Pm", "Ps", "Pc", "Pcr", "aniso"};
+  static const std::set<std::string> kUnit = {"Kd", "Ks", "Tf", "Kt", "d", "Pr", "Pm", "Ps", "Pc", "Pcr", "aniso"};
   const double v = std::strtod(text.c_str(), nullptr);
   if (kUnit.count(kw) && (v < 0 || v > 1)) {
-    const char* what = kw == "d" ? "an opacity" : (kw == "Kd" || kw == "Ks") ? "a reflectance" : "a factor";
+    const char* what = kw == "d"                    ? "an opacity"
+                       : (kw == "Kd" || kw == "Ks") ? "a reflectance"
+                       : (kw == "Tf" || kw == "Kt") ? "a transmittance"
+                                                    : "a factor";
     fail(path, line, fmt::format("{} {} is outside [0, 1] ({})", kw, text, what));
   }
   if ((kw == "Ka" || kw == "Ke" || kw == "Ns") && v < 0) fail(path, line, fmt::format("{} {} is negative", kw, text));
+}
+
+// A colour statement's value. The MTL specification's "Kd r [g b]": one number is a grey, which
+// tinyobjloader reads as (r, 0, 0) (and Blender's importer as r with its own defaults for g and
+// b); scan_mtl marks such a statement "Kd 1".
+Rgb colour_of(const tinyobj::real_t* c, const std::set<std::string>& statements, const std::string& kw) {
+  if (has(statements, (kw + " 1").c_str())) return Rgb::Constant(float(c[0]));
+  return Rgb(float(c[0]), float(c[1]), float(c[2]));
 }
 
 // A texture of the material, read beside the OBJ: colour (sRGB where the file is 8-bit) or data.
@@ -87,7 +98,7 @@ void read_normal_map(const tinyobj::material_t& m, Material& out, const fs::path
 // Ke × map_Ke (sRGB), both models; Ke is 1 where only the map is given.
 void read_emission(const tinyobj::material_t& m, const std::set<std::string>& statements, Material& out,
                    const fs::path& base_dir, const std::string& where) {
-  out.emission = Rgb(float(m.emission[0]), float(m.emission[1]), float(m.emission[2]));
+  out.emission = colour_of(m.emission, statements, "Ke");
   if (m.emissive_texname.empty()) return;
   out.map_emission = read_texture(m.emissive_texname, true, base_dir, where, "map_Ke");
   if (!has(statements, "Ke")) out.emission = Rgb::Ones();
@@ -116,6 +127,21 @@ void read_opacity(const tinyobj::material_t& m, const std::set<std::string>& sta
   if (out.alpha < 1 || out.map_opacity) out.alpha_mode = Material::AlphaMode::kBlend;
 }
 
+// Tf (or Kt) and Ni as Blender 3.4's importer and exporter read and write them in the principled
+// model: the Principled BSDF's Transmission, the mean of Tf, and its IOR; without Ni a new
+// Principled BSDF's 1.45. scan_mtl has checked Tf within [0, 1]; the index must be where glTF's
+// KHR_materials_ior puts it, [1, 10], wherever a transmission makes it matter.
+void read_glass(const tinyobj::material_t& m, const std::set<std::string>& statements, Material& out,
+                const std::string& where) {
+  const char* tf = has(statements, "Tf") ? "Tf" : "Kt";
+  if (!has(statements, tf)) return;
+  out.transmission = colour_of(m.transmittance, statements, tf).mean();
+  out.ior = has(statements, "Ni") ? float(m.ior) : 1.45f;
+  if (out.transmission > 0 && !(out.ior >= 1 && out.ior <= 10))
+    throw InputError(where,
+                     fmt::format("Ni {} with {}: a transmitting material's index must be within [1, 10]", m.ior, tf));
+}
+
 // The principled parameters (the header's table).
 void read_principled(const tinyobj::material_t& m, const std::set<std::string>& statements, Material& out,
                      const fs::path& base_dir, const std::string& where, Warnings& warnings) {
@@ -130,6 +156,7 @@ void read_principled(const tinyobj::material_t& m, const std::set<std::string>& 
   out.specular = has(statements, "Ks") ? out.ks.mean() : 0.5f;
   out.clearcoat = float(m.clearcoat_thickness);
   out.clearcoat_roughness = float(m.clearcoat_roughness);
+  read_glass(m, statements, out, where);
   if (!m.roughness_texname.empty())
     out.map_roughness = read_texture(m.roughness_texname, false, base_dir, where, "map_Pr");
   if (!m.metallic_texname.empty())
@@ -149,8 +176,8 @@ void scan_mtl(const std::string& path, MtlStatements& out) {
   std::ifstream in(path);
   if (!in) return;  // a missing MTL is tinyobjloader's warning
   std::set<std::string>* current = nullptr;
-  static const std::set<std::string> kColours = {"Kd", "Ks", "Ka", "Ke"};
-  static const std::set<std::string> kScalars = {"Ns", "d", "Pr", "Pm", "Ps", "Pc", "Pcr", "aniso", "anisor"};
+  static const std::set<std::string> kColours = {"Kd", "Ks", "Ka", "Ke", "Tf", "Kt"};
+  static const std::set<std::string> kScalars = {"Ns", "Ni", "d", "Pr", "Pm", "Ps", "Pc", "Pcr", "aniso", "anisor"};
   for_each_statement(in, [&](int lineno, const std::vector<std::string>& tok) {
     const std::string& kw = tok[0];
     if (kw == "newmtl") {
@@ -162,6 +189,12 @@ void scan_mtl(const std::string& path, MtlStatements& out) {
     if (!colour && !kScalars.count(kw)) return;
     if (colour && tok.size() > 1 && tok[1] == "spectral") return;
     check_numbers(path, lineno, tok, colour ? (tok.size() == 2 ? 1 : 3) : 1, colour ? 3 : 1, kw.c_str());
+    if (colour && current) {  // a grey, one number (colour_of); the last statement counts
+      if (tok.size() == 2)
+        current->insert(kw + " 1");
+      else
+        current->erase(kw + " 1");
+    }
     for (std::size_t k = 1; k < tok.size() && k <= (colour ? 3u : 1u); ++k) check_range(path, lineno, kw, tok[k]);
   });
 }
@@ -180,8 +213,8 @@ Material convert_material(const tinyobj::material_t& m, const std::set<std::stri
                           const fs::path& base_dir, const std::string& obj_path, Warnings& warnings) {
   Material out;
   out.name = m.name;
-  out.kd = Rgb(float(m.diffuse[0]), float(m.diffuse[1]), float(m.diffuse[2]));
-  out.ks = Rgb(float(m.specular[0]), float(m.specular[1]), float(m.specular[2]));
+  out.kd = colour_of(m.diffuse, statements, "Kd");
+  out.ks = colour_of(m.specular, statements, "Ks");
   out.ns = float(m.shininess);
   const std::string where = fmt::format("{}: material '{}'", obj_path, m.name);
   if (!out.kd.allFinite() || (out.kd < 0).any()) throw InputError(where, "Kd must be finite and non-negative");

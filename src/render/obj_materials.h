@@ -11,12 +11,16 @@
 //   roughness    Pr × map_Pr; without Pr, 1 − √(Ns/1000) (Ns clamped to [0, 1000]), or 1 without Ns
 //   specular     the mean of Ks, or Cycles's default 0.5 without Ks
 //   clear coat   Pc, its roughness Pcr
+//   glass        transmission the mean of Tf (or Kt), IOR Ni (1.45 without it), as Blender's
+//                exporter writes them
 // A map multiplies its statement's value, which is 1 where only the map is given. The departures
 // from Blender's importer (docs/materials.md): Blender links a map in place of the value and
 // reads 8-bit roughness, metallic and normal maps as sRGB colour (insitu: as stored data); without
-// Ks it gives specular 0; and under illum 3–9 it takes metallic from Ka.
+// Ks it gives specular 0; under illum 3–9 it takes metallic from Ka; and it reads Tf as a
+// transmission in the classic model too.
 //
-// Both models read Ke × map_Ke as emission and a tangent-space normal map from `norm`, or from
+// A colour given as one number is a grey, as the MTL specification says (tinyobjloader reads
+// (r, 0, 0)). Both models read Ke × map_Ke as emission and a tangent-space normal map from `norm`, or from
 // map_Bump/bump where that image is a normal map (as Blender's exporter writes them; a grey height
 // map is named in a warning). Ps, aniso and anisor are named as not rendered.
 #pragma once
