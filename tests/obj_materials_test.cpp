@@ -287,6 +287,35 @@ TEST(ObjMaterials, AColourOfOneNumberIsAGrey) {
   EXPECT_TRUE(again.kd.isApprox(Rgb(0.1f, 0.2f, 0.3f))) << again.kd.transpose();
 }
 
+// A texture statement's -s and -o, as Blender 3.4's importer reads them (a Mapping node of that
+// Scale and Location): (u, v) → s·(u, v) + o, then the OBJ convention's image point (u′, 1 − v′).
+// A 4 × 4 map of value (i + 4j)/15 at texel column i, row j (j = 0 at the top) is sampled where the
+// placement lands on texel centres, which bilinear filtering returns exactly.
+TEST(ObjMaterials, TextureOptionsPlaceTheMapAsBlendersMappingNode) {
+  TempDir dir;
+  Image img(4, 4, 3);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) img.set_rgb(i, j, Rgb::Constant(float(i + 4 * j) / 15.0f));
+  write_image(dir.file("ramp.png"), img);
+  Warnings w;
+  const Material m = mtl_first(mtl_sphere(dir, "Pr 1\nmap_Pr -s 2 3 1 -o 0.5 0.25 0 ramp.png\n", w));
+  // Texel (3, 1): its centre (0.875, 0.375) is u′ = 0.875, v′ = 0.625 = 2u + 0.5, 3v + 0.25.
+  const auto stored = [](int i, int j) { return std::round(float(i + 4 * j) / 15.0f * 255.0f) / 255.0f; };
+  EXPECT_NEAR(m.map_roughness.sample({Vec2f(0.1875f, 0.125f), Vec2f::Zero()})[0], stored(3, 1), 1e-6f);
+  // Texel (0, 3) at (0.125, 0.875): u′ = 1.125 and v′ = 1.125, 1 − v′ = −0.125 (the map repeats).
+  EXPECT_NEAR(m.map_roughness.sample({Vec2f(0.3125f, 0.2916667f), Vec2f::Zero()})[0], stored(0, 3), 1e-5f);
+  // Without the options the same point is the OBJ convention's (0.1875, 0.875): between texels.
+  const Material plain = mtl_first(mtl_sphere(dir, "Pr 1\nmap_Pr ramp.png\n", w));
+  EXPECT_GT(std::abs(plain.map_roughness.sample({Vec2f(0.1875f, 0.125f), Vec2f::Zero()})[0] - stored(3, 1)), 0.1f);
+  // Carried into Blender as that Mapping node; a map without options as its path alone.
+  std::string bytes;
+  const std::string line =
+      blender_mesh(mtl_sphere(dir, "Pr 1\nmap_Pr -s 2 3 1 -o 0.5 0.25 0 ramp.png\n", w), "ball", std::nullopt, bytes);
+  EXPECT_NE(line.find("\"scale\": (2, 3), \"offset\": (0.5, 0.25)}"), std::string::npos) << line;
+  EXPECT_EQ(blender_mesh(mtl_sphere(dir, "Pr 1\nmap_Pr ramp.png\n", w), "ball", std::nullopt, bytes).find("scale"),
+            std::string::npos);
+}
+
 TEST(ObjMaterials, TheExportNamesThePrincipledMaterial) {
   TempDir dir;
   write_flat_mtl_png(dir.file("grey.png"), Rgb::Constant(0.5f));

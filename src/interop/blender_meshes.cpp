@@ -39,8 +39,16 @@ bool any_normals(const Mesh& m) {
 // α = r², so r = α^½.
 double blender_roughness(float ns) { return std::sqrt(std::sqrt(2.0 / (std::max(0.0f, ns) + 2.0))); }
 
-std::string py_path(const Texture& t) {
-  return py_string(t.path.empty() ? "" : std::filesystem::absolute(t.path).lexically_normal().string());
+// A texture for blender_prelude.py's image_node: its file, with the Mapping node's Scale s and
+// Location o where its placement (an MTL's -s and -o; render/obj_materials.cpp) is not the OBJ
+// convention's, image_from_uv = [[s_u, 0, o_u], [0, −s_v, 1 − o_v]].
+std::string py_texture(const Texture& t) {
+  const std::string path =
+      py_string(t.path.empty() ? "" : std::filesystem::absolute(t.path).lexically_normal().string());
+  const Eigen::Matrix<float, 2, 3>& a = t.image_from_uv;
+  if (t.path.empty() || a == Texture::obj_convention()) return path;
+  return fmt::format("{{\"path\": {}, \"scale\": ({:.9g}, {:.9g}), \"offset\": ({:.9g}, {:.9g})}}", path, a(0, 0),
+                     -a(1, 1), a(0, 2), 1 - a(1, 2));
 }
 
 // What either MTL model adds (blender_prelude.py's surface_extras): emission, a normal map, and
@@ -49,8 +57,8 @@ std::string extras_entries(const Material& m) {
   return fmt::format(
       "\"emission\": {}, \"emission_texture\": {}, \"normal_texture\": {}, \"normal_strength\": {:.9g}, "
       "\"opacity\": {:.9g}, \"opacity_texture\": {}, \"opacity_channel\": {}",
-      py_rgb(m.emission), py_path(m.map_emission), py_path(m.map_normal), m.normal_strength,
-      m.cutout() ? m.alpha : 1.0f, py_path(m.map_opacity), py_string(m.map_opacity.alpha ? "Alpha" : "Color"));
+      py_rgb(m.emission), py_texture(m.map_emission), py_texture(m.map_normal), m.normal_strength,
+      m.cutout() ? m.alpha : 1.0f, py_texture(m.map_opacity), py_string(m.map_opacity.alpha ? "Alpha" : "Color"));
 }
 
 // An OBJ's material in Blender: the obj model's surface_material, or the principled model's
@@ -58,14 +66,15 @@ std::string extras_entries(const Material& m) {
 std::string material_line(const Material& m, const std::string& object_name) {
   const std::string name = py_string(object_name + ": " + m.name);
   if (!m.principled)
-    return fmt::format("surface_material({}, {}, {}, {}, {:.9g}, {{{}}})", name, py_rgb(m.kd), py_path(m.map_kd),
+    return fmt::format("surface_material({}, {}, {}, {}, {:.9g}, {{{}}})", name, py_rgb(m.kd), py_texture(m.map_kd),
                        py_rgb(m.ks), blender_roughness(m.ns), extras_entries(m));
   return fmt::format(
       "principled_material({}, {{\"base\": {}, \"base_texture\": {}, \"metallic\": {:.9g}, \"metallic_texture\": {}, "
       "\"roughness\": {:.9g}, \"roughness_texture\": {}, \"specular\": {:.9g}, \"clearcoat\": {:.9g}, "
       "\"clearcoat_roughness\": {:.9g}, \"transmission\": {:.9g}, \"ior\": {:.9g}, {}}})",
-      name, py_rgb(m.kd), py_path(m.map_kd), m.metallic, py_path(m.map_metallic), m.roughness, py_path(m.map_roughness),
-      m.specular, m.clearcoat, m.clearcoat_roughness, m.transmission, m.ior, extras_entries(m));
+      name, py_rgb(m.kd), py_texture(m.map_kd), m.metallic, py_texture(m.map_metallic), m.roughness,
+      py_texture(m.map_roughness), m.specular, m.clearcoat, m.clearcoat_roughness, m.transmission, m.ior,
+      extras_entries(m));
 }
 
 }  // namespace

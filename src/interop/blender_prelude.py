@@ -112,9 +112,7 @@ def surface_material(name, kd, texture="", ks=(0.0, 0.0, 0.0), roughness=1.0, ex
     diff.inputs["Roughness"].default_value = 0.0
     base = tuple(kd)
     if texture:
-        tex = nt.nodes.new("ShaderNodeTexImage")
-        tex.image = load_image(texture, False)
-        base = rgb_node(nt, "MULTIPLY", tuple(kd), tex.outputs["Color"])
+        base = rgb_node(nt, "MULTIPLY", tuple(kd), image_node(nt, texture, False).outputs["Color"])
     if max(ks) <= 0.0:
         set_input(nt, diff.inputs["Color"], base)
         surface_extras(nt, out, diff.outputs["BSDF"], [diff.inputs["Normal"]], extras)
@@ -211,12 +209,32 @@ def opaque_by(nt, shader, extras):
     return mix.outputs["Shader"]
 
 
-def data_image(nt, path):
-    """An image texture node of data (roughness, metallic, a normal map): its stored values."""
+def image_node(nt, texture, data):
+    """An image texture node of texture: a path, or {"path", "scale", "offset"} placed by a Mapping
+    node of that Scale and Location on the UVs (an MTL's -s and -o, as Blender's importer reads
+    them). data: its stored values (roughness, metallic, a normal map), else a colour."""
+    placed = isinstance(texture, dict)
+    path = texture["path"] if placed else texture
     tex = nt.nodes.new("ShaderNodeTexImage")
-    tex.image = bpy.data.images.load(path, check_existing=False)
-    tex.image.colorspace_settings.name = "Non-Color"
+    if data:
+        tex.image = bpy.data.images.load(path, check_existing=False)
+        tex.image.colorspace_settings.name = "Non-Color"
+    else:
+        tex.image = load_image(path, False)
+    if placed:
+        uv = nt.nodes.new("ShaderNodeTexCoord")
+        mapping = nt.nodes.new("ShaderNodeMapping")
+        mapping.vector_type = "POINT"
+        mapping.inputs["Location"].default_value = (*texture["offset"], 0.0)
+        mapping.inputs["Scale"].default_value = (*texture["scale"], 1.0)
+        nt.links.new(uv.outputs["UV"], mapping.inputs["Vector"])
+        nt.links.new(mapping.outputs["Vector"], tex.inputs["Vector"])
     return tex
+
+
+def data_image(nt, texture):
+    """An image texture node of data: image_node's."""
+    return image_node(nt, texture, True)
 
 
 def mapped(nt, value, texture, colour):
@@ -224,9 +242,7 @@ def mapped(nt, value, texture, colour):
     if not texture:
         return value
     if colour:
-        tex = nt.nodes.new("ShaderNodeTexImage")
-        tex.image = load_image(texture, False)
-        return rgb_node(nt, "MULTIPLY", value, tex.outputs["Color"])
+        return rgb_node(nt, "MULTIPLY", value, image_node(nt, texture, False).outputs["Color"])
     times = nt.nodes.new("ShaderNodeMath")
     times.operation = "MULTIPLY"
     times.inputs[0].default_value = value

@@ -44,15 +44,32 @@ Rgb colour_of(const tinyobj::real_t* c, const std::set<std::string>& statements,
   return Rgb(float(c[0]), float(c[1]), float(c[2]));
 }
 
-// A texture of the material, read beside the OBJ: colour (sRGB where the file is 8-bit) or data.
-Texture read_texture(const std::string& name, bool colour, const fs::path& base_dir, const std::string& where,
-                     const char* statement) {
+// A texture statement's options -o and -s as Blender 3.4's importer reads them, a Mapping node of
+// that Location and Scale before the image: (u, v) → s·(u, v) + o, then the OBJ convention's
+// (u′, 1 − v′) (render/texture.h).
+Eigen::Matrix<float, 2, 3> image_from_uv(const tinyobj::texture_option_t& opt, const std::string& where) {
+  const float su = float(opt.scale[0]), sv = float(opt.scale[1]);
+  const float ou = float(opt.origin_offset[0]), ov = float(opt.origin_offset[1]);
+  if (!std::isfinite(su) || !std::isfinite(sv) || !std::isfinite(ou) || !std::isfinite(ov))
+    throw InputError(where, "the texture options -o and -s must be finite numbers");
+  Eigen::Matrix<float, 2, 3> a;
+  a << su, 0, ou, 0, -sv, 1 - ov;
+  return a;
+}
+
+// A texture of the material, read beside the OBJ: colour (sRGB where the file is 8-bit) or data,
+// with its alpha channel where `alpha` keeps it, placed by its -o and -s.
+Texture read_texture(const std::string& name, const tinyobj::texture_option_t& opt, bool colour,
+                     const fs::path& base_dir, const std::string& where, const char* statement,
+                     AlphaChannel alpha = AlphaChannel::kDrop) {
   Texture t;
   const std::string file = beside_obj(base_dir, name);
   try {
-    ImageFile image = read_texture_file(file);
+    ImageFile image = read_texture_file(file, alpha);
+    if (alpha == AlphaChannel::kKeep) t.alpha = alpha_texels_of(image);
     colour ? set_colour_image(t, std::move(image)) : set_data_image(t, std::move(image));
     t.path = file;
+    t.image_from_uv = image_from_uv(opt, file);
   } catch (const InputError& e) {
     throw e.with_context(where + ": " + statement);
   }
@@ -80,10 +97,10 @@ bool is_normal_map(const Texture& t) {
 void read_normal_map(const tinyobj::material_t& m, Material& out, const fs::path& base_dir, const std::string& where,
                      Warnings& warnings) {
   if (!m.normal_texname.empty()) {
-    out.map_normal = read_texture(m.normal_texname, false, base_dir, where, "norm");
+    out.map_normal = read_texture(m.normal_texname, m.normal_texopt, false, base_dir, where, "norm");
     out.normal_strength = float(m.normal_texopt.bump_multiplier);
   } else if (!m.bump_texname.empty()) {
-    Texture bump = read_texture(m.bump_texname, false, base_dir, where, "map_Bump");
+    Texture bump = read_texture(m.bump_texname, m.bump_texopt, false, base_dir, where, "map_Bump");
     if (!is_normal_map(bump)) {
       warnings.add(where, "map_Bump is a height map (grey, or not pointing out of the surface): not rendered");
       return;
@@ -100,7 +117,7 @@ void read_emission(const tinyobj::material_t& m, const std::set<std::string>& st
                    const fs::path& base_dir, const std::string& where) {
   out.emission = colour_of(m.emission, statements, "Ke");
   if (m.emissive_texname.empty()) return;
-  out.map_emission = read_texture(m.emissive_texname, true, base_dir, where, "map_Ke");
+  out.map_emission = read_texture(m.emissive_texname, m.emissive_texopt, true, base_dir, where, "map_Ke");
   if (!has(statements, "Ke")) out.emission = Rgb::Ones();
 }
 
@@ -113,17 +130,9 @@ void read_opacity(const tinyobj::material_t& m, const std::set<std::string>& sta
                   const fs::path& base_dir, const std::string& where, Warnings& warnings) {
   out.alpha = has(statements, "d") ? float(m.dissolve) : 1.0f;
   if (out.alpha == 0) warnings.add(where, "d 0: the surface is fully transparent, and not seen");
-  if (!m.alpha_texname.empty()) {
-    const std::string file = beside_obj(base_dir, m.alpha_texname);
-    try {
-      ImageFile image = read_texture_file(file, AlphaChannel::kKeep);
-      out.map_opacity.alpha = alpha_texels_of(image);
-      set_data_image(out.map_opacity, std::move(image));
-      out.map_opacity.path = file;
-    } catch (const InputError& e) {
-      throw e.with_context(where + ": map_d");
-    }
-  }
+  if (!m.alpha_texname.empty())
+    out.map_opacity =
+        read_texture(m.alpha_texname, m.alpha_texopt, false, base_dir, where, "map_d", AlphaChannel::kKeep);
   if (out.alpha < 1 || out.map_opacity) out.alpha_mode = Material::AlphaMode::kBlend;
 }
 
@@ -158,9 +167,9 @@ void read_principled(const tinyobj::material_t& m, const std::set<std::string>& 
   out.clearcoat_roughness = float(m.clearcoat_roughness);
   read_glass(m, statements, out, where);
   if (!m.roughness_texname.empty())
-    out.map_roughness = read_texture(m.roughness_texname, false, base_dir, where, "map_Pr");
+    out.map_roughness = read_texture(m.roughness_texname, m.roughness_texopt, false, base_dir, where, "map_Pr");
   if (!m.metallic_texname.empty())
-    out.map_metallic = read_texture(m.metallic_texname, false, base_dir, where, "map_Pm");
+    out.map_metallic = read_texture(m.metallic_texname, m.metallic_texopt, false, base_dir, where, "map_Pm");
   std::string unread;
   for (const char* key : {"Ps", "map_Ps", "aniso", "anisor"})
     if (has(statements, key)) unread += fmt::format("{}{}", unread.empty() ? "" : ", ", key);
@@ -218,7 +227,8 @@ Material convert_material(const tinyobj::material_t& m, const std::set<std::stri
   out.ns = float(m.shininess);
   const std::string where = fmt::format("{}: material '{}'", obj_path, m.name);
   if (!out.kd.allFinite() || (out.kd < 0).any()) throw InputError(where, "Kd must be finite and non-negative");
-  if (!m.diffuse_texname.empty()) out.map_kd = read_texture(m.diffuse_texname, true, base_dir, where, "map_Kd");
+  if (!m.diffuse_texname.empty())
+    out.map_kd = read_texture(m.diffuse_texname, m.diffuse_texopt, true, base_dir, where, "map_Kd");
   read_opacity(m, statements, out, base_dir, where, warnings);
   read_emission(m, statements, out, base_dir, where);
   read_normal_map(m, out, base_dir, where, warnings);
