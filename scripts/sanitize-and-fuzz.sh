@@ -8,14 +8,8 @@
 #      two at a time; a crash, a hang (10 s), an exception other than InputError or a sanitizer
 #      report fails.
 # With --build-only it configures and builds, and stops.
-# Needs clang and libFuzzer (installed here if missing). 849 s on 2 cores in CI for 7a3539c
-# (unity build 284 s, suite 469 s, fuzzing 5 × 30 s two at a time; 1562 s for 3031c95, before the
-# unity build). The suite grew with issues 13 and 18 to about 1400 s (7fc294f; the build 428 s),
-# a quarter of it the studio's browser test, which this leg no longer runs (tests/CMakeLists.txt),
-# and 1164 s for c8f08f6, half of each insitu process the tests start spent taking full stacks
-# for LeakSanitizer (those now take them only to attribute a leak: tests/cli_util.h). 810 s for
-# e968206: the studio's light preview, made before every render, and the inverse-lighting tests'
-# floor estimates had been a third of it.
+# Needs clang and libFuzzer (installed here if missing). Each stage prints its time; the figures
+# of a run are in its commit message.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-60}
@@ -71,10 +65,9 @@ Validation.ClosedRoomFromJpegShotsWithinTheGoal:Composite.ContactShadowHasNoFire
 BsdfTest.VisibleNormalSamplesFollowTheirPdf:BsdfTest.PrincipledSamplingMatchesEvalAndPdf:\
 BsdfTest.ClearCoatSamplesFollowGgxVisibleNormals"
 # ctest starts the costliest tests first when it knows their costs (Testing/Temporary/
-# CTestCostData.txt, which each run writes); a fresh build knows none and ran the shards in order,
-# the heaviest (248 s) second to last, one core idle for the last minute (CI of cc5cb8d: 906 s against
-# 843 s of work per core). tests/sanitizer/ctest-costs.txt holds a sanitized run's costs (the
-# fresh-clone CI of 0479e17: 478 s, 944 s of work); where a test was added since, the order is a guess, never an error. To
+# CTestCostData.txt, which each run writes); a fresh build knows none and runs the shards in
+# order, so the heaviest may start last with one core idle. tests/sanitizer/ctest-costs.txt holds
+# a sanitized run's costs; where a test was added since, the order is a guess, never an error. To
 # refresh it: copy $build/Testing/Temporary/CTestCostData.txt after a run.
 mkdir -p "$build/Testing/Temporary"
 [ -s "$build/Testing/Temporary/CTestCostData.txt" ] || cp tests/sanitizer/ctest-costs.txt "$build/Testing/Temporary/CTestCostData.txt"
