@@ -110,12 +110,13 @@ Image as_rgb(const Image& grey) {
   return out;
 }
 
-// One shot's linear radiance, from its brackets or its single file, and its k when known.
-Image linear_shot(const ShotSpec& s, const std::vector<ImageFile>& fl, const ResponseCurve& response, int f,
-                  EnvironmentInfo& info, Warnings& warnings, LinearShots& out) {
+// One shot's linear radiance, from its brackets (`times`, their exposures) or its single file, and
+// its k when known.
+Image linear_shot(const ShotSpec& s, const std::vector<ImageFile>& fl, const std::vector<double>& times,
+                  const ResponseCurve& response, int f, EnvironmentInfo& info, Warnings& warnings, LinearShots& out) {
   if (fl.size() >= 2) {
     out.k_shot[std::size_t(f)] = 1.0;
-    return merge_brackets(fl, bracket_exposures(s, fl), response);
+    return merge_brackets(fl, times, response);
   }
   std::size_t clamped = 0;
   Image linear = (fl.front().display_referred && fl.front().bits == 8) ? linearize_with_response(fl.front(), response)
@@ -150,13 +151,11 @@ LinearShots linearize_shots(const EnvironmentSpec& spec, const ResponseCurve& re
         shot_hfov(s, spec, fl.front());
     Image mask;
     try {
-      out.set.shots[k] = shrunk_to_face(linear_shot(s, fl, response, f, info, warnings, out), hfov, max_face);
+      const std::vector<double> times = fl.size() >= 2 ? bracket_exposures(s, fl) : std::vector<double>{};
+      out.set.shots[k] = shrunk_to_face(linear_shot(s, fl, times, response, f, info, warnings, out), hfov, max_face);
       // The shortest bracket's clipped pixels: clipped in every bracket (merge_brackets).
-      std::size_t shortest = 0;
-      if (fl.size() >= 2) {
-        const std::vector<double> times = bracket_exposures(s, fl);
-        shortest = std::size_t(std::min_element(times.begin(), times.end()) - times.begin());
-      }
+      const std::size_t shortest =
+          times.empty() ? 0 : std::size_t(std::min_element(times.begin(), times.end()) - times.begin());
       mask = clipped_mask(fl[shortest], 1);
     } catch (const InputError& e) {
       throw e.with_context(s.where);

@@ -152,9 +152,11 @@ constexpr float kClipRampStart = 0.9f;
 // The top of the stored range: a channel at or above it is clipped.
 float clip_top(const ImageFile& file) { return file.bits == 8 ? 254.5f / 255.0f : 65534.5f / 65535.0f; }
 
-float largest_channel(const Image& img, int x, int y) {
+// How clipped a pixel is: 0 below 0.9 of the range in every channel, rising linearly to 1 at the
+// top of the stored range in its largest channel.
+float degree_at(const Image& img, int x, int y, float top) {
   const float* p = img.at(x, y);
-  return std::max({p[0], p[1], p[2]});
+  return std::clamp((std::max({p[0], p[1], p[2]}) - kClipRampStart) / (top - kClipRampStart), 0.0f, 1.0f);
 }
 
 }  // namespace
@@ -165,14 +167,12 @@ Image clipped_degree(const ImageFile& file) {
   if (!file.display_referred) return degree;
   const float top = clip_top(file);
   tbb::parallel_for(0, img.height, [&](int y) {
-    for (int x = 0; x < img.width; ++x)
-      *degree.at(x, y) = std::clamp((largest_channel(img, x, y) - kClipRampStart) / (top - kClipRampStart), 0.0f, 1.0f);
+    for (int x = 0; x < img.width; ++x) *degree.at(x, y) = degree_at(img, x, y, top);
   });
   return degree;
 }
 
 // Where clipped_degree reaches 1, computed directly (no degree image: 48 MB at 12 megapixels).
-// The same test: (v − 0.9)/(top − 0.9) clamped ≥ 1, written as clipped_degree computes it.
 Image clipped_mask(const ImageFile& file, int channels) {
   const Image& img = file.stored;
   Image mask(img.width, img.height, channels);
@@ -180,8 +180,7 @@ Image clipped_mask(const ImageFile& file, int channels) {
   const float top = clip_top(file);
   tbb::parallel_for(0, img.height, [&](int y) {
     for (int x = 0; x < img.width; ++x)
-      if (std::clamp((largest_channel(img, x, y) - kClipRampStart) / (top - kClipRampStart), 0.0f, 1.0f) >= 1.0f)
-        std::fill_n(mask.at(x, y), channels, 1.0f);
+      if (degree_at(img, x, y, top) >= 1.0f) std::fill_n(mask.at(x, y), channels, 1.0f);
   });
   return mask;
 }
