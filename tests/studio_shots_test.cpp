@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/image.h"
 #include "core/math.h"
 #include "light/cubemap.h"
 #include "scene/scene_file.h"
@@ -187,6 +188,31 @@ TEST(StudioShots, ErrorsAreNextToTheShotOrTheKeyThatCausedThem) {
   const json v2 = get_json(studio.client(), "/api/shots");
   ASSERT_FALSE(v2["error"].is_null());
   EXPECT_NE(v2["error"]["where"].get<std::string>().find("$.environment.shots.down"), std::string::npos) << v2.dump();
+}
+
+// A scene lit by one image says which kind: an 8-bit panorama (read as one single shot, its clipped
+// light recovered) is not an HDR image. The header alone decides; an unreadable one is the error.
+TEST(StudioShots, AnImageEnvironmentIsNamedByItsKind) {
+  TempDir dir;
+  StudioFixture studio(dir);
+  const fs::path scene = studio.folder() / "scene.json";
+  json j = json::parse(std::ifstream(scene));
+  const auto lit_by = [&](const std::string& image) {
+    j["environment"] = {{"image", image}};
+    std::ofstream(scene, std::ios::trunc) << j.dump();
+    return get_json(studio.client(), "/api/shots");
+  };
+  Image sky(64, 32, 3, 0.5f);
+  write_image((studio.folder() / "pano.jpg").string(), sky);
+  write_image((studio.folder() / "sky.exr").string(), sky);
+  const json pano = lit_by("pano.jpg"), hdr = lit_by("sky.exr");
+  EXPECT_EQ(pano["image"], "pano.jpg");
+  EXPECT_EQ(pano["image_kind"], "8-bit panorama") << pano.dump();
+  EXPECT_EQ(hdr["image_kind"], "HDR image") << hdr.dump();
+  std::ofstream(studio.folder() / "broken.jpg") << "not a jpeg";
+  const json broken = lit_by("broken.jpg");
+  ASSERT_FALSE(broken["error"].is_null()) << broken.dump();
+  EXPECT_NE(broken["error"]["where"].get<std::string>().find("broken.jpg"), std::string::npos) << broken.dump();
 }
 
 // The edits on their own, on text: every form of a shot turns, order and other keys are kept.

@@ -218,6 +218,12 @@ void check_exr_header(const std::string& path) {
                                  exr->chunk_bytes / 1e6, exr->bytes_per_pixel, std::uint64_t(kMaxChunkBytes) >> 20));
 }
 
+// Integer pixels are display-referred (encoded for a screen); float ones are radiance.
+bool display_referred(const ImageSpec& spec) {
+  const TypeDesc::BASETYPE t = TypeDesc::BASETYPE(spec.format.basetype);
+  return !(t == TypeDesc::FLOAT || t == TypeDesc::HALF || t == TypeDesc::DOUBLE);
+}
+
 // EXIF orientation 1–8 (TIFF 6.0, tag 274): 5–8 swap width and height. Others are ignored (1).
 int exif_orientation(const ImageSpec& spec) {
   const int o = spec.get_int_attribute("Orientation", 1);
@@ -284,8 +290,7 @@ ImageFile read_image_file_quietly(const std::string& path, PixelGrid grid, Alpha
   ImageFile file;
   file.path = path;
   file.format = in->format_name();
-  file.display_referred = !(spec.format.basetype == TypeDesc::FLOAT || spec.format.basetype == TypeDesc::HALF ||
-                            spec.format.basetype == TypeDesc::DOUBLE);
+  file.display_referred = display_referred(spec);
   file.bits = int(spec.format.size()) * 8;
   if (const float t = spec.get_float_attribute("ExposureTime", 0.0f); t > 0) file.exposure.time_s = t;
   if (const float n = spec.get_float_attribute("FNumber", 0.0f); n > 0) file.exposure.f_number = n;
@@ -312,14 +317,20 @@ std::optional<double> Exposure::relative() const {
   return *time_s * iso.value_or(1.0) / (n * n);
 }
 
-std::pair<int, int> read_image_size(const std::string& path) {
+ImageHeader read_image_header(const std::string& path) {
   require_existing(path);
   check_exr_header(path);
   auto in = ImageInput::open(path);
   if (!in) throw InputError(path, "cannot read image: " + geterror());
-  const int w = in->spec().width, h = in->spec().height;
-  if (exif_orientation(in->spec()) >= 5) return {h, w};
-  return {w, h};
+  const ImageSpec& spec = in->spec();
+  ImageHeader h{spec.width, spec.height, display_referred(spec), int(spec.format.size()) * 8};
+  if (exif_orientation(spec) >= 5) std::swap(h.width, h.height);
+  return h;
+}
+
+std::pair<int, int> read_image_size(const std::string& path) {
+  const ImageHeader h = read_image_header(path);
+  return {h.width, h.height};
 }
 
 std::size_t sanitize(Image& img) {

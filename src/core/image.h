@@ -109,7 +109,15 @@ ImageFile read_image_memory(const std::string& name, const std::vector<unsigned 
 ImageFile read_texture_file(const std::string& path, AlphaChannel alpha = AlphaChannel::kDrop);
 ImageFile read_texture_memory(const std::string& name, const std::vector<unsigned char>& bytes,
                               AlphaChannel alpha = AlphaChannel::kDrop);
-// Width and height from the header alone, as displayed (after the EXIF orientation).
+// What the header alone tells: the size as displayed (after the EXIF orientation), and whether the
+// file is display-referred (integer pixels of `bits`) or scene-referred (float: an HDR image).
+struct ImageHeader {
+  int width = 0, height = 0;
+  bool display_referred = false;
+  int bits = 0;
+};
+ImageHeader read_image_header(const std::string& path);
+// read_image_header's width and height.
 std::pair<int, int> read_image_size(const std::string& path);
 
 // Linear Rec.709: display-referred files through the inverse sRGB transfer function, float files

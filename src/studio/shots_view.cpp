@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fmt/format.h>
 
 #include "core/math.h"
 #include "core/image.h"
@@ -89,6 +90,13 @@ json shots_view(const std::string& scene_path) {
   const fs::path folder = fs::absolute(scene_path).parent_path();
   if (!env.from_shots()) {
     out["image"] = fs::relative(env.image, folder).string();
+    try {
+      // An 8- or 16-bit panorama is read as one single shot; a float image is radiance.
+      const ImageHeader h = read_image_header(env.image);
+      out["image_kind"] = h.display_referred ? fmt::format("{}-bit panorama", h.bits) : std::string("HDR image");
+    } catch (const InputError& e) {
+      out["error"] = error_json(e.with_context(env.where));
+    }
     return out;
   }
   out["faced"] = face_name(env.faced_face);

@@ -28,7 +28,7 @@ async function load_shots() {
   $("shots-error").replaceChildren();
   if (data.error) $("shots-error").replaceChildren(error_span(`${data.error.where}: ${data.error.what}`));
   $("shots-warnings").replaceChildren(...data.warnings.map((w) => { const li = document.createElement("li"); li.textContent = w; return li; }));
-  if (data.image) $("shots-state").textContent = `This scene is lit by the HDR image ${data.image}, not by six shots.`;
+  if (data.image) $("shots-state").textContent = `This scene is lit by the ${data.image_kind || "image"} ${data.image}, not by six shots.`;
   if (data.faced) $("faced").value = data.faced;
   draw_cube();
   draw_stitched();
