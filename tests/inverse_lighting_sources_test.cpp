@@ -97,5 +97,42 @@ TEST(InverseLightingSources, PartsThePhotoCannotTellApartArePooled) {
   for (std::size_t j = 2; j < res.parts.size(); ++j) EXPECT_EQ(res.parts[j].scale, res.parts[1].scale) << j;
 }
 
+// The sun's part cut in two texels, each lighting half its patch with the part's irradiance there:
+// the fine parts nest the coarse one, so the fine fit explains the photo as well as the coarse fit
+// (the premise of keep_finer_fit) and is kept. A fine fit whose residual is past 1.1 × the coarse
+// one's, that leaves a determined source undetermined, or whose residual is not a number, is not.
+TEST(InverseLightingSources, AFinerFitIsKeptOnlyWhereItExplainsThePhotoAsWell) {
+  const std::vector<FitPixel> coarse_px = window_pixels();
+  const Albedos floor = unknown_floor(coarse_px);
+  InverseLightingResult coarse = window_source();
+  inverse_lighting_detail::fit_sources(coarse_px, floor, coarse, nullptr);
+  std::vector<FitPixel> fine_px = coarse_px;
+  for (std::size_t i = 0; i < fine_px.size(); ++i) {
+    const double e_sun = fine_px[i].ek[0];
+    fine_px[i].ek[0] = i < 150 ? e_sun : 0.0;
+    fine_px[i].ek.push_back(i < 150 ? 0.0 : e_sun);
+  }
+  InverseLightingResult fine = coarse;  // warm: from the coarse fit's scales, as the refinement starts
+  fine.parts[0].texels.power = 0.5 * kSunPower;
+  fine.parts.push_back(fine.parts[0]);
+  inverse_lighting_detail::fit_sources(fine_px, floor, fine, nullptr, true);
+  std::printf("residual: coarse %.5g, fine %.5g; sun's halves ×%.4g, ×%.4g\n", coarse.residual_rms, fine.residual_rms,
+              fine.parts[0].scale, fine.parts.back().scale);
+  ASSERT_GT(coarse.residual_rms, 0.0);
+  EXPECT_LE(fine.residual_rms, 1.01 * coarse.residual_rms);
+  EXPECT_TRUE(inverse_lighting_detail::keep_finer_fit(coarse, fine));
+
+  InverseLightingResult ran_off = fine;
+  ran_off.residual_rms = 1.12 * coarse.residual_rms;
+  EXPECT_FALSE(inverse_lighting_detail::keep_finer_fit(coarse, ran_off));
+  ran_off.residual_rms = 1.08 * coarse.residual_rms;  // within the estimates' noise
+  EXPECT_TRUE(inverse_lighting_detail::keep_finer_fit(coarse, ran_off));
+  ran_off.residual_rms = std::nan("");
+  EXPECT_FALSE(inverse_lighting_detail::keep_finer_fit(coarse, ran_off));
+  InverseLightingResult lost = fine;
+  lost.sources[0].determined = false;
+  EXPECT_FALSE(inverse_lighting_detail::keep_finer_fit(coarse, lost));
+}
+
 }  // namespace
 }  // namespace insitu

@@ -28,6 +28,7 @@ using inverse_lighting_detail::Fit;
 using inverse_lighting_detail::fit_sources;
 using inverse_lighting_detail::FitPixel;
 using inverse_lighting_detail::gather_pixels;
+using inverse_lighting_detail::keep_finer_fit;
 using inverse_lighting_detail::solve;
 
 // The unknown ρ start at π · median(P/E0) of their surface; known ones at their value.
@@ -221,8 +222,6 @@ std::vector<PartFit> make_parts(const std::vector<ClippedSource>& sources, const
 // demo with a drawn sheet took past its 600 s wait with them.
 constexpr double kConcentrated = 3.0;
 constexpr std::size_t kMaxFineParts = 64;
-// How much larger than the coarse fit's residual the fine fit's may be (the estimates' noise).
-constexpr double kFineResidualTolerance = 1.1;
 
 // The parts to cut (ascending) and their texels as parts, each at its part's scale: the most added
 // light first, at most kMaxFineParts texels in all (each is an unknown of the dense solve and a
@@ -249,9 +248,7 @@ std::pair<std::vector<int>, std::vector<PartFit>> concentrated_parts(const Inver
   return {replaced, finer};
 }
 
-// Returns whether the fine fit was kept: not where it left a source undetermined that the coarse
-// fit determined (more unknowns; the closed room's window at one offset of the grid went to the
-// lower bound, 34 %), nor where it explains the photo worse, where the coarse fit stands.
+// Returns whether the fine fit was kept (keep_finer_fit); where it is not, the coarse fit stands.
 // `shares`: the box's opening shares at the cube's size (RoomLight::opening_shares), computed once.
 bool refine_concentrated_parts(std::vector<FitPixel>& pixels, const Albedos& albedos, const InverseLightingInput& in,
                                const std::vector<float>& shares, InverseLightingResult& res) {
@@ -272,17 +269,10 @@ bool refine_concentrated_parts(std::vector<FitPixel>& pixels, const Albedos& alb
   for (auto r = replaced.rbegin(); r != replaced.rend(); ++r) res.parts.erase(res.parts.begin() + *r);
   for (PartFit& p : finer) res.parts.push_back(std::move(p));
   fit_sources(pixels, albedos, res, in.stop, true);
-  // The fine parts nest the coarse ones (equal scales within a cut part give the coarse fit, up
-  // to the estimates' noise), so a fine fit that explains the photo worse has run off (the sun
-  // unseen from the capture point: ×500 lamps, residual 2.5× the coarse one's) and is not kept.
-  const bool worse = res.residual_rms > kFineResidualTolerance * coarse.residual_rms;
-  for (std::size_t k = 0; k < res.sources.size(); ++k)
-    if (worse || (coarse.sources[k].determined && !res.sources[k].determined)) {
-      pixels = coarse_pixels;
-      res = coarse;
-      return false;
-    }
-  return true;
+  if (keep_finer_fit(coarse, res)) return true;
+  pixels = coarse_pixels;
+  res = coarse;
+  return false;
 }
 
 // The fit on the cubes as given (recover_clipped_sources shrinks them first).

@@ -211,4 +211,11 @@ void fit_sources(const std::vector<FitPixel>& pixels, const Albedos& albedos, In
   }
 }
 
+bool keep_finer_fit(const InverseLightingResult& coarse, const InverseLightingResult& fine) {
+  if (!(fine.residual_rms <= kFineResidualTolerance * coarse.residual_rms)) return false;
+  for (std::size_t k = 0; k < coarse.sources.size() && k < fine.sources.size(); ++k)
+    if (coarse.sources[k].determined && !fine.sources[k].determined) return false;
+  return true;
+}
+
 }  // namespace insitu::inverse_lighting_detail

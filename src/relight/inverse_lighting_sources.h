@@ -25,4 +25,13 @@ namespace insitu::inverse_lighting_detail {
 void fit_sources(const std::vector<FitPixel>& pixels, const Albedos& albedos, InverseLightingResult& res,
                  const std::atomic<bool>* stop, bool warm = false);
 
+// Whether a fit on finer parts is kept over the coarse fit it refines. The fine parts nest the
+// coarse ones (equal scales within a cut part give the coarse fit, up to the estimates' noise), so
+// a fine fit that explains the photo worse, its robust residual past kFineResidualTolerance × the
+// coarse one's, has run off (the sun unseen from the capture point: ×500 lamps, residual 2.5× the
+// coarse one's); nor is one kept that leaves a source undetermined that the coarse fit determined
+// (more unknowns: the closed room's window at one offset of the grid went to the lower bound).
+constexpr double kFineResidualTolerance = 1.1;
+bool keep_finer_fit(const InverseLightingResult& coarse, const InverseLightingResult& fine);
+
 }  // namespace insitu::inverse_lighting_detail
