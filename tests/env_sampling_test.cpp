@@ -1,9 +1,11 @@
 // Environment importance sampling (light/env_sampling.h): the sampler against its own pdf.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
+#include <stdexcept>
 
 #include "cube_fixture.h"
 #include "light/texel_geometry.h"
@@ -100,6 +102,71 @@ TEST(EnvSampling, GuideTableFindsTheTexelBisectionFinds) {
   }
   for (float u : {0.0f, 1.0f, -0.5f, 7.0f, std::nextafter(1.0f, 0.0f), std::numeric_limits<float>::quiet_NaN()})
     EXPECT_TRUE(same(u)) << u;
+}
+
+// The sampler keeps its CDF in float, each entry float_at_or_above the double sum: for every float
+// u the texel upper_bound finds is the double CDF's. Steps as uneven as a sun's and far below a
+// float's resolution (where neighbouring entries round to one float), probed at every entry's
+// neighbouring floats, where rounding to nearest instead would pick the next texel.
+TEST(EnvSampling, AFloatCdfRoundedUpPicksTheTexelsOfTheDoubleOne) {
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<double> w(5000);
+  for (double& x : w) x = std::pow(10.0, -12 * unit(rng));
+  w[1234] = 1e4;
+  double total = 0;
+  for (double x : w) total += x;
+  std::vector<double> cdf_d{0.0};
+  std::vector<float> cdf_f{0.0f};
+  for (double x : w) {
+    cdf_d.push_back(cdf_d.back() + x / total);
+    cdf_f.push_back(float_at_or_above(cdf_d.back()));
+    ASSERT_GE(double(cdf_f.back()), cdf_d.back());
+    ASSERT_LT(double(std::nextafter(cdf_f.back(), 0.0f)), cdf_d.back());
+  }
+  auto same = [&](float u) {
+    return std::upper_bound(cdf_d.begin() + 1, cdf_d.end(), double(u)) - cdf_d.begin() ==
+           std::upper_bound(cdf_f.begin() + 1, cdf_f.end(), u) - cdf_f.begin();
+  };
+  for (const double c : cdf_d) {
+    const float near = float(c);
+    for (float u : {near, std::nextafter(near, 0.0f), std::nextafter(near, 2.0f)}) ASSERT_TRUE(same(u)) << c;
+  }
+  std::uniform_real_distribution<float> uniform(0, 1);
+  for (int k = 0; k < 100000; ++k) ASSERT_TRUE(same(uniform(rng))) << k;
+}
+
+// A sampler that shares another's records (RoomLight's side samplers) is the sampler of its own
+// cube, bit for bit: the same texel, direction and pdf for every u, and the same pdf and radiance
+// in every direction, where its cube equals the records' and where it differs (a texel of each
+// 16 differs here, the rest of the cube is the records' own).
+TEST(EnvSampling, ASamplerSharingRecordsIsTheSamplerOfItsOwnCube) {
+  const int n = 16;
+  const CubeMap records_cube = random_cube(n, 11);
+  CubeMap cube = records_cube;
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> uniform(0, 1);
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        if (uniform(rng) < 1.0f / 16) cube.set_texel(f, i, j, Rgb(uniform(rng), 4 * uniform(rng), 0.5f));
+  cube.update_borders();
+  auto share = [](int f, int i, int j) { return f == 4 ? 1.0 : 0.25 * double((i + j) % 5); };
+  const EnvSampler records(records_cube);
+  const EnvSampler shared(cube, records, share, false), own(cube, share, false);
+  for (int k = 0; k < 100000; ++k) {
+    const float u = uniform(rng), s = uniform(rng), t = uniform(rng);
+    const EnvSample a = shared.sample(u, s, t), b = own.sample(u, s, t);
+    ASSERT_TRUE(a.dir == b.dir && a.pdf == b.pdf) << k;
+  }
+  std::normal_distribution<float> g(0, 1);
+  for (int k = 0; k < 100000; ++k) {
+    const Vec3f d = Vec3f(g(rng), g(rng), g(rng)).normalized();
+    ASSERT_EQ(shared.pdf(d), own.pdf(d)) << d.transpose();
+    ASSERT_TRUE((shared.radiance(d) == cube.lookup_nearest(d)).all()) << d.transpose();
+  }
+  EXPECT_THROW(EnvSampler(random_cube(8, 1), records, share), std::logic_error);
+  EXPECT_THROW(EnvSampler(cube, shared, share), std::logic_error);
 }
 
 // radiance() is the cube's nearest texel, bit for bit, in every direction (record layout).

@@ -26,8 +26,11 @@ float rect_area(const RoomOpening& o) {
 }  // namespace
 
 RoomLight::RoomLight(const CubeMap& cube, std::optional<RoomBox> box, const std::vector<float>* outside_share)
-    : box_(std::move(box)), env_(cube) {
-  if (box_ && !box_->openings.empty()) set_strategies(cube, outside_share);
+    : box_(std::move(box)) {
+  if (box_ && !box_->openings.empty())
+    set_strategies(cube, outside_share);
+  else
+    env_.emplace(cube);
 }
 
 // From 4 × 4 directions per texel: a sun texel across the window's edge belongs to both parts.
@@ -118,18 +121,21 @@ void RoomLight::set_strategies(const CubeMap& cube, const std::vector<float>* gi
   const std::vector<float>& outside_share = own_share.empty() ? *given_share : own_share;
   auto share_of = [&](int f, int i, int j) { return double(outside_share[(std::size_t(f) * n + j) * n + i]); };
   auto wall_share = [&](int f, int i, int j) { return 1.0 - share_of(f, i, j); };
-  // The samplers keep their own copy of the radiance: each side's cube lives only while its
-  // sampler is built (at a 1024 face a cube is 76 MB).
+  // Each side's cube lives only while its sampler is built (at a 1024 face a cube is 76 MB). The
+  // walls' sampler holds the records, radiance beside P_i (a wall's pdf and radiance, the queries
+  // most paths in a room make, in one cache line); the whole cube's and the outside's read them,
+  // keeping aside only the texels across an opening's edge, where their radiance differs.
   double power_wall = 0, power_out = 0;
   {
     const CubeMap wall_cube = side_of(cube, outside_share, false);
     power_wall = side_power(wall_cube, wall_share);
     walls_.emplace(wall_cube, wall_share);
   }
+  env_.emplace(cube, *walls_, EnvSampler::TexelShare{});
   {
     const CubeMap outside_cube = side_of(cube, outside_share, true);
     power_out = side_power(outside_cube, share_of);
-    outside_.emplace(outside_cube, share_of, /*mis_compensation=*/false);
+    outside_.emplace(outside_cube, *walls_, share_of, /*mis_compensation=*/false);
   }
   const double share = power_out + power_wall > 0 ? power_out / (power_out + power_wall) : 0.5;
   const float p_open = float(std::clamp(share, 0.2, 0.8));
@@ -190,25 +196,25 @@ float RoomLight::pdf(const Vec3f& dir, const Exit& e) const {
   const Vec3f w_c = v / t_c;
   // cos θ_c = |ω_c[axis]|: the face's normal is that axis.
   const float cos_c = std::abs(w_c[e.axis]);
-  const EnvSampler& walls = walls_ ? *walls_ : env_;
+  const EnvSampler& walls = walls_ ? *walls_ : *env_;
   return p_wall_ * walls.pdf(w_c) * cos_c / (t_c * t_c) * (e.t * e.t) / cos_x;
 }
 
 float RoomLight::pdf(const Vec3f& x, const Vec3f& dir) const {
-  if (!inside(x)) return env_.pdf(dir);
+  if (!inside(x)) return env_->pdf(dir);
   return pdf(dir, locate(x, dir));
 }
 
 // Through an opening the light is distant (cube by direction); a wall shows what c saw of it.
 Rgb RoomLight::radiance(const Vec3f& dir, const Exit& e) const {
-  if (!e.valid) return env_.radiance(dir);
-  if (e.openings > 0) return outside_ ? outside_->radiance(dir) : env_.radiance(dir);
+  if (!e.valid) return env_->radiance(dir);
+  if (e.openings > 0) return outside_ ? outside_->radiance(dir) : env_->radiance(dir);
   const Vec3f v = e.q - box_->capture;
-  return (walls_ ? *walls_ : env_).radiance(v.squaredNorm() > 0 ? Vec3f(v.normalized()) : dir);
+  return (walls_ ? *walls_ : *env_).radiance(v.squaredNorm() > 0 ? Vec3f(v.normalized()) : dir);
 }
 
 Rgb RoomLight::radiance(const Vec3f& x, const Vec3f& dir) const {
-  return inside(x) ? radiance(dir, locate(x, dir)) : env_.radiance(dir);
+  return inside(x) ? radiance(dir, locate(x, dir)) : env_->radiance(dir);
 }
 
 // The sample along dir, which leaves the box at e: the mixture's pdf and the radiance there, as
@@ -224,7 +230,7 @@ RoomSample RoomLight::along(const Vec3f& dir, const Exit& e) const {
 }
 
 RoomSample RoomLight::sample_wall(const Vec3f& x, float u, float u_s, float u_t) const {
-  const EnvSample es = (walls_ ? *walls_ : env_).sample(u, u_s, u_t);
+  const EnvSample es = (walls_ ? *walls_ : *env_).sample(u, u_s, u_t);
   float t_c = 0;
   int axis = 0;
   if (!exit(box_->capture, es.dir, &t_c, &axis)) return {};
@@ -258,8 +264,8 @@ RoomSample RoomLight::sample_portal(const Vec3f& x, float u, float u_s, float u_
 
 RoomSample RoomLight::sample(const Vec3f& x, float u_pick, float u_s, float u_t) const {
   if (!inside(x)) {
-    const EnvSample es = env_.sample(u_pick, u_s, u_t);
-    return {es.dir, kInfinity, es.pdf, env_.radiance(es.dir)};
+    const EnvSample es = env_->sample(u_pick, u_s, u_t);
+    return {es.dir, kInfinity, es.pdf, env_->radiance(es.dir)};
   }
   // One of the strategies, chosen by u_pick, which is then stretched back onto [0, 1).
   auto stretch = [](float u, float lo, float p) { return std::min((u - lo) / p, std::nextafter(1.0f, 0.0f)); };

@@ -103,9 +103,12 @@ class RoomLight {
   Rgb wall_neighbours(const CubeMap& cube, const std::vector<float>& share, int f, int i, int j) const;
 
   std::optional<RoomBox> box_;
-  EnvSampler env_;                     // the whole cube: distant light, and the walls without openings
-  std::optional<EnvSampler> walls_;    // with openings: what c saw on the walls,
-  std::optional<EnvSampler> outside_;  // and outside
+  // With openings: what c saw on the walls (holding the records; env_sampling.h), the whole cube
+  // and what c saw outside (both reading them). Without: the whole cube alone, for distant light
+  // and the walls.
+  std::optional<EnvSampler> walls_;
+  std::optional<EnvSampler> env_;
+  std::optional<EnvSampler> outside_;
   float p_wall_ = 1, p_dir_ = 0, p_area_ = 0;
   std::vector<float> opening_cdf_;  // by area; opening_cdf_.back() = 1
   float opening_area_ = 0;
