@@ -39,15 +39,17 @@ inline ShotSet handheld_shots(const Image& world, const std::array<Mat3d, 6>& ai
   return set;
 }
 
-// Misaims of σ = 2° per axis about random axes (roll included), their mean rotation vector taken out:
-// the registration's prior fixes the shots' common rotation at the nominal one.
-inline std::array<Mat3d, 6> misaims(unsigned seed) {
+// Misaims of σ = 2° per axis about random axes (roll included), their mean rotation vector taken out
+// (the registration's prior fixes the shots' common rotation at the nominal one), or kept, as a hand
+// leaves it.
+inline std::array<Mat3d, 6> misaims(unsigned seed, bool mean_taken_out = true) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> n(0, deg_to_rad(2.0));
   std::array<Vec3d, 6> v;
   Vec3d mean = Vec3d::Zero();
   for (Vec3d& x : v) mean += (x = Vec3d(n(rng), n(rng), n(rng))) / 6;
   std::array<Mat3d, 6> R;
+  if (!mean_taken_out) mean = Vec3d::Zero();
   for (int s = 0; s < 6; ++s) R[std::size_t(s)] = rotation(v[std::size_t(s)] - mean);
   return R;
 }

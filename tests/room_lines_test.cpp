@@ -38,12 +38,32 @@ struct PanelledRoom {
 // The shot as a camera takes it: each pixel the mean of k×k samples over its area. Point samples
 // would alias the 1 cm lines into stairs, whose segments LSD finds tilted by a pixel per step; no
 // lens and sensor do that.
-Image camera_shot(const PanelledRoom& room, const ShotBasis& b, double hfov_deg, int w, int h, int k) {
+template <typename World>
+Image camera_shot(const World& room, const ShotBasis& b, double hfov_deg, int w, int h, int k) {
   const Image fine = render_shot(room, b, hfov_deg, w * k, h * k);
   Image shot(w, h, 3, 0.0f);
   for (int y = 0; y < h * k; ++y)
     for (int x = 0; x < w * k; ++x) shot.set_rgb(x / k, y / k, shot.rgb(x / k, y / k) + fine.rgb(x, y) / float(k * k));
   return shot;
+}
+
+// Six 70° shots of `world` (a main camera: no two overlap), each turned by its true aim: 640 × 480
+// as a camera takes them where `fine(s)`, else 320 × 240 point samples (a shot the test only needs
+// to be there).
+template <typename World, typename Fine>
+ShotSet main_camera_shots(const World& world, const std::array<Mat3d, 6>& truth, Fine fine) {
+  ShotSet set;
+  set.faced_face = kNegZ;
+  set.set_hfov(70);
+  for (int s = 0; s < 6; ++s) {
+    const ShotBasis b = shot_basis(s, kNegZ);
+    const Mat3d& R = truth[std::size_t(s)];
+    const ShotBasis aimed{R * b.forward, R * b.up, R * b.right};
+    set.shots[std::size_t(s)] =
+        fine(s) ? camera_shot(world, aimed, 70, 640, 480, 3) : render_shot(world, aimed, 70, 320, 240);
+    set.names[std::size_t(s)] = face_name(s);
+  }
+  return set;
 }
 
 // 70° shots (a main camera: no two overlap), misaimed by σ = 2° per axis: each is anchored on its
@@ -53,15 +73,7 @@ Image camera_shot(const PanelledRoom& room, const ShotBasis& b, double hfov_deg,
 TEST(RoomLines, MisaimedShotsOfAManhattanRoomAreTurnedToItsAxes) {
   const PanelledRoom room;
   const std::array<Mat3d, 6> truth = test::misaims(21);
-  ShotSet set;
-  set.faced_face = kNegZ;
-  set.set_hfov(70);
-  for (int s = 0; s < 6; ++s) {
-    const ShotBasis b = shot_basis(s, kNegZ);
-    const Mat3d& R = truth[std::size_t(s)];
-    set.shots[std::size_t(s)] = camera_shot(room, ShotBasis{R * b.forward, R * b.up, R * b.right}, 70, 640, 480, 3);
-    set.names[std::size_t(s)] = face_name(s);
-  }
+  const ShotSet set = main_camera_shots(room, truth, [](int) { return true; });
   const LineAnchor a = anchor_to_room_axes(set, {0, 1, 2, 3, 4, 5});
   double sum_before = 0, sum_after = 0;
   for (int s = 0; s < 6; ++s) {
@@ -73,6 +85,46 @@ TEST(RoomLines, MisaimedShotsOfAManhattanRoomAreTurnedToItsAxes) {
     int families = 0;
     for (int n : a.lines[std::size_t(s)]) families += n >= 10;
     EXPECT_GE(families, 2) << face_name(s);
+  }
+  EXPECT_LT(sum_after, 0.1 * sum_before);
+}
+
+// The same room turned 20° about the vertical, as a room is when nothing says where its walls run
+// (no room box): taken as the axes, its walls' lines would turn the shots by 20°, but its vertical
+// edges are still plumb. With LineAxes::vertical each side shot is levelled:
+// its tilt (where it takes the world's up) comes back within 0.3° and falls to a tenth on average,
+// while its yaw, which plumb lines cannot see, is left as it was (ω_y = 0). The 70° ceiling and floor
+// shots see no vertical edge, and say so.
+TEST(RoomLines, PlumbEdgesLevelShotsOfARoomTurnedOffTheAxes) {
+  const PanelledRoom room;
+  const Mat3d turn = test::rotation(Vec3d(0, deg_to_rad(20.0), 0));
+  const auto turned_room = [&](const Vec3f& d) { return room((turn.transpose() * d.cast<double>()).cast<float>()); };
+  const std::array<Mat3d, 6> truth = test::misaims(5);
+  const ShotSet set = main_camera_shots(turned_room, truth, [](int s) { return s != kPosY && s != kNegY; });
+  const std::array<int, 6> alone = {0, 1, 2, 3, 4, 5};
+  const LineAnchor room_axes = anchor_to_room_axes(set, alone, LineAxes::room);
+  const LineAnchor plumb = anchor_to_room_axes(set, alone, LineAxes::vertical);
+  // Where a shot takes the world's up: the error turn E = G R⁻¹ moves the true up by its tilt.
+  const auto tilt_deg = [](const Mat3d& E) { return rad_to_deg(std::acos(std::min(1.0, E(1, 1)))); };
+  double sum_before = 0, sum_after = 0;
+  for (int s = 0; s < 6; ++s) {
+    const auto i = std::size_t(s);
+    if (s == kPosY || s == kNegY) {
+      EXPECT_FALSE(plumb.anchored[i]) << face_name(s);
+      EXPECT_NE(plumb.reason[i].find("too few vertical lines"), std::string::npos) << plumb.reason[i];
+      continue;
+    }
+    // Taken as a room box's axes, the turned walls would turn the shot by the walls' 20°, a yaw
+    // no hand makes: without a box only the plumb lines may anchor.
+    const double room_turn_deg = test::angle_deg(room_axes.correction[i], Mat3d::Identity());
+    EXPECT_TRUE(!room_axes.anchored[i] || room_turn_deg > 15) << face_name(s) << ": " << room_turn_deg << "°";
+    ASSERT_TRUE(plumb.anchored[i]) << face_name(s) << ": " << plumb.reason[i];
+    const double before = tilt_deg(truth[i].transpose()), after = tilt_deg(plumb.correction[i] * truth[i].transpose());
+    EXPECT_LT(after, 0.3) << face_name(s) << ": tilted " << before << "°";
+    sum_before += before, sum_after += after;
+    const Eigen::AngleAxisd g(plumb.correction[i]);
+    EXPECT_LT(std::abs(g.axis().y() * g.angle()), 1e-12) << face_name(s) << ": the yaw is not the lines'";
+    EXPECT_GE(plumb.lines[i][1], 10) << face_name(s);
   }
   EXPECT_LT(sum_after, 0.1 * sum_before);
 }

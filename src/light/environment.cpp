@@ -367,26 +367,34 @@ void anchor_to_the_photo(const EnvironmentSpec& spec, LinearShots& shots, Regist
   info.photo_anchor = anchor;
 }
 
+// The aims turned by the room's straight lines (room_lines.h): all three axes with a room box,
+// the vertical edges alone (the shots levelled) without one.
+void anchor_to_the_lines(const EnvironmentSpec& spec, LinearShots& shots, Registration& r, EnvironmentInfo& info,
+                         Warnings& warnings) {
+  const LineAxes axes = spec.room_box ? LineAxes::room : LineAxes::vertical;
+  const LineAnchor anchor = anchor_to_room_axes(shots.set, r.group, axes);
+  std::string loose;
+  for (int f = 0; f < 6; ++f) {
+    r.aim[std::size_t(f)] = anchor.correction[std::size_t(f)] * r.aim[std::size_t(f)];
+    describe_aim(r.aim[std::size_t(f)], shot_basis(f, spec.faced_face), r.shots[std::size_t(f)]);
+    if (!anchor.anchored[std::size_t(f)]) loose += (loose.empty() ? "" : ", ") + std::string(face_name(f));
+  }
+  if (!loose.empty())
+    warnings.add(spec.where, "shots " + loose +
+                                 (axes == LineAxes::room
+                                      ? ": too few straight lines along two of the room's axes to check their aim; "
+                                        "it is taken as given"
+                                      : ": too few vertical lines to level them; their tilt is taken as registered"));
+  shots.set.aim = r.aim;
+  info.line_anchor = anchor;
+}
+
 void register_aims(const EnvironmentSpec& spec, LinearShots& shots, EnvironmentInfo& info, Warnings& warnings,
                    const ImageFile* photo, const Camera* camera) {
   Registration r = register_shots(shots.set);
   shots.set.aim = r.aim;
+  anchor_to_the_lines(spec, shots, r, info, warnings);
   if (!spec.room_box && photo && camera) anchor_to_the_photo(spec, shots, r, *photo, *camera, info, warnings);
-  if (spec.room_box) {
-    // A room box declares the room's walls along the world's axes: its lines anchor the aims.
-    const LineAnchor anchor = anchor_to_room_axes(shots.set, r.group);
-    std::string loose;
-    for (int f = 0; f < 6; ++f) {
-      r.aim[std::size_t(f)] = anchor.correction[std::size_t(f)] * r.aim[std::size_t(f)];
-      describe_aim(r.aim[std::size_t(f)], shot_basis(f, spec.faced_face), r.shots[std::size_t(f)]);
-      if (!anchor.anchored[std::size_t(f)]) loose += (loose.empty() ? "" : ", ") + std::string(face_name(f));
-    }
-    if (!loose.empty())
-      warnings.add(spec.where, "shots " + loose +
-                                   ": too few straight lines along two of the room's axes to check their aim; "
-                                   "it is taken as given");
-    info.line_anchor = anchor;
-  }
   shots.set.aim = shots.clipped.aim = r.aim;
   for (int f = 0; f < 6; ++f) {
     const ShotAim& a = r.shots[std::size_t(f)];

@@ -37,7 +37,7 @@ struct EnvironmentInfo {
   // masks assembled like the shots themselves; a merged bracket's clipping is its shortest's).
   std::optional<CubeMap> clipped_cube;
   std::optional<Registration> registration;  // six shots with "register": "auto"
-  std::optional<LineAnchor> line_anchor;     // ... and a room box: the aims anchored to its axes
+  std::optional<LineAnchor> line_anchor;     // ... its lines: a room box's axes, or plumb edges
   std::optional<PhotoAnchor> photo_anchor;   // ... without one, given the photo's camera: to the photo
   // An image that is display-referred (8- or 16-bit: a panorama): linearized by the sRGB curve, its
   // clipped pixels in clipped_cube, brought into the photo's unit as a single shot is.

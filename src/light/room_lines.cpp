@@ -77,7 +77,8 @@ struct Fit {
 
 // σ of ω along the turn's axis: Ceres's covariance of the fit, scaled by the residuals' own
 // spread (the reduced χ², Σ r² / (m − 3)) rather than the assumed σ.
-double turn_sigma_deg(ceres::Problem& problem, std::array<double, 3>& w, const ceres::Solver::Summary& summary) {
+double turn_sigma_deg(ceres::Problem& problem, std::array<double, 3>& w, const ceres::Solver::Summary& summary,
+                      int dof) {
   ceres::Covariance::Options options;
   ceres::Covariance covariance(options);
   std::vector<std::pair<const double*, const double*>> blocks = {{w.data(), w.data()}};
@@ -85,21 +86,22 @@ double turn_sigma_deg(ceres::Problem& problem, std::array<double, 3>& w, const c
   Eigen::Matrix3d C;
   covariance.GetCovarianceBlock(w.data(), w.data(), C.data());
   const int m = problem.NumResiduals();
-  const double chi2 = m > 6 ? 2 * summary.final_cost / (m - 6) : 1.0;  // 3 prior residuals, 3 parameters
+  const double chi2 = m > 3 + dof ? 2 * summary.final_cost / (m - 3 - dof) : 1.0;  // 3 prior residuals
   const Vec3d v(w[0], w[1], w[2]);
   const Vec3d axis = v.norm() > 0 ? Vec3d(v.normalized()) : Vec3d::UnitX();
   return rad_to_deg(std::sqrt(std::max(0.0, chi2 * axis.dot(C.transpose() * axis))));
 }
 
-// One round: the segments assigned under G's current value, and G fitted to them.
-Fit fit_round(const std::vector<LinePlane>& lines, std::array<double, 3> w, double gate) {
+// One round: the segments assigned under G's current value, and G fitted to them. With
+// LineAxes::vertical only the segments along y are residuals, and ω_y is held at 0.
+Fit fit_round(const std::vector<LinePlane>& lines, std::array<double, 3> w, double gate, LineAxes axes) {
   const Mat3d G = rotation_of(w);
   double mean_length = 0;
   for (const LinePlane& l : lines) mean_length += l.length_px / double(lines.size());
   ceres::Problem problem;
   for (const LinePlane& l : lines) {
     const int k = axis_of(l, G, gate);
-    if (k < 0) continue;
+    if (k < 0 || (axes == LineAxes::vertical && k != 1)) continue;
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<AxisResidual, 1, 3>(new AxisResidual{
                                  l.n, k, std::sqrt(l.length_px / mean_length) / std::sin(deg_to_rad(0.5))}),
                              new ceres::CauchyLoss(1.0), w.data());
@@ -107,20 +109,22 @@ Fit fit_round(const std::vector<LinePlane>& lines, std::array<double, 3> w, doub
   problem.AddResidualBlock(
       new ceres::AutoDiffCostFunction<RotationPrior, 3, 3>(new RotationPrior{1.0 / deg_to_rad(10.0)}), nullptr,
       w.data());
+  if (axes == LineAxes::vertical) problem.SetManifold(w.data(), new ceres::SubsetManifold(3, {1}));
   ceres::Solver::Options options;
   options.max_num_iterations = 30;
   options.num_threads = 1;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
-  return {w, turn_sigma_deg(problem, w, summary)};
+  return {w, turn_sigma_deg(problem, w, summary, axes == LineAxes::vertical ? 2 : 3)};
 }
 
 // The group's rotation, or none with the reason.
-void anchor_group(const std::vector<int>& shots, const std::array<std::vector<LinePlane>, 6>& planes, LineAnchor& out) {
+void anchor_group(const std::vector<int>& shots, const std::array<std::vector<LinePlane>, 6>& planes, LineAxes axes,
+                  LineAnchor& out) {
   std::vector<LinePlane> lines;
   for (int s : shots) lines.insert(lines.end(), planes[std::size_t(s)].begin(), planes[std::size_t(s)].end());
   Fit fit;
-  for (double gate_deg : {6.0, 3.0, 2.0}) fit = fit_round(lines, fit.w, std::sin(deg_to_rad(gate_deg)));
+  for (double gate_deg : {6.0, 3.0, 2.0}) fit = fit_round(lines, fit.w, std::sin(deg_to_rad(gate_deg)), axes);
   const std::array<double, 3>& w = fit.w;
   const Mat3d G = rotation_of(w);
   std::array<int, 3> along{};
@@ -129,11 +133,14 @@ void anchor_group(const std::vector<int>& shots, const std::array<std::vector<Li
       if (const int k = axis_of(l, G, std::sin(deg_to_rad(2.0))); k >= 0) ++out.lines[std::size_t(s)][std::size_t(k)];
     for (int k = 0; k < 3; ++k) along[std::size_t(k)] += out.lines[std::size_t(s)][std::size_t(k)];
   }
+  const int vertical = along[1];
   std::sort(along.begin(), along.end());
+  const bool enough = axes == LineAxes::vertical ? vertical >= 10 : along[1] >= 10;
   const double turn_deg = rad_to_deg(Vec3d(w[0], w[1], w[2]).norm());
   for (int s : shots) {
-    if (along[1] < 10) {
-      out.reason[std::size_t(s)] = "too few straight lines along two of the room's axes";
+    if (!enough) {
+      out.reason[std::size_t(s)] = axes == LineAxes::vertical ? "too few vertical lines to level it"
+                                                              : "too few straight lines along two of the room's axes";
       continue;
     }
     out.anchored[std::size_t(s)] = true;
@@ -146,19 +153,20 @@ void anchor_group(const std::vector<int>& shots, const std::array<std::vector<Li
 
 }  // namespace
 
-LineAnchor anchor_to_room_axes(const ShotSet& set, const std::array<int, 6>& group) {
+LineAnchor anchor_to_room_axes(const ShotSet& set, const std::array<int, 6>& group, LineAxes axes) {
   std::array<std::vector<LinePlane>, 6> planes;
   tbb::parallel_for(0, 6, [&](int s) {
     planes[std::size_t(s)] = line_planes(set.shots[std::size_t(s)], set.hfov_deg[std::size_t(s)], aimed_basis(set, s));
   });
   LineAnchor out;
+  out.axes = axes;
   std::array<bool, 6> done{};
   for (int s = 0; s < 6; ++s) {
     if (done[std::size_t(s)]) continue;
     std::vector<int> shots;
     for (int t = 0; t < 6; ++t)
       if (group[std::size_t(t)] == group[std::size_t(s)]) shots.push_back(t), done[std::size_t(t)] = true;
-    anchor_group(shots, planes, out);
+    anchor_group(shots, planes, axes, out);
   }
   return out;
 }

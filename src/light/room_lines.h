@@ -17,6 +17,11 @@
 // to be anchored. The turn's precision σ is Ceres's covariance scaled by the residuals' own
 // spread; a turn within 3σ is not told from the lines' noise and is not applied (shots aimed
 // exactly stay exactly as they are).
+//
+// Without a room box nothing says where the walls run, but world +y is still up (conventions.md),
+// and a room's, a street's or a hall's vertical edges are plumb: the vertical lines alone level each
+// group. Only the segments along y enter the fit, G turns about horizontal axes only (ω_y = 0), the
+// yaw stays as registered, and a group needs 10 vertical segments.
 #pragma once
 #include <array>
 #include <string>
@@ -25,7 +30,14 @@
 
 namespace insitu {
 
+// Which of the world's axes the lines are taken to run along.
+enum class LineAxes {
+  room,      // x, y and z: a room box's walls (the full turn)
+  vertical,  // y only: plumb edges level the shots (the tilt), the yaw stays as registered
+};
+
 struct LineAnchor {
+  LineAxes axes = LineAxes::room;
   std::array<Mat3d, 6> correction = {Mat3d::Identity(), Mat3d::Identity(), Mat3d::Identity(), Mat3d::Identity(),
                                      Mat3d::Identity(), Mat3d::Identity()};  // G of each shot's group
   std::array<bool, 6> anchored{};
@@ -36,6 +48,6 @@ struct LineAnchor {
 };
 
 // `group[s]`: shots with the same value are turned together (registration's groups).
-LineAnchor anchor_to_room_axes(const ShotSet& set, const std::array<int, 6>& group);
+LineAnchor anchor_to_room_axes(const ShotSet& set, const std::array<int, 6>& group, LineAxes axes = LineAxes::room);
 
 }  // namespace insitu

@@ -15,7 +15,8 @@ nlohmann::json registration_json(const std::optional<Registration>& r, int f) {
 nlohmann::json room_lines_json(const std::optional<LineAnchor>& a, int f) {
   if (!a) return nullptr;
   const auto s = std::size_t(f);
-  nlohmann::json j = {{"anchored", a->anchored[s]},
+  nlohmann::json j = {{"axes", a->axes == LineAxes::vertical ? "vertical" : "room"},
+                      {"anchored", a->anchored[s]},
                       {"turn_deg", a->turn_deg[s]},
                       {"sigma_deg", a->sigma_deg[s]},
                       {"lines_xyz", a->lines[s]}};
