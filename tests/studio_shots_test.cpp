@@ -105,6 +105,45 @@ TEST(StudioShots, TheStitchedViewOutlinesEachShotAndHatchesWhatNoneSaw) {
   EXPECT_GT(int(corner[0]), int(corner[1]) + 40);
 }
 
+// Without a room box the render anchors the shots to the photo (light/photo_anchor.h), and the
+// shots panel shows them as the render has them: each shot's photo_anchor, as in the render
+// report. Where the camera cannot be had yet (two points clicked), the panel says why the photo did
+// not anchor them. With the demo's room box the room's lines anchor instead.
+TEST(StudioShots, WithoutARoomBoxTheShotsAreAnchoredToThePhotoAsRendered) {
+  TempDir dir;
+  StudioFixture studio(dir);
+  const json boxed = get_json(studio.client(), "/api/shots");
+  ASSERT_TRUE(boxed["error"].is_null()) << boxed.dump();
+  EXPECT_FALSE(boxed.contains("photo_anchor_note"));
+  for (const json& s : boxed["shots"]) EXPECT_TRUE(s["photo_anchor"].is_null()) << s.dump();
+
+  json scene = json::parse(text_of(studio.folder() / "scene.json"));
+  scene["environment"].erase("room_box");
+  std::ofstream(studio.folder() / "scene.json") << scene.dump(2);
+  const json open = get_json(studio.client(), "/api/shots");
+  ASSERT_TRUE(open["error"].is_null()) << open.dump();
+  EXPECT_FALSE(open.contains("photo_anchor_note")) << open["photo_anchor_note"];
+  for (const json& s : open["shots"]) {
+    ASSERT_TRUE(s["photo_anchor"].is_object()) << s.dump();
+    EXPECT_TRUE(s["photo_anchor"].contains("anchored") && s["photo_anchor"].contains("matches")) << s.dump();
+    EXPECT_EQ(s["room_lines"]["axes"], "vertical") << s.dump();
+  }
+  EXPECT_TRUE(stitched(studio).data);
+
+  // Two clicks so far: too few for a camera.
+  json points = json::parse(text_of(studio.folder() / "points.json"));
+  points.erase(points.begin() + 2, points.end());
+  std::ofstream(studio.folder() / "two_points.json") << points.dump(2);
+  scene["camera"]["points"] = "two_points.json";
+  std::ofstream(studio.folder() / "scene.json") << scene.dump(2);
+  const json uncalibrated = get_json(studio.client(), "/api/shots");
+  ASSERT_TRUE(uncalibrated["error"].is_null()) << uncalibrated.dump();
+  ASSERT_TRUE(uncalibrated.contains("photo_anchor_note")) << uncalibrated.dump();
+  EXPECT_NE(uncalibrated["photo_anchor_note"].get<std::string>().find("$.camera.points"), std::string::npos)
+      << uncalibrated["photo_anchor_note"];
+  for (const json& s : uncalibrated["shots"]) EXPECT_TRUE(s["photo_anchor"].is_null()) << s.dump();
+}
+
 // Turning a shot writes rotate_deg into the scene file (a bracket list becomes an object), the
 // library reads the turn, and a page holding the old version is refused without a write.
 TEST(StudioShots, TurningAShotRewritesTheSceneFileAndAStalePageIsRefused) {

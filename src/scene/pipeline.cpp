@@ -205,14 +205,18 @@ void check_references(const SceneSpec& spec, int width, int height) {
 
 namespace {
 
-// The room: the photo, the environment (the photo linearized with its response), the camera, the
-// room box and the clipped light recovered against the photo.
-void load_room(const SceneSpec& spec, LoadedScene& s, const std::atomic<bool>* stop) {
+ImageFile read_photo(const SceneSpec& spec) {
   try {
-    s.photo = read_image_file(spec.photo);
+    return read_image_file(spec.photo);
   } catch (const InputError& e) {
     throw e.with_context(spec.photo_where);
   }
+}
+
+// The room: the photo, the environment (the photo linearized with its response), the camera, the
+// room box and the clipped light recovered against the photo.
+void load_room(const SceneSpec& spec, LoadedScene& s, const std::atomic<bool>* stop) {
+  s.photo = read_photo(spec);
   throw_if_stopped(stop);
   // The camera first (it anchors handheld shots without a room box to the photo), then the
   // environment: brackets may recover the camera response that linearizes the photo.
@@ -296,6 +300,14 @@ void load_objects(const SceneSpec& spec, std::vector<Mesh> memory_objects, Loade
 }
 
 }  // namespace
+
+PhotoAndCamera load_photo_and_camera(const SceneSpec& spec, Warnings& warnings) {
+  LoadedScene s;
+  s.photo = read_photo(spec);
+  load_camera(spec, s.photo.stored.width, s.photo.stored.height, s);
+  warnings.items.insert(warnings.items.end(), s.warnings.items.begin(), s.warnings.items.end());
+  return {std::move(s.photo), s.camera};
+}
 
 LoadedScene load_scene(const SceneSpec& spec, std::vector<Mesh> memory_objects, const LoadedScene* room,
                        const std::atomic<bool>* stop) {

@@ -55,6 +55,15 @@ struct LoadedScene {
 LoadedScene load_scene(const SceneSpec& spec, std::vector<Mesh> memory_objects = {}, const LoadedScene* room = nullptr,
                        const std::atomic<bool>* stop = nullptr);
 
+// The photo and its camera as load_scene reads them before the environment, which they anchor
+// when six handheld shots have no room box (light/photo_anchor.h); the calibration's warnings go
+// to `warnings`. Throws InputError as load_scene would.
+struct PhotoAndCamera {
+  ImageFile photo;
+  Camera camera;
+};
+PhotoAndCamera load_photo_and_camera(const SceneSpec& spec, Warnings& warnings);
+
 // Every corner of each reference polygon lies within a photo of width x height pixels (InputError
 // naming references[i].polygon_px[j]); load_scene checks it, and the studio before it saves one.
 void check_references(const SceneSpec& spec, int width, int height);

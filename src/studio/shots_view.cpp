@@ -48,11 +48,14 @@ json shot_json(const ShotSpec& s, int face, const fs::path& folder) {
 }
 
 // Coverage, clipping and field of view from the library's assembly of the cube.
-void add_assembly(const EnvironmentSpec& env, const fs::path& folder, json& out) {
+void add_assembly(const SceneSpec& spec, const fs::path& folder, json& out) {
+  const EnvironmentSpec& env = spec.environment;
   try {
     Warnings warnings;
     EnvironmentInfo info;
-    load_environment(env, warnings, &info);
+    std::string photo_note;
+    load_shots_as_rendered(spec, warnings, info, photo_note);
+
     for (int f = 0; f < 6; ++f) {
       json& shot = out["shots"][std::size_t(f)];
       shot["coverage_percent"] = 100 * info.coverage[std::size_t(f)];
@@ -60,15 +63,18 @@ void add_assembly(const EnvironmentSpec& env, const fs::path& folder, json& out)
       shot["hfov_deg"] = info.hfov_deg[std::size_t(f)];
       shot["registration"] = registration_json(info.registration, f);
       shot["room_lines"] = room_lines_json(info.line_anchor, f);
+      shot["photo_anchor"] = photo_anchor_json(info.photo_anchor, f);
       shot["outline"] = outline_colour(f);
     }
     out["gap_percent"] = 100 * gap_fraction(shot_frames(env, info));
     // The library's warnings name files by their full path; the page names them from the folder.
     const std::string prefix = folder.string() + "/";
-    for (std::string w : warnings.items) {
+    const auto from_folder = [&](std::string w) {
       for (std::size_t at; (at = w.find(prefix)) != std::string::npos;) w.erase(at, prefix.size());
-      out["warnings"].push_back(w);
-    }
+      return w;
+    };
+    for (const std::string& w : warnings.items) out["warnings"].push_back(from_folder(w));
+    if (!photo_note.empty()) out["photo_anchor_note"] = from_folder(photo_note);
   } catch (const InputError& e) {
     const int f = shot_of(env, e.where());
     (f >= 0 ? out["shots"][std::size_t(f)]["error"] : out["error"]) = error_json(e);
@@ -105,7 +111,7 @@ json shots_view(const std::string& scene_path) {
     out["shots"].push_back(shot_json(env.shots[std::size_t(f)], f, folder));
     readable = readable && out["shots"].back()["error"].is_null();
   }
-  if (readable) add_assembly(env, folder, out);
+  if (readable) add_assembly(spec, folder, out);
   return out;
 }
 

@@ -8,6 +8,7 @@
 #include "core/math.h"
 #include "light/preview.h"
 #include "light/texel_geometry.h"
+#include "scene/pipeline.h"
 #include "scene/scene_file.h"
 #include "studio/preview_png.h"
 
@@ -120,13 +121,29 @@ double gap_fraction(const std::array<ShotFrame, 6>& frames) {
 
 const char* outline_colour(int s) { return kOutline[std::clamp(s, 0, 5)]; }
 
+CubeMap load_shots_as_rendered(const SceneSpec& spec, Warnings& warnings, EnvironmentInfo& info,
+                               std::string& photo_note) {
+  photo_note.clear();
+  if (spec.environment.room_box) return load_environment(spec.environment, warnings, &info);
+  std::optional<PhotoAndCamera> pc;
+  try {
+    Warnings camera_warnings;  // the calibration panel's to show, not the shots'
+    pc = load_photo_and_camera(spec, camera_warnings);
+  } catch (const InputError& e) {
+    photo_note = e.what();
+  }
+  return pc ? load_environment(spec.environment, warnings, &info, &pc->photo, &pc->camera)
+            : load_environment(spec.environment, warnings, &info);
+}
+
 std::string stitched_png(const std::string& scene_path, int face_px) {
   const SceneSpec spec = parse_scene_file(scene_path);
   const EnvironmentSpec& env = spec.environment;
   if (!env.from_shots()) throw InputError(env.where, "this scene has no six shots");
   Warnings warnings;
   EnvironmentInfo info;
-  const CubeMap cube = load_environment(env, warnings, &info);
+  std::string photo_note;
+  const CubeMap cube = load_shots_as_rendered(spec, warnings, info, photo_note);
   Image cross = cube_cross_preview(cube, preview_exposure(cube), face_px);
   const std::array<ShotFrame, 6> frames = shot_frames(env, info);
   hatch_gaps(cross, face_px, frames);

@@ -8,6 +8,7 @@
 
 #include "light/environment.h"
 #include "light/sixshot.h"
+#include "scene/spec.h"
 
 namespace insitu {
 
@@ -28,6 +29,12 @@ double gap_fraction(const std::array<ShotFrame, 6>& frames);
 
 // Shot s's outline colour, as "#rrggbb": the picture's and the page's legend's.
 const char* outline_colour(int s);
+
+// The light of the scene's six shots as the render loads it: without a room box, anchored to the
+// photo as calibrated (light/photo_anchor.h). `photo_note`: why the photo could not anchor them
+// (no camera yet: too few points clicked, say), else empty.
+CubeMap load_shots_as_rendered(const SceneSpec& spec, Warnings& warnings, EnvironmentInfo& info,
+                               std::string& photo_note);
 
 // The picture, an sRGB PNG: the cross at `face_px` pixels a face, outlines and hatched gaps.
 std::string stitched_png(const std::string& scene_path, int face_px);

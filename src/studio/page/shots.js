@@ -34,14 +34,19 @@ async function load_shots() {
   draw_stitched();
 }
 
-// One line per shot: its outline's colour, and where registration and the room's lines put it.
+// One line per shot: its outline's colour, and where registration, the room's lines and the photo
+// put it.
 function aim_text(shot) {
-  const r = shot.registration, l = shot.room_lines;
+  const r = shot.registration, l = shot.room_lines, p = shot.photo_anchor;
   const parts = [];
   if (!r) parts.push("aimed as given (registration off)");
   else if (r.registered) parts.push(`registered: turned ${r.rotation_deg.toFixed(2)}° (yaw ${r.yaw_deg.toFixed(2)}°, pitch ${r.pitch_deg.toFixed(2)}°, roll ${r.roll_deg.toFixed(2)}°), residual ${r.residual_deg.toFixed(3)}° over ${r.matches} matches`);
   else parts.push(`not registered: ${r.reason}`);
-  if (l) parts.push(l.anchored ? `room lines: turned ${l.turn_deg.toFixed(2)}° (σ ${l.sigma_deg.toFixed(2)}°)` : `room lines: ${l.reason}`);
+  if (l) {
+    const what = l.axes === "vertical" ? "plumb lines" : "room lines", how = l.axes === "vertical" ? "levelled by" : "turned";
+    parts.push(l.anchored ? `${what}: ${how} ${l.turn_deg.toFixed(2)}° (σ ${l.sigma_deg.toFixed(2)}°)` : `${what}: ${l.reason}`);
+  }
+  if (p) parts.push(p.anchored ? `photo: turned ${p.turn_deg.toFixed(2)}° over ${p.matches} matches, residual ${p.residual_deg.toFixed(3)}°` : `photo: ${p.reason}`);
   return parts.join("; ");
 }
 
@@ -57,6 +62,11 @@ function draw_stitched() {
     const swatch = Object.assign(document.createElement("span"), { className: "swatch" });
     swatch.style.background = shot.outline;
     li.append(swatch, Object.assign(document.createElement("b"), { textContent: shot.key }), " ", aim_text(shot));
+    legend.append(li);
+  }
+  if (st.photo_anchor_note) {
+    const li = Object.assign(document.createElement("li"), { className: "warn" });
+    li.textContent = `not anchored to the photo: ${st.photo_anchor_note}`;
     legend.append(li);
   }
   if (st.gap_percent !== undefined) {
