@@ -156,8 +156,10 @@ def window_of(r):
 def make_room():
     """A closed box room (walls, ceiling; the ground is the floor), facing inward, with an optional
     window (a hole in one wall: window_of) and ceiling lamp (an emitting square:
-    "lamp": {"centre": [x, z], "size": s, "radiance": [r, g, b]})."""
+    "lamp": {"centre": [x, z], "size": s, "radiance": [r, g, b]}). Returns its walls, ceiling and
+    lamp: the real room, which the objects' coverage does not show."""
     r = desc["room"]
+    real = []
     lo, hi = r["min"], r["max"]
     y1 = hi[1]
     albedo = r.get("albedo", [0.6, 0.58, 0.55])
@@ -176,9 +178,9 @@ def make_room():
             centre = 0.5 * (Vector(lo) + Vector(hi))
             if (c1 - c0).cross(c3 - c0).dot(centre - c0) < 0:  # face inward
                 corners.reverse()
-            quad(f"wall_{name}_{k}", corners, mat)
+            real.append(quad(f"wall_{name}_{k}", corners, mat))
     (x0, _, z0), (x1, _, z1) = lo, hi
-    quad("ceiling", [(x0, y1, z0), (x1, y1, z0), (x1, y1, z1), (x0, y1, z1)], mat)
+    real.append(quad("ceiling", [(x0, y1, z0), (x1, y1, z0), (x1, y1, z1), (x0, y1, z1)], mat))
     lamp = r.get("lamp")
     if lamp:
         emit = bpy.data.materials.new("lamp")
@@ -191,7 +193,8 @@ def make_room():
         nt.links.new(e.outputs["Emission"], nt.nodes["Material Output"].inputs["Surface"])
         (cx, cz), h = lamp["centre"], 0.5 * lamp["size"]
         y = y1 - 1e-3  # just below the ceiling, facing down
-        quad("lamp", [(cx - h, y, cz - h), (cx - h, y, cz + h), (cx + h, y, cz + h), (cx + h, y, cz - h)], emit)
+        real.append(quad("lamp", [(cx - h, y, cz - h), (cx - h, y, cz + h), (cx + h, y, cz + h), (cx + h, y, cz - h)],
+                         emit))
     sun = r.get("sun")
     if sun:
         # A distant sun: direction (toward the sun, insitu frame), strength in W/m², angle in degrees.
@@ -202,7 +205,8 @@ def make_room():
         bpy.context.scene.collection.objects.link(light)
         d = to_blender(sun["direction"]).normalized()
         light.rotation_euler = (-d).to_track_quat("-Z", "Y").to_euler()
-        sun_disc(d, sun["strength"], data.angle)
+        real.append(sun_disc(d, sun["strength"], data.angle))
+    return real
 
 
 def sun_disc(d, irradiance, angle_rad):
@@ -227,6 +231,7 @@ def sun_disc(d, irradiance, angle_rad):
     disc.data.materials.append(emit)
     for ray in ("visible_diffuse", "visible_glossy", "visible_transmission", "visible_volume_scatter", "visible_shadow"):
         setattr(disc, ray, False)
+    return disc
 
 
 def lambertian_copy(mat):
@@ -336,15 +341,14 @@ def build_scene():
     scene = bpy.context.scene
     make_world(scene)
     ground = make_ground() if desc.get("ground") else None
-    if desc.get("room"):
-        make_room()
+    room = make_room() if desc.get("room") else []
     balls = make_references()
     objects = make_objects()
     c = desc["camera"]
     eye, look = Vector(c["eye"]), Vector(c["look"])
     camera = make_camera("photo", c["eye"], list(look - eye), [0, 1, 0], c["hfov_deg"])
     scene.camera = camera
-    return scene, camera, [g for g in [ground] + balls if g], objects
+    return scene, camera, [g for g in [ground] + balls if g] + room, objects
 
 
 def option(name):
@@ -366,6 +370,20 @@ def ladder(spps, reference):
         json.dump({"threads": scene.render.threads, "renders": times}, f, indent=2)
 
 
+def render_coverage(scene, real):
+    """The objects' coverage: only they are seen, over a transparent film (the ground, the room's
+    walls and ceiling, the reference balls hidden)."""
+    c = desc["camera"]
+    for obj in real:
+        obj.visible_camera = False
+    scene.render.film_transparent = True
+    setup_render(scene, 16, c["width"], c["height"], desc.get("seed", 1))
+    render_to(os.path.join(out_dir, "coverage.exr"))
+    for obj in real:
+        obj.visible_camera = True
+    scene.render.film_transparent = False
+
+
 def main():
     scene, camera, real, objects = build_scene()
     c = desc["camera"]
@@ -378,15 +396,7 @@ def main():
     # The truth again with another seed: its own noise, for the error's tolerance.
     setup_render(scene, samples.get("photo", 1024), c["width"], c["height"], seed + 1)
     render_to(os.path.join(out_dir, "truth2.exr"))
-    # The objects' coverage: only they are seen, over a transparent film.
-    for obj in real:
-        obj.visible_camera = False
-    scene.render.film_transparent = True
-    setup_render(scene, 16, c["width"], c["height"], seed)
-    render_to(os.path.join(out_dir, "coverage.exr"))
-    for obj in real:
-        obj.visible_camera = True
-    scene.render.film_transparent = False
+    render_coverage(scene, real)
     # The empty room: the photo, and the six shots from the insertion point.
     for obj in objects:
         obj.hide_render = True
@@ -501,6 +511,10 @@ def panorama(width):
 
 if option("--panorama"):
     panorama(int(option("--panorama")))
+elif "--coverage" in argv:
+    scene, camera, real, _ = build_scene()
+    scene.camera = camera
+    render_coverage(scene, real)
 elif option("--ladder"):
     ladder([int(v) for v in option("--ladder").split(",")], int(option("--reference") or 4096))
 else:
