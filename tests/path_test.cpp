@@ -39,7 +39,11 @@ TEST(Path, WhiteFurnaceAtEveryScale) {
     in.environment = &env;
     const auto path = make_integrator("path", in);
     // Inside a uniformly emitting room box (room_light.h), captured off-centre, with a window
-    // and a door: the same (the room's mixture of wall and portal samples is unbiased).
+    // and a door: the same (the room's mixture of wall and portal samples is unbiased). Its walls
+    // are white (ρ = 1 from the photo): the objects' change would travel between them without
+    // loss until max_depth cut it, so the change is followed over one real bounce here (the
+    // further bounces have their own analytic test below, CatcherBounces…).
+    const json one_bounce = {{"catcher_bounces", 1}};
     RenderInputs in_room = in;
     const float m = float(scale);
     in_room.room =
@@ -47,7 +51,7 @@ TEST(Path, WhiteFurnaceAtEveryScale) {
                 Vec3f(6, 6, 7) * m,
                 Vec3f(1.5f, 0.5f, -2) * m,
                 {{0, Vec3f(-6, -1, -3) * m, Vec3f(-6, 3, 2) * m}, {2, Vec3f(1, -6, 7) * m, Vec3f(3, 0, 7) * m}}};
-    const auto path_room = make_integrator("path", in_room);
+    const auto path_room = make_integrator("path", in_room, one_bounce);
     const auto irr = make_integrator("irradiance", in);
     const std::vector<Ray> rays = {{Vec3f(0.3f, 0.2f, 5) * float(scale), Vec3f(-0.05f, 0.02f, -1).normalized()},
                                    {Vec3f(3, 4, 2) * float(scale), -Vec3f(3, 4, 2).normalized()}};
@@ -153,7 +157,9 @@ TEST(Path, WallsOfTheRoomBoxCatchShadows) {
   in.objects = &box;
   in.environment = &env;
   in.room = RoomBox{Vec3f(-5, 0, -5), Vec3f(5, 3, 5), Vec3f(0, 1.5f, 0), {}};
-  const auto path = make_integrator("path", in);
+  // The walls' own change, one real bounce: white walls (ρ = 1) would pass the box's shadow on
+  // round the room without loss (CatcherBounces… below).
+  const auto path = make_integrator("path", in, {{"catcher_bounces", 1}});
   auto walls = [&](const Ray& ray) {
     Eigen::Array2d sum = Eigen::Array2d::Zero();
     const int count = 4000;
@@ -171,6 +177,56 @@ TEST(Path, WallsOfTheRoomBoxCatchShadows) {
   EXPECT_NEAR(across[1], 1.0, 0.05);
   EXPECT_LT(beside[0], 0.8 * beside[1]);
   EXPECT_GT(across[0], 0.97 * across[1]);
+}
+
+// The objects' change followed between real surfaces (photo_bounces, catcher_bounces). Between a real floor and
+// a real ceiling 2 m above it, both infinite planes of albedo ρ = 0.8 in a constant sky L = 1, hangs
+// a black layer at 1 m that stops half the rays through it (MTL `d 0.5`: stochastic opacity,
+// τ = 0.5). A floor point sees only the ceiling: without objects it reflects N = ρ L. With them,
+// over k real bounces the change Δ_k = W_k − N obeys, by symmetry (the ceiling's change is the
+// floor's),
+//   Δ_k = ρ (τ (1 + Δ_{k−1}) − 1),  Δ_0 = 0,
+// since a cosine sample crosses the layer with probability τ and then sees the ceiling's photo plus
+// its change: Δ_1 = −0.4, Δ_2 = −0.56, Δ_3 = −0.624, and Δ_∞ = ρ (τ − 1) / (1 − ρ τ) = −2/3.
+TEST(Path, CatcherBouncesFollowTheObjectsChangeBetweenRealSurfaces) {
+  test::TempDir dir;
+  const CubeMap env = test::constant_cube(8, Rgb::Constant(1.0f));
+  dir.write("layer.mtl", "newmtl black\nKd 0 0 0\nd 0.5\n");
+  Warnings w;
+  std::vector<Mesh> meshes;
+  meshes.push_back(load_obj(dir.write("layer.obj",
+                                      "mtllib layer.mtl\nusemtl black\n"
+                                      "v -1000 1 -1000\nv 1000 1 -1000\nv 1000 1 1000\nv -1000 1 1000\n"
+                                      "f 1 2 3 4\n"),
+                            w));
+  const EmbreeScene layer(std::move(meshes));
+  CatcherPlane ceiling = floor_plane(0.8f);
+  ceiling.point = Vec3f(0, 2, 0), ceiling.normal = Vec3f(0, -1, 0);
+  RenderInputs in;
+  in.objects = &layer;
+  in.environment = &env;
+  in.planes = {floor_plane(0.8f), ceiling};
+  const double rho = 0.8, tau = 0.5;
+  double delta = 0;
+  for (int k = 1; k <= 4; ++k) {
+    const int bounces = k < 4 ? k : 1000;
+    delta = rho * (tau * (1 + delta) - 1);
+    const double expected = k < 4 ? delta : rho * (tau - 1) / (1 - rho * tau);
+    // The camera sees the floor: its real bounces are photo_bounces (catcher_bounces those of an
+    // object's paths, which take the same estimate).
+    const auto path = make_integrator("path", in, {{"max_depth", 1000}, {"photo_bounces", bounces}});
+    double sum = 0, sum2 = 0, without = 0;
+    const int n = 20000;
+    for (int i = 0; i < n; ++i) {
+      Sampler s(11, std::uint64_t(k), std::uint64_t(i));
+      const CameraSample cs = path->sample({Vec3f(0.1f, 0.5f, 0.2f), Vec3f(0, -1, 0)}, s);
+      const double d = double(cs.with_objects[0]) - double(cs.without_objects[0]);
+      sum += d, sum2 += d * d, without += cs.without_objects[0] / double(n);
+    }
+    const double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
+    EXPECT_NEAR(without, rho, 1e-5) << bounces << " bounces";
+    EXPECT_NEAR(mean, expected, 4 * se + 1e-4) << bounces << " bounces";
+  }
 }
 
 }  // namespace

@@ -134,10 +134,11 @@ int run_tradeoff(const TradeoffArgs& a) {
   LoadedScene scene = load_scene(spec);
   print_warnings(scene.warnings);
   auto run = [&](const std::string& integrator, IrradianceMode mode, int spp, std::uint64_t seed, RenderResult* result,
-                 double noise_target = 0) {
+                 double noise_target = 0, const json& params = json::object()) {
     scene.spec.render.integrator = integrator;
     JsonBlock render = scene.spec.render.block;
     render.value["irradiance"] = irradiance_mode_name(mode);
+    for (const auto& [key, value] : params.items()) render.value[key] = value;
     Warnings printed_once;  // the scene's warnings were printed after loading
     scene.integrator = resolve_integrator(integrator, render, printed_once);
     scene.spec.render.spp = spp;
@@ -154,9 +155,9 @@ int run_tradeoff(const TradeoffArgs& a) {
   std::vector<Row> rows;
   RenderResult legacy_result, best_reference;
   auto measure = [&](const std::string& name, const std::string& integrator, IrradianceMode mode, int spp,
-                     RenderResult* keep, double noise_target = 0) {
+                     RenderResult* keep, double noise_target = 0, const json& params = json::object()) {
     RenderResult r;
-    const double seconds = run(integrator, mode, spp, std::uint64_t(a.seed), &r, noise_target);
+    const double seconds = run(integrator, mode, spp, std::uint64_t(a.seed), &r, noise_target, params);
     const CompareResult c = compare_images(r.composite_linear, reference.composite_linear, &mask);
     if (noise_target > 0) spp = int(std::lround(mean_spp(r.layers)));
     rows.push_back(
@@ -185,6 +186,15 @@ int run_tradeoff(const TradeoffArgs& a) {
       for (int spp : a.ladder) measure(label, name, mode, spp, name == reference_name ? &best_reference : nullptr);
     }
   }
+  // The reference with Debevec's one-bounce catcher (path.cpp, catcher_bounces), where the scene has
+  // real surfaces for the objects' change to travel between: faster, and biased where the walls
+  // are bright.
+  Warnings ignored;
+  const json reference_params = resolve_integrator(reference_name, scene.spec.render.block, ignored).params;
+  if ((scene.room || scene.spec.local_scene.size() > 1) && reference_params.value("catcher_bounces", 1) > 1)
+    for (int spp : a.ladder)
+      measure(reference_name + "/1 catcher bounce", reference_name, IrradianceMode::kExact, spp, nullptr, 0,
+              {{"catcher_bounces", 1}});
   const int cap = *std::max_element(a.ladder.begin(), a.ladder.end());
   for (double target : a.noise_targets)
     measure(reference_name + " adaptive", reference_name, IrradianceMode::kExact, cap, nullptr, target);

@@ -36,13 +36,31 @@
 // exactly as it was. The albedo is the plane's, or, by default, the photo's: ρ = π P / E with E
 // the exact irradiance at the plane's normal; in a room box, the room's irradiance at the point
 // (plane_irradiance.h), which varies over the floor (the sun through a window reaches a patch).
-// One bounce at the catcher: its own light on the objects and on itself is already in the photo.
+// The catcher's own light on the objects and on itself is already in the photo; what the objects
+// change there travels on to the other real surfaces (below).
 //
 // Rays leave a surface from p + n_g·ε with ε = 10⁻⁵·max(1 mm, |p|_∞): an offset relative to the
 // position's magnitude, so that objects of a millimetre and of a kilometre are treated alike.
 //
+// Between real surfaces. The change the objects make at a real surface y, W − N, is itself light
+// that reaches every other real surface x: L_with(y) − L_without(y) = Δ(y). So where x's cosine
+// sample meets another real surface y (a wall, the floor), `with` adds ρ(x) Δ(y), Δ(y) estimated at
+// y as at x, recursively (a path of real bounces; Russian roulette by ρ after the first); `without`
+// takes the photo at y as before. One bounce is Debevec's one-bounce catcher. The objects' own
+// paths follow the change over catcher_bounces real surfaces (default 5, all that max_depth's
+// default allows): the light the objects receive from walls they darken. The photo's pixels follow
+// it over photo_bounces (default 1): further bounces darken the whole room a little (in a small
+// white room by several per cent), but each pixel finds the objects through them only now and
+// then, which at preview spp is speckle all over the photo and costs 2–4× the render; they are
+// there for finals that need them (docs/validation.md, "Light between the real surfaces"). Where
+// no object interferes Δ is 0 bit for bit, and so is what it adds.
+//
 // Parameters:
 //   max_depth  bounces, 1 … 1000 (default 5); flat as render.max_depth, or render.path.max_depth.
+//   catcher_bounces  real surfaces an object's path follows the objects' change over, 1 … 1000
+//              (default 5), within max_depth.
+//   photo_bounces  the same for the photo's pixels (a camera ray that meets a real surface),
+//              1 … 1000 (default 1).
 // With environment.room_box the room is an emitting box (room_light.h): its faces carry the cube's
 // radiance projected from the capture point, and next-event estimation samples them as an area
 // light, with the pdf converted to solid angle at the shading point and MIS against the BSDF.
@@ -78,13 +96,15 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 class PathIntegrator final : public Integrator {
  public:
-  PathIntegrator(const RenderInputs& in, int max_depth)
+  PathIntegrator(const RenderInputs& in, int max_depth, int catcher_bounces, int photo_bounces)
       : in_(in),
         objects_(in.objects),
         cache_(room_cache(in)),
         room_light_(room_light(*cache_, in.stop)),
         room_(*room_light_),
-        max_depth_(std::max(1, max_depth)) {
+        max_depth_(std::max(1, max_depth)),
+        catcher_bounces_(std::max(1, catcher_bounces)),
+        photo_bounces_(std::max(1, photo_bounces)) {
     // In a room box the irradiance behind a photo-derived albedo varies over the plane.
     if (!in_.room) return;
     for (const CatcherPlane& p : in_.planes)
@@ -277,11 +297,11 @@ class PathIntegrator final : public Integrator {
         // The real surface as photographed, changed by the objects (differential rendering once
         // more): they see their own shadows and light on it. A wall is the room's emitter too:
         // its light is weighed against the room light's samples of it.
-        const CatcherEstimate e = estimate_catcher(c, wi, sampler, depth);
+        const CatcherEstimate e = estimate_catcher(c, wi, sampler, depth, catcher_bounces_);
         const Rgb photo = c.wall
                               ? Rgb(env_radiance(ray.origin, wi) * power_heuristic(bs.pdf, room_.pdf(ray.origin, wi)))
                               : room_radiance(c.x, wi);
-        L += throughput * (c.albedo_from_photo ? Rgb(photo + e.with - e.without) : e.with);
+        L += throughput * (c.albedo_from_photo ? Rgb(photo + e.change) : e.with());
         break;
       }
       if (!hit.valid()) {
@@ -332,19 +352,23 @@ class PathIntegrator final : public Integrator {
     return rho_over_pi;
   }
 
-  // The radiance a real surface reflects along -dir, with and without the objects, from the same
-  // random numbers:
+  // The radiance a real surface reflects along -dir, without the objects (N) and the change they
+  // make (Δ = W − N), from the same random numbers:
   //   L(x) = ρ/π ∫ L_room(ω) V(x, ω) cos θ dω
   // estimated by a sample of the room's light (blocked by the local scene for both, by the
-  // objects only `with`) and a cosine-weighted sample combined by MIS. The cosine sample traces
+  // objects only with them) and a cosine-weighted sample combined by MIS. The cosine sample traces
   // an object it meets (depth + 1: the objects' light on the real surface), and takes what lies
-  // behind otherwise: the real room as the photo shows it, or the room's light. For the model — a
-  // Lambertian real surface of albedo ρ lit by the room — `with` is unbiased; `without` has mean
-  // ρ/π E = P, the photo.
+  // behind otherwise: the real room as the photo shows it, or the room's light, and beyond a real
+  // surface its own change (change_beyond). For the model — a Lambertian real surface of albedo ρ
+  // lit by the room — W = N + Δ is unbiased; N has mean ρ/π E = P, the photo. Δ gathers only the
+  // terms where the objects interfere, so it is 0 bit for bit where none does. `base`: N is wanted
+  // too; a further real bounce wants Δ alone, and skips the lookups only N needs.
   struct CatcherEstimate {
-    Rgb with = Rgb::Zero(), without = Rgb::Zero(), rho_over_pi = Rgb::Zero();
+    Rgb without = Rgb::Zero(), change = Rgb::Zero(), rho_over_pi = Rgb::Zero();
+    Rgb with() const { return without + change; }
   };
-  CatcherEstimate estimate_catcher(const CatcherHit& c, const Vec3f& dir, Sampler& sampler, int depth) const {
+  CatcherEstimate estimate_catcher(const CatcherHit& c, const Vec3f& dir, Sampler& sampler, int depth, int bounces,
+                                   bool base = true) const {
     CatcherEstimate e;
     e.rho_over_pi = albedo_over_pi(c, dir);
     const Vec3f& n = c.n;
@@ -352,30 +376,51 @@ class PathIntegrator final : public Integrator {
     const float ue = sampler.next(), us = sampler.next(), ut = sampler.next();
     const RoomSample rs = room_.sample(origin, ue, us, ut);
     const float cos_l = n.dot(rs.dir);
-    if (rs.pdf > 0 && cos_l > 0 && !blocked_by_catcher(origin, rs)) {
-      const Rgb contribution = e.rho_over_pi * rs.radiance * (cos_l / rs.pdf * power_heuristic(rs.pdf, cos_l / kPiF));
-      e.without += contribution;
-      if (!blocked_by_objects(origin, rs)) e.with += contribution;
+    if (rs.pdf > 0 && cos_l > 0) {
+      const bool shadowed = blocked_by_objects(origin, rs);
+      if ((base || shadowed) && !blocked_by_catcher(origin, rs)) {
+        const Rgb contribution = e.rho_over_pi * rs.radiance * (cos_l / rs.pdf * power_heuristic(rs.pdf, cos_l / kPiF));
+        if (base) e.without += contribution;
+        if (shadowed) e.change -= contribution;
+      }
     }
     const Vec3f wi = cosine_sample(n, sampler.next(), sampler.next());
-    const float pdf_bsdf = n.dot(wi) / kPiF;
-    const CatcherHit behind_hit = find_catcher({origin, wi}, kInfinity);
-    const Rgb behind =
-        behind_hit.valid
-            ? Rgb(kPiF * e.rho_over_pi * room_radiance(behind_hit.x, wi))
-            : Rgb(kPiF * e.rho_over_pi * env_radiance(origin, wi) * power_heuristic(pdf_bsdf, room_.pdf(origin, wi)));
-    e.without += behind;
     const Hit hit = objects_->intersect({origin, wi});
-    if (hit.valid() && (!behind_hit.valid || hit.t < behind_hit.t))
-      e.with += kPiF * e.rho_over_pi * trace_from({origin, wi}, hit, sampler, depth + 1);
-    else
-      e.with += behind;
+    const CatcherHit behind_hit = find_catcher({origin, wi}, kInfinity);
+    const bool object_first = hit.valid() && (!behind_hit.valid || hit.t < behind_hit.t);
+    if (base || object_first) {
+      const float pdf_bsdf = n.dot(wi) / kPiF;
+      const Rgb behind =
+          behind_hit.valid
+              ? Rgb(kPiF * e.rho_over_pi * room_radiance(behind_hit.x, wi))
+              : Rgb(kPiF * e.rho_over_pi * env_radiance(origin, wi) * power_heuristic(pdf_bsdf, room_.pdf(origin, wi)));
+      if (base) e.without += behind;
+      if (object_first) e.change += kPiF * e.rho_over_pi * trace_from({origin, wi}, hit, sampler, depth + 1) - behind;
+    }
+    if (!object_first && bounces > 1 && depth + 1 < max_depth_)
+      e.change += change_beyond(e.rho_over_pi, origin, wi, hit, sampler, depth, bounces, base);
     return e;
   }
 
+  // ρ(x) Δ(y): the objects' change at the real surface y that x's cosine sample meets (a wall
+  // included), estimated there; 0 where it meets none. Past the first real bounce a path goes on
+  // with probability max ρ(x).
+  Rgb change_beyond(const Rgb& rho_over_pi, const Vec3f& origin, const Vec3f& wi, const Hit& hit, Sampler& sampler,
+                    int depth, int bounces, bool first) const {
+    const CatcherHit y = find_catcher({origin, wi}, hit.valid() ? hit.t : kInfinity, /*walls=*/true);
+    if (!y.valid) return Rgb::Zero();
+    float q = 1;
+    if (!first) {
+      q = std::min(1.0f, kPiF * rho_over_pi.maxCoeff());
+      if (!(sampler.next() < q)) return Rgb::Zero();
+    }
+    const CatcherEstimate d = estimate_catcher(y, wi, sampler, depth + 1, bounces - 1, /*base=*/false);
+    return kPiF * rho_over_pi * d.change / q;
+  }
+
   void catcher(const Ray& camera_ray, const CatcherHit& c, Sampler& sampler, CameraSample& out) const {
-    const CatcherEstimate e = estimate_catcher(c, camera_ray.dir, sampler, 0);
-    out.with_objects = e.with;
+    const CatcherEstimate e = estimate_catcher(c, camera_ray.dir, sampler, 0, photo_bounces_);
+    out.with_objects = e.with();
     out.without_objects = e.without;
     out.normal = c.n;
     out.albedo = kPiF * e.rho_over_pi;
@@ -388,18 +433,23 @@ class PathIntegrator final : public Integrator {
   std::shared_ptr<const RoomLight> room_light_;
   const RoomLight& room_;
   int max_depth_;
+  int catcher_bounces_, photo_bounces_;
   std::vector<std::shared_ptr<const PlaneIrradiance>> plane_irradiance_;   // by plane, with a room box
   std::array<std::shared_ptr<const PlaneIrradiance>, 6> wall_irradiance_;  // by face of the room box
 };
 
 json read_path_params(IntegratorParams& params) {
-  int max_depth = 5;
+  int max_depth = 5, catcher_bounces = 5, photo_bounces = 1;
   if (auto v = params.find("max_depth")) max_depth = int(v->integer(1, 1000));
-  return {{"max_depth", max_depth}};
+  if (auto v = params.find("catcher_bounces")) catcher_bounces = int(v->integer(1, 1000));
+  if (auto v = params.find("photo_bounces")) photo_bounces = int(v->integer(1, 1000));
+  return {{"max_depth", max_depth}, {"catcher_bounces", catcher_bounces}, {"photo_bounces", photo_bounces}};
 }
 
 std::unique_ptr<Integrator> make_path_integrator(const RenderInputs& inputs, const json& params) {
-  return std::make_unique<PathIntegrator>(inputs, params.at("max_depth").get<int>());
+  return std::make_unique<PathIntegrator>(inputs, params.at("max_depth").get<int>(),
+                                          params.at("catcher_bounces").get<int>(),
+                                          params.at("photo_bounces").get<int>());
 }
 
 }  // namespace
