@@ -26,11 +26,14 @@ image_name = argv[1] if len(argv) > 1 else "insitu.exr"
 
 
 def load(name):
+    """The image's RGBA, its negative and non-finite values taken as 0, as insitu reads its photo:
+    an HDRI's negative texels (a processing artefact) reach Cycles's camera as they are, and would
+    otherwise count as pixels the objects changed (their luminance below the 3 % test's floor)."""
     img = bpy.data.images.load(os.path.join(d, name))
     w, h = img.size
     px = [0.0] * (w * h * 4)
     img.pixels.foreach_get(px)
-    return w, h, px
+    return w, h, [v if v > 0 and math.isfinite(v) else 0.0 for v in px]
 
 
 def lum(px, i):
