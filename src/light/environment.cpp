@@ -369,22 +369,60 @@ void anchor_to_the_photo(const EnvironmentSpec& spec, LinearShots& shots, Regist
 
 // The aims turned by the room's straight lines (room_lines.h): all three axes with a room box,
 // the vertical edges alone (the shots levelled) without one.
-void anchor_to_the_lines(const EnvironmentSpec& spec, LinearShots& shots, Registration& r, EnvironmentInfo& info,
-                         Warnings& warnings) {
-  const LineAxes axes = spec.room_box ? LineAxes::room : LineAxes::vertical;
-  const LineAnchor anchor = anchor_to_room_axes(shots.set, r.group, axes);
-  std::string loose;
-  for (int f = 0; f < 6; ++f) {
-    r.aim[std::size_t(f)] = anchor.correction[std::size_t(f)] * r.aim[std::size_t(f)];
-    describe_aim(r.aim[std::size_t(f)], shot_basis(f, spec.faced_face), r.shots[std::size_t(f)]);
-    if (!anchor.anchored[std::size_t(f)]) loose += (loose.empty() ? "" : ", ") + std::string(face_name(f));
+// A group that the room box's axes would turn past a hand's misaim (LineAnchor::off_box) is
+// levelled by its plumb lines instead, as without a box, and the warning names it.
+void level_the_off_box_shots(const ShotSet& set, const std::array<int, 6>& group, LineAnchor& anchor) {
+  if (std::none_of(anchor.off_box.begin(), anchor.off_box.end(), [](bool b) { return b; })) return;
+  const LineAnchor plumb = anchor_to_room_axes(set, group, LineAxes::vertical);
+  for (std::size_t f = 0; f < 6; ++f) {
+    if (!anchor.off_box[f]) continue;
+    anchor.anchored[f] = plumb.anchored[f];
+    anchor.correction[f] = plumb.correction[f];
+    anchor.turn_deg[f] = plumb.turn_deg[f];
+    anchor.sigma_deg[f] = plumb.sigma_deg[f];
+    anchor.lines[f] = plumb.lines[f];
+    if (!plumb.anchored[f]) anchor.reason[f] += "; and " + plumb.reason[f];
   }
-  if (!loose.empty())
-    warnings.add(spec.where, "shots " + loose +
+}
+
+std::string shot_list(const std::array<bool, 6>& which) {
+  std::string list;
+  for (int f = 0; f < 6; ++f)
+    if (which[std::size_t(f)]) list += (list.empty() ? "" : ", ") + std::string(face_name(f));
+  return list;
+}
+
+void warn_of_the_lines(const EnvironmentSpec& spec, LineAxes axes, const LineAnchor& anchor, Warnings& warnings) {
+  std::array<bool, 6> loose{}, off{};
+  double off_deg = 0;
+  for (std::size_t f = 0; f < 6; ++f) {
+    loose[f] = !anchor.anchored[f] && !anchor.off_box[f];
+    off[f] = anchor.off_box[f];
+    off_deg = std::max(off_deg, anchor.off_box_turn_deg[f]);
+  }
+  if (const std::string list = shot_list(loose); !list.empty())
+    warnings.add(spec.where, "shots " + list +
                                  (axes == LineAxes::room
                                       ? ": too few straight lines along two of the room's axes to check their aim; "
                                         "it is taken as given"
                                       : ": too few vertical lines to level them; their tilt is taken as registered"));
+  if (const std::string list = shot_list(off); !list.empty())
+    warnings.add(spec.where, fmt::format("shots {}: their lines run up to {:.1f}° off the room box's axes, more "
+                                         "than a hand misaims ({:.0f}°): is the box drawn along the walls? They "
+                                         "are levelled by their plumb lines only",
+                                         list, off_deg, kMaxHandTurnDeg));
+}
+
+void anchor_to_the_lines(const EnvironmentSpec& spec, LinearShots& shots, Registration& r, EnvironmentInfo& info,
+                         Warnings& warnings) {
+  const LineAxes axes = spec.room_box ? LineAxes::room : LineAxes::vertical;
+  LineAnchor anchor = anchor_to_room_axes(shots.set, r.group, axes);
+  level_the_off_box_shots(shots.set, r.group, anchor);
+  for (int f = 0; f < 6; ++f) {
+    r.aim[std::size_t(f)] = anchor.correction[std::size_t(f)] * r.aim[std::size_t(f)];
+    describe_aim(r.aim[std::size_t(f)], shot_basis(f, spec.faced_face), r.shots[std::size_t(f)]);
+  }
+  warn_of_the_lines(spec, axes, anchor, warnings);
   shots.set.aim = r.aim;
   info.line_anchor = anchor;
 }

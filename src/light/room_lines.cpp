@@ -1,5 +1,7 @@
 #include "light/room_lines.h"
 
+#include <fmt/format.h>
+
 #include <ceres/ceres.h>
 #include <ceres/rotation.h>
 #include <tbb/parallel_for.h>
@@ -141,6 +143,15 @@ void anchor_group(const std::vector<int>& shots, const std::array<std::vector<Li
     if (!enough) {
       out.reason[std::size_t(s)] = axes == LineAxes::vertical ? "too few vertical lines to level it"
                                                               : "too few straight lines along two of the room's axes";
+      continue;
+    }
+    if (axes == LineAxes::room && turn_deg > kMaxHandTurnDeg) {
+      out.off_box[std::size_t(s)] = true;
+      out.off_box_turn_deg[std::size_t(s)] = turn_deg;
+      out.reason[std::size_t(s)] = fmt::format(
+          "its lines run {:.1f}° off the room box's axes, more than a hand misaims ({:.0f}°): is the box drawn "
+          "along the walls?",
+          turn_deg, kMaxHandTurnDeg);
       continue;
     }
     out.anchored[std::size_t(s)] = true;

@@ -45,7 +45,17 @@ struct LineAnchor {
   std::array<double, 6> sigma_deg{};          // its precision from the lines' scatter
   std::array<std::array<int, 3>, 6> lines{};  // the shot's segments along x, y, z
   std::array<std::string, 6> reason;          // why not anchored
+  // LineAxes::room: the group's lines turn it by more than kMaxHandTurnDeg, which is the box drawn
+  // off the real walls, not a misaim; the turn it would have made. Not anchored.
+  std::array<bool, 6> off_box{};
+  std::array<double, 6> off_box_turn_deg{};
 };
+
+// A hand aims a phone a few degrees off (the handheld validation's σ is 2° about each axis: a turn
+// past 15° is 4σ of its norm, p < 10⁻³); the lines' first gate is 6° and their prior's σ 10°. A room
+// box's axes that turn a group by more than this are not the room's walls (a box drawn askew, or a
+// calibration whose frame is turned from the walls), and the lines are not used to turn it.
+inline constexpr double kMaxHandTurnDeg = 15.0;
 
 // `group[s]`: shots with the same value are turned together (registration's groups).
 LineAnchor anchor_to_room_axes(const ShotSet& set, const std::array<int, 6>& group, LineAxes axes = LineAxes::room);

@@ -15,12 +15,14 @@ nlohmann::json registration_json(const std::optional<Registration>& r, int f) {
 nlohmann::json room_lines_json(const std::optional<LineAnchor>& a, int f) {
   if (!a) return nullptr;
   const auto s = std::size_t(f);
-  nlohmann::json j = {{"axes", a->axes == LineAxes::vertical ? "vertical" : "room"},
+  // A shot whose room-box turn was past a hand's misaim is levelled by its plumb lines (off_box).
+  nlohmann::json j = {{"axes", a->axes == LineAxes::vertical || a->off_box[s] ? "vertical" : "room"},
                       {"anchored", a->anchored[s]},
                       {"turn_deg", a->turn_deg[s]},
                       {"sigma_deg", a->sigma_deg[s]},
                       {"lines_xyz", a->lines[s]}};
-  if (!a->anchored[s]) j["reason"] = a->reason[s];
+  if (!a->anchored[s] || a->off_box[s]) j["reason"] = a->reason[s];
+  if (a->off_box[s]) j["off_box_turn_deg"] = a->off_box_turn_deg[s];
   return j;
 }
 

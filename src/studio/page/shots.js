@@ -44,7 +44,10 @@ function aim_text(shot) {
   else parts.push(`not registered: ${r.reason}`);
   if (l) {
     const what = l.axes === "vertical" ? "plumb lines" : "room lines", how = l.axes === "vertical" ? "levelled by" : "turned";
-    parts.push(l.anchored ? `${what}: ${how} ${l.turn_deg.toFixed(2)}° (σ ${l.sigma_deg.toFixed(2)}°)` : `${what}: ${l.reason}`);
+    const off_box = l.off_box_turn_deg !== undefined;  // the box's turn was past a hand's misaim
+    if (off_box) parts.push(`room lines: ${l.reason}`);
+    if (l.anchored) parts.push(`${what}: ${how} ${l.turn_deg.toFixed(2)}° (σ ${l.sigma_deg.toFixed(2)}°)`);
+    else if (!off_box) parts.push(`${what}: ${l.reason}`);
   }
   if (p) parts.push(p.anchored ? `photo: turned ${p.turn_deg.toFixed(2)}° over ${p.matches} matches, residual ${p.residual_deg.toFixed(3)}°` : `photo: ${p.reason}`);
   return parts.join("; ");
