@@ -51,7 +51,7 @@
 // default allows): the light the objects receive from walls they darken. The photo's pixels follow
 // it over photo_bounces (default 1): further bounces darken the whole room a little (in a small
 // white room by several per cent), but each pixel finds the objects through them only now and
-// then, which at preview spp is speckle all over the photo and costs 2–4× the render; they are
+// then, which at preview spp is speckle all over the photo and costs 2.2–2.7× the render; they are
 // there for finals that need them (docs/validation.md, "Light between the real surfaces"). Where
 // no object interferes Δ is 0 bit for bit, and so is what it adds.
 //
