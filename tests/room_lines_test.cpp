@@ -129,16 +129,19 @@ TEST(RoomLines, PlumbEdgesLevelShotsOfARoomTurnedOffTheAxes) {
       continue;
     }
     // Taken as a room box's axes, the turned walls would turn the shot by about the walls' 20°:
-    // not applied, and said why.
-    EXPECT_FALSE(room_axes.anchored[i]) << face_name(s);
-    EXPECT_TRUE(room_axes.correction[i].isIdentity()) << face_name(s);
-    // Off the box by more than a hand misaims, or (where the turned walls' lines fall outside the
-    // gates) too few lines along the box's axes.
+    // not applied, and said why. Off the box by more than a hand misaims, the shot is levelled by
+    // its plumb lines instead, exactly as LineAxes::vertical levels it; or (where the turned walls'
+    // lines fall outside the gates) too few lines along the box's axes, and it is not turned.
     if (room_axes.off_box[i]) {
       ++off_box;
       EXPECT_GT(room_axes.off_box_turn_deg[i], kMaxHandTurnDeg) << face_name(s);
       EXPECT_NE(room_axes.reason[i].find("off the room box's axes"), std::string::npos) << room_axes.reason[i];
+      EXPECT_EQ(room_axes.anchored[i], plumb.anchored[i]) << face_name(s);
+      EXPECT_TRUE(room_axes.correction[i].isApprox(plumb.correction[i], 1e-12)) << face_name(s);
+      EXPECT_EQ(room_axes.lines[i], plumb.lines[i]) << face_name(s);
     } else {
+      EXPECT_FALSE(room_axes.anchored[i]) << face_name(s);
+      EXPECT_TRUE(room_axes.correction[i].isIdentity()) << face_name(s);
       EXPECT_NE(room_axes.reason[i].find("too few straight lines"), std::string::npos) << room_axes.reason[i];
     }
     ASSERT_TRUE(plumb.anchored[i]) << face_name(s) << ": " << plumb.reason[i];

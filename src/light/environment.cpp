@@ -367,24 +367,7 @@ void anchor_to_the_photo(const EnvironmentSpec& spec, LinearShots& shots, Regist
   info.photo_anchor = anchor;
 }
 
-// The aims turned by the room's straight lines (room_lines.h): all three axes with a room box,
-// the vertical edges alone (the shots levelled) without one.
-// A group that the room box's axes would turn past a hand's misaim (LineAnchor::off_box) is
-// levelled by its plumb lines instead, as without a box, and the warning names it.
-void level_the_off_box_shots(const ShotSet& set, const std::array<int, 6>& group, LineAnchor& anchor) {
-  if (std::none_of(anchor.off_box.begin(), anchor.off_box.end(), [](bool b) { return b; })) return;
-  const LineAnchor plumb = anchor_to_room_axes(set, group, LineAxes::vertical);
-  for (std::size_t f = 0; f < 6; ++f) {
-    if (!anchor.off_box[f]) continue;
-    anchor.anchored[f] = plumb.anchored[f];
-    anchor.correction[f] = plumb.correction[f];
-    anchor.turn_deg[f] = plumb.turn_deg[f];
-    anchor.sigma_deg[f] = plumb.sigma_deg[f];
-    anchor.lines[f] = plumb.lines[f];
-    if (!plumb.anchored[f]) anchor.reason[f] += "; and " + plumb.reason[f];
-  }
-}
-
+// "+x, up": the faces marked.
 std::string shot_list(const std::array<bool, 6>& which) {
   std::string list;
   for (int f = 0; f < 6; ++f)
@@ -392,6 +375,8 @@ std::string shot_list(const std::array<bool, 6>& which) {
   return list;
 }
 
+// One warning for the shots the lines could not anchor, one for those a room box's axes would have
+// turned past a hand's misaim (levelled by their plumb lines instead: room_lines.h, off_box).
 void warn_of_the_lines(const EnvironmentSpec& spec, LineAxes axes, const LineAnchor& anchor, Warnings& warnings) {
   std::array<bool, 6> loose{}, off{};
   double off_deg = 0;
@@ -413,11 +398,12 @@ void warn_of_the_lines(const EnvironmentSpec& spec, LineAxes axes, const LineAnc
                                          list, off_deg, kMaxHandTurnDeg));
 }
 
+// The aims turned by the room's straight lines (room_lines.h): all three axes with a room box,
+// the vertical edges alone (the shots levelled) without one.
 void anchor_to_the_lines(const EnvironmentSpec& spec, LinearShots& shots, Registration& r, EnvironmentInfo& info,
                          Warnings& warnings) {
   const LineAxes axes = spec.room_box ? LineAxes::room : LineAxes::vertical;
-  LineAnchor anchor = anchor_to_room_axes(shots.set, r.group, axes);
-  level_the_off_box_shots(shots.set, r.group, anchor);
+  const LineAnchor anchor = anchor_to_room_axes(shots.set, r.group, axes);
   for (int f = 0; f < 6; ++f) {
     r.aim[std::size_t(f)] = anchor.correction[std::size_t(f)] * r.aim[std::size_t(f)];
     describe_aim(r.aim[std::size_t(f)], shot_basis(f, spec.faced_face), r.shots[std::size_t(f)]);

@@ -120,6 +120,27 @@ Fit fit_round(const std::vector<LinePlane>& lines, std::array<double, 3> w, doub
   return {w, turn_sigma_deg(problem, w, summary, axes == LineAxes::vertical ? 2 : 3)};
 }
 
+void anchor_group(const std::vector<int>& shots, const std::array<std::vector<LinePlane>, 6>& planes, LineAxes axes,
+                  LineAnchor& out);
+
+// A group the room box's axes would turn by `turn_deg`, past a hand's misaim: levelled by the same
+// segments' plumb lines instead, as without a box (LineAnchor::off_box).
+void level_off_box_group(const std::vector<int>& shots, const std::array<std::vector<LinePlane>, 6>& planes,
+                         double turn_deg, LineAnchor& out) {
+  for (int s : shots) out.lines[std::size_t(s)] = {};
+  anchor_group(shots, planes, LineAxes::vertical, out);
+  const std::string why = fmt::format(
+      "its lines run {:.1f}° off the room box's axes, more than a hand misaims ({:.0f}°): is the box drawn along the "
+      "walls?",
+      turn_deg, kMaxHandTurnDeg);
+  for (int s : shots) {
+    const auto i = std::size_t(s);
+    out.off_box[i] = true;
+    out.off_box_turn_deg[i] = turn_deg;
+    out.reason[i] = out.anchored[i] ? why : why + "; and " + out.reason[i];
+  }
+}
+
 // The group's rotation, or none with the reason.
 void anchor_group(const std::vector<int>& shots, const std::array<std::vector<LinePlane>, 6>& planes, LineAxes axes,
                   LineAnchor& out) {
@@ -139,19 +160,14 @@ void anchor_group(const std::vector<int>& shots, const std::array<std::vector<Li
   std::sort(along.begin(), along.end());
   const bool enough = axes == LineAxes::vertical ? vertical >= 10 : along[1] >= 10;
   const double turn_deg = rad_to_deg(Vec3d(w[0], w[1], w[2]).norm());
+  if (enough && axes == LineAxes::room && turn_deg > kMaxHandTurnDeg) {
+    level_off_box_group(shots, planes, turn_deg, out);
+    return;
+  }
   for (int s : shots) {
     if (!enough) {
       out.reason[std::size_t(s)] = axes == LineAxes::vertical ? "too few vertical lines to level it"
                                                               : "too few straight lines along two of the room's axes";
-      continue;
-    }
-    if (axes == LineAxes::room && turn_deg > kMaxHandTurnDeg) {
-      out.off_box[std::size_t(s)] = true;
-      out.off_box_turn_deg[std::size_t(s)] = turn_deg;
-      out.reason[std::size_t(s)] = fmt::format(
-          "its lines run {:.1f}° off the room box's axes, more than a hand misaims ({:.0f}°): is the box drawn "
-          "along the walls?",
-          turn_deg, kMaxHandTurnDeg);
       continue;
     }
     out.anchored[std::size_t(s)] = true;

@@ -46,7 +46,9 @@ struct LineAnchor {
   std::array<std::array<int, 3>, 6> lines{};  // the shot's segments along x, y, z
   std::array<std::string, 6> reason;          // why not anchored
   // LineAxes::room: the group's lines turn it by more than kMaxHandTurnDeg, which is the box drawn
-  // off the real walls, not a misaim; the turn it would have made. Not anchored.
+  // off the real walls, not a misaim; the turn it would have made. The group is then levelled by
+  // its plumb lines as with LineAxes::vertical (anchored, correction and lines are those), and
+  // `reason` says why.
   std::array<bool, 6> off_box{};
   std::array<double, 6> off_box_turn_deg{};
 };
