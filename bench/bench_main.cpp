@@ -109,20 +109,22 @@ void BM_DemoPath64(benchmark::State& state) {
 BENCHMARK(BM_DemoPath64)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
 // The demo with `path` and its floor catcher, 16 spp, one thread: camera samples per second per
-// core. The argument is catcher_bounces: 5 the default, 1 Debevec's one-bounce catcher.
+// core. BM_DemoPath/B/T: catcher_bounces B (5 the default, 1 Debevec's one-bounce catcher) and
+// toward_objects T/10 (5: 0.5, the default; 0: cosine samples only).
 void BM_DemoPath(benchmark::State& state) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 1);
   SceneSpec spec = parse_scene_file(std::string(INSITU_SOURCE_DIR) + "/scenes/demo/scene.json");
   spec.render.integrator = "path";
   spec.render.spp = 16;
   spec.render.block.value["catcher_bounces"] = state.range(0);
+  spec.render.block.value["toward_objects"] = double(state.range(1)) / 10;
   const LoadedScene scene = load_scene(spec);
   for (auto _ : state) benchmark::DoNotOptimize(render_scene(scene));
   state.counters["camera_samples/s"] = benchmark::Counter(
       double(scene.camera.width) * scene.camera.height * spec.render.spp * double(state.iterations()),
       benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_DemoPath)->Arg(5)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DemoPath)->Args({5, 5})->Args({1, 5})->Args({5, 0})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // A bare Embree rtcIntersect1 loop (through EmbreeScene::intersect) over the same primary rays,
 // one thread: the floor under any integrator's cost per camera sample.

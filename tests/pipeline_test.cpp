@@ -38,7 +38,11 @@ TEST(Demo, RendersWithObjectsWhereTheCameraSeesThem) {
         ++untouched;
         for (int k = 0; k < 3; ++k) ASSERT_EQ(r.composite_encoded.at(x, y)[k], s.photo.stored.at(x, y)[k]);
       }
-  EXPECT_GT(untouched, std::size_t(s.camera.width) * s.camera.height / 3);
+  // Those are the pixels whose surface no sample connected to an object. Half the walls' reflection
+  // samples go toward the objects (path.cpp, "Toward the objects"), so most real pixels carry their
+  // small true change; 80 000 of 307 200 stay untouched at 4 spp (the window's, and those whose
+  // few samples all missed).
+  EXPECT_GT(untouched, std::size_t(s.camera.width) * s.camera.height / 5);
   // The floor right under the ball is in its shadow: darker with the objects than without.
   const Vec2d below = s.camera.project(Vec3d(0.95, 0.0, -0.2) + Vec3d(0.0, 0.0, 0.25));
   const int bx = int(below.x()), by = int(below.y());

@@ -55,12 +55,21 @@
 // there for finals that need them (docs/validation.md, "Light between the real surfaces"). Where
 // no object interferes Δ is 0 bit for bit, and so is what it adds.
 //
+// Toward the objects. A real surface's reflection sample is cosine-weighted or, with probability
+// toward_objects (less where the objects fill its sky), drawn in the cones of the objects'
+// bounding spheres, and weighed by the mixture's density (render/object_cones.h): a wall far from
+// the furniture finds it in every other sample instead of one in fifty, so its change W − N is no
+// longer a few lucky hits (speckle over the whole photo at preview spp). The estimate's mean is
+// the same; N is estimated from the same mixture.
+//
 // Parameters:
 //   max_depth  bounces, 1 … 1000 (default 5); flat as render.max_depth, or render.path.max_depth.
 //   catcher_bounces  real surfaces an object's path follows the objects' change over, 1 … 1000
 //              (default 5), within max_depth.
 //   photo_bounces  the same for the photo's pixels (a camera ray that meets a real surface),
 //              1 … 1000 (default 1).
+//   toward_objects  the share of a real surface's reflection samples drawn toward the objects,
+//              0 … 0.9 (default 0.5; 0: the cosine alone).
 // With environment.room_box the room is an emitting box (room_light.h): its faces carry the cube's
 // radiance projected from the capture point, and next-event estimation samples them as an area
 // light, with the pdf converted to solid angle at the shading point and MIS against the BSDF.
@@ -84,6 +93,7 @@
 #include "core/stop.h"
 #include "integrators/registry.h"
 #include "render/bsdf.h"
+#include "render/object_cones.h"
 #include "render/shading_normal.h"
 #include "light/env_sampling.h"
 #include "light/plane_irradiance.h"
@@ -96,15 +106,17 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 class PathIntegrator final : public Integrator {
  public:
-  PathIntegrator(const RenderInputs& in, int max_depth, int catcher_bounces, int photo_bounces)
+  PathIntegrator(const RenderInputs& in, int max_depth, int catcher_bounces, int photo_bounces, float toward_objects)
       : in_(in),
         objects_(in.objects),
+        cones_(in.objects->meshes()),
         cache_(room_cache(in)),
         room_light_(room_light(*cache_, in.stop)),
         room_(*room_light_),
         max_depth_(std::max(1, max_depth)),
         catcher_bounces_(std::max(1, catcher_bounces)),
-        photo_bounces_(std::max(1, photo_bounces)) {
+        photo_bounces_(std::max(1, photo_bounces)),
+        toward_objects_(std::clamp(toward_objects, 0.0f, 0.9f)) {
     // In a room box the irradiance behind a photo-derived albedo varies over the plane.
     if (!in_.room) return;
     for (const CatcherPlane& p : in_.planes)
@@ -373,32 +385,38 @@ class PathIntegrator final : public Integrator {
     e.rho_over_pi = albedo_over_pi(c, dir);
     const Vec3f& n = c.n;
     const Vec3f origin = offset_origin(c.x, n);
+    const ReflectedSampling reflected(cones_, toward_objects_, origin, n);
     const float ue = sampler.next(), us = sampler.next(), ut = sampler.next();
     const RoomSample rs = room_.sample(origin, ue, us, ut);
     const float cos_l = n.dot(rs.dir);
     if (rs.pdf > 0 && cos_l > 0) {
       const bool shadowed = blocked_by_objects(origin, rs);
       if ((base || shadowed) && !blocked_by_catcher(origin, rs)) {
-        const Rgb contribution = e.rho_over_pi * rs.radiance * (cos_l / rs.pdf * power_heuristic(rs.pdf, cos_l / kPiF));
+        const Rgb contribution =
+            e.rho_over_pi * rs.radiance * (cos_l / rs.pdf * power_heuristic(rs.pdf, reflected.pdf(rs.dir)));
         if (base) e.without += contribution;
         if (shadowed) e.change -= contribution;
       }
     }
-    const Vec3f wi = cosine_sample(n, sampler.next(), sampler.next());
+    const float uc = sampler.next(), u1 = sampler.next(), u2 = sampler.next();
+    const Vec3f wi = reflected.sample(uc, u1, u2);
+    const float pdf_wi = reflected.pdf(wi);
+    if (!(n.dot(wi) > 0) || !(pdf_wi > 0)) return e;  // a cone's direction below the surface: no light
+    // The cosine sample's estimate times (cos θ / π) / p(ω): 1 bit for bit without cones.
+    const float scale = n.dot(wi) / kPiF / pdf_wi;
     const Hit hit = objects_->intersect({origin, wi});
     const CatcherHit behind_hit = find_catcher({origin, wi}, kInfinity);
     const bool object_first = hit.valid() && (!behind_hit.valid || hit.t < behind_hit.t);
     if (base || object_first) {
-      const float pdf_bsdf = n.dot(wi) / kPiF;
-      const Rgb behind =
-          behind_hit.valid
-              ? Rgb(kPiF * e.rho_over_pi * room_radiance(behind_hit.x, wi))
-              : Rgb(kPiF * e.rho_over_pi * env_radiance(origin, wi) * power_heuristic(pdf_bsdf, room_.pdf(origin, wi)));
+      const Rgb behind = behind_hit.valid ? Rgb(kPiF * e.rho_over_pi * room_radiance(behind_hit.x, wi) * scale)
+                                          : Rgb(kPiF * e.rho_over_pi * env_radiance(origin, wi) *
+                                                (scale * power_heuristic(pdf_wi, room_.pdf(origin, wi))));
       if (base) e.without += behind;
-      if (object_first) e.change += kPiF * e.rho_over_pi * trace_from({origin, wi}, hit, sampler, depth + 1) - behind;
+      if (object_first)
+        e.change += kPiF * e.rho_over_pi * trace_from({origin, wi}, hit, sampler, depth + 1) * scale - behind;
     }
     if (!object_first && bounces > 1 && depth + 1 < max_depth_)
-      e.change += change_beyond(e.rho_over_pi, origin, wi, hit, sampler, depth, bounces, base);
+      e.change += scale * change_beyond(e.rho_over_pi, origin, wi, hit, sampler, depth, bounces, base);
     return e;
   }
 
@@ -429,27 +447,34 @@ class PathIntegrator final : public Integrator {
 
   const RenderInputs in_;
   const EmbreeScene* objects_;
+  ObjectCones cones_;  // the objects' bounding spheres, toward which real surfaces sample too
   std::shared_ptr<RoomCache> cache_;
   std::shared_ptr<const RoomLight> room_light_;
   const RoomLight& room_;
   int max_depth_;
   int catcher_bounces_, photo_bounces_;
+  float toward_objects_;                                                   // s_0 of object_cones.h's ReflectedSampling
   std::vector<std::shared_ptr<const PlaneIrradiance>> plane_irradiance_;   // by plane, with a room box
   std::array<std::shared_ptr<const PlaneIrradiance>, 6> wall_irradiance_;  // by face of the room box
 };
 
 json read_path_params(IntegratorParams& params) {
   int max_depth = 5, catcher_bounces = 5, photo_bounces = 1;
+  double toward_objects = 0.5;
   if (auto v = params.find("max_depth")) max_depth = int(v->integer(1, 1000));
   if (auto v = params.find("catcher_bounces")) catcher_bounces = int(v->integer(1, 1000));
   if (auto v = params.find("photo_bounces")) photo_bounces = int(v->integer(1, 1000));
-  return {{"max_depth", max_depth}, {"catcher_bounces", catcher_bounces}, {"photo_bounces", photo_bounces}};
+  if (auto v = params.find("toward_objects")) toward_objects = v->number(0, 0.9);
+  return {{"max_depth", max_depth},
+          {"catcher_bounces", catcher_bounces},
+          {"photo_bounces", photo_bounces},
+          {"toward_objects", toward_objects}};
 }
 
 std::unique_ptr<Integrator> make_path_integrator(const RenderInputs& inputs, const json& params) {
-  return std::make_unique<PathIntegrator>(inputs, params.at("max_depth").get<int>(),
-                                          params.at("catcher_bounces").get<int>(),
-                                          params.at("photo_bounces").get<int>());
+  return std::make_unique<PathIntegrator>(
+      inputs, params.at("max_depth").get<int>(), params.at("catcher_bounces").get<int>(),
+      params.at("photo_bounces").get<int>(), params.at("toward_objects").get<float>());
 }
 
 }  // namespace
