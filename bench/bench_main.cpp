@@ -5,6 +5,7 @@
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <random>
 
@@ -13,6 +14,8 @@
 #include "light/cubemap.h"
 #include "light/equirect.h"
 #include "light/gaussian_irradiance.h"
+#include "output/composite.h"
+#include "output/denoise.h"
 #include "render/mesh.h"
 #include "scene/pipeline.h"
 
@@ -125,6 +128,23 @@ void BM_DemoPath(benchmark::State& state) {
       benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_DemoPath)->Args({5, 5})->Args({1, 5})->Args({5, 0})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The composite's denoiser (output/denoise.h) on the demo's 16-spp `path` render, T threads
+// (BM_Denoise/T): the denoiser alone, the render done once before.
+void BM_Denoise(benchmark::State& state) {
+  SceneSpec spec = parse_scene_file(std::string(INSITU_SOURCE_DIR) + "/scenes/demo/scene.json");
+  spec.render.integrator = "path";
+  spec.render.spp = 16;
+  const LoadedScene scene = load_scene(spec);
+  const RenderResult r = render_scene(scene);
+  const Image variance = composite_variance(scene.photo_linear, r.layers, spec.composite);
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, std::size_t(state.range(0)));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(denoise_composite(scene.photo_linear, r.composite_linear, variance, r.layers));
+  const Image touched = touched_mask(r.layers);
+  state.counters["touched_pixels"] = double(std::count(touched.data.begin(), touched.data.end(), 1.0f));
+}
+BENCHMARK(BM_Denoise)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // A bare Embree rtcIntersect1 loop (through EmbreeScene::intersect) over the same primary rays,
 // one thread: the floor under any integrator's cost per camera sample.

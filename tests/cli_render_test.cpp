@@ -103,6 +103,50 @@ TEST(CliRender, OptionsWithoutEffectAreWarnedAndReportedAsDone) {
   EXPECT_NE(run_insitu(fx.dir, "render " + fx.write(j)).err.find("render.max_depth: has no effect"), std::string::npos);
 }
 
+// --denoise (and the scene's "denoise"): the PNG keeps the photo's bytes wherever the render left
+// the pixel untouched (no coverage, W = N: the layers say which), changes the others, and the
+// report says it was done; the layers stay as rendered.
+TEST(CliRender, DenoiseKeepsThePhotosUntouchedPixelsAndSaysSo) {
+  SceneFixture fx;
+  auto j = fx.scene;
+  j["render"] = {{"integrator", "path"}, {"spp", 4}};
+  j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
+  j["objects"] = {{{"mesh", "good_quad.obj"}, {"translate", {0, 0.3, 0}}}};
+  const std::string scene = fx.write(j);
+  ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("raw.png")).exit_code, 0);
+  const CliRun d = run_insitu(fx.dir, "render " + scene + " --denoise -o " + fx.dir.file("d.png"));
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  EXPECT_TRUE(read_json(fx.dir.file("raw.png.report.json"))["denoise"].is_null());
+  EXPECT_GE(read_json(fx.dir.file("d.png.report.json"))["denoise"]["seconds"].get<double>(), 0.0);
+  EXPECT_TRUE(exr_pixels(fx.dir.file("raw.layers.exr")) != exr_pixels(fx.dir.file("d.layers.exr")));  // composite
+  const ImageFile photo = read_image_file(fx.dir.file("photo.png"));
+  const ImageFile raw = read_image_file(fx.dir.file("raw.png")), denoised = read_image_file(fx.dir.file("d.png"));
+  const std::string layers = fx.dir.file("d.layers.exr");
+  const std::vector<float> alpha = exr_channel(layers, "objects.A");
+  std::vector<std::vector<float>> with, without;
+  for (const char* c : {"R", "G", "B"})
+    with.push_back(exr_channel(layers, std::string("with.") + c)),
+        without.push_back(exr_channel(layers, std::string("without.") + c));
+  const int width = photo.stored.width;
+  ASSERT_EQ(alpha.size(), std::size_t(width) * photo.stored.height);
+  long untouched = 0, changed = 0;
+  for (int y = 0; y < photo.stored.height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::size_t i = std::size_t(y) * width + x;
+      bool touched = alpha[i] != 0;
+      for (int c = 0; c < 3; ++c) touched |= with[c].at(i) != without[c].at(i);
+      for (int c = 0; c < 3; ++c) {
+        if (!touched) EXPECT_EQ(denoised.stored.at(x, y)[c], photo.stored.at(x, y)[c]) << x << "," << y;
+        changed += denoised.stored.at(x, y)[c] != raw.stored.at(x, y)[c];
+      }
+      untouched += !touched;
+    }
+  EXPECT_GT(untouched, 0);
+  EXPECT_GT(changed, 0);
+  j["denoise"] = "yes";
+  expect_one_line_error(run_insitu(fx.dir, "render " + fx.write(j)), "$.denoise");
+}
+
 // --help shows the defaults, and every verb accepts the same seed range.
 TEST(CliRender, HelpShowsDefaults) {
   TempDir dir;

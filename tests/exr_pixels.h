@@ -18,4 +18,16 @@ inline std::vector<float> exr_pixels(const std::string& path) {
   return v;
 }
 
+// One named channel of an EXR ("objects.A"), row by row; empty when the file or channel is missing.
+inline std::vector<float> exr_channel(const std::string& path, const std::string& name) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return {};
+  const OIIO::ImageSpec& spec = in->spec();
+  const int c = spec.channelindex(name);
+  if (c < 0) return {};
+  std::vector<float> v(std::size_t(spec.width) * spec.height);
+  in->read_image(0, 0, c, c + 1, OIIO::TypeDesc::FLOAT, v.data());
+  return v;
+}
+
 }  // namespace insitu::test

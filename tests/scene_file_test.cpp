@@ -165,6 +165,17 @@ TEST(SceneFile, MeanAlbedoAndInverseLighting) {
 
 // A reference in the photo: its polygon as given, its albedo; a polygon of fewer than three corners
 // or of less than a pixel's area is refused where it is.
+// "denoise": off unless the file says so (a final render is not denoised by default).
+TEST(SceneFile, DenoiseIsOffUnlessAsked) {
+  SceneFixture fx;
+  EXPECT_FALSE(parse_scene_file(fx.write()).denoise);
+  auto j = fx.scene;
+  j["denoise"] = true;
+  EXPECT_TRUE(parse_scene_file(fx.write(j)).denoise);
+  j["denoise"] = 1;
+  expect_error(fx, j, ":$.denoise", "expected");
+}
+
 TEST(SceneFile, ReferencesInThePhoto) {
   SceneFixture fx;
   auto j = fx.scene;

@@ -1,5 +1,5 @@
 // insitu render SCENE [-o OUT] [--layers PATH|none] [--spp N] [--integrator NAME] [--irradiance MODE]
-//                     [--seed N] [--noise-target T] [--tonemap OP] [--key K] [--resume]
+//                     [--seed N] [--noise-target T] [--tonemap OP] [--key K] [--denoise] [--resume]
 //                     [--samples A:B [--part PATH]]
 //
 // --noise-target T (render.noise_target) samples adaptively: each pixel stops at relative standard
@@ -176,6 +176,9 @@ Command add_render_command(CLI::App& app) {
   cmd->add_option("--tonemap", a->tonemap,
                   "for PNG/JPEG: " + quoted_choices(names_of(kToneMaps)) + " [default: the scene's, else photo]")
       ->check(CLI::IsMember(names_of(kToneMaps)));
+  cmd->add_flag("--denoise", a->denoise,
+                "denoise the composite (docs/denoise.md): the changed pixels only, the layers as rendered "
+                "[default: the scene's denoise, else off]");
   cmd->add_flag("--resume", a->resume, "continue an interrupted render from its checkpoint (OUT.checkpoint)");
   cmd->add_option("--samples", a->samples,
                   "A:B: render only the samples A to B-1 of the spp, as a part of a split render, and write their sums "

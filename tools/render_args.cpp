@@ -31,6 +31,7 @@ SceneSpec render_spec(const RenderArgs& a) {
     }
   }
   if (a.spp > 0) spec.render.spp = a.spp;
+  if (a.denoise) spec.denoise = true;
   if (a.seed >= 0) spec.render.seed = std::uint64_t(a.seed);
   if (a.noise_target >= 0) spec.render.noise_target = a.noise_target;
   if (!a.integrator.empty()) {

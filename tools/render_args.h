@@ -15,6 +15,7 @@ struct RenderArgs {
   long seed = -1;
   double noise_target = -1;  // --noise-target (0: off); −1: the scene's
   bool resume = false;
+  bool denoise = false;       // --denoise: the composite denoised (output/denoise.h)
   std::string samples, part;  // --samples A:B and --part PATH: a part of a split render
 };
 

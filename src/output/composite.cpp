@@ -40,6 +40,21 @@ Image composite(const Image& photo, const RenderLayers& l, CompositeMode mode) {
   return out;
 }
 
+Image composite_variance(const Image& photo, const RenderLayers& l, CompositeMode mode) {
+  Image v(photo.width, photo.height, 1, 0.0f);
+  for (int y = 0; y < photo.height; ++y)
+    for (int x = 0; x < photo.width; ++x) {
+      const double a = *l.alpha.at(x, y), layer = *l.variance.at(x, y);
+      if (mode == CompositeMode::kAdditive || l.ratio_variance.data.empty() || !ratio_is_reliable(photo, l, x, y)) {
+        *v.at(x, y) = float(layer);
+        continue;
+      }
+      const double scale = (1 - a) * luminance(photo.rgb(x, y));
+      *v.at(x, y) = float(scale * scale * *l.ratio_variance.at(x, y) + (a > 0 ? layer : 0.0));
+    }
+  return v;
+}
+
 Image touched_mask(const RenderLayers& l) {
   Image m(l.alpha.width, l.alpha.height, 1, 0.0f);
   for (int y = 0; y < m.height; ++y)

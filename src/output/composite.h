@@ -32,6 +32,11 @@
 namespace insitu {
 
 Image composite(const Image& photo_linear, const RenderLayers& layers, CompositeMode mode);
+// 1 channel: the variance of the composite's mean luminance at each pixel, as the layers estimate
+// it: where the additive form is used, the variance layer's (that of O + W − N); where the ratio
+// form is, ((1 − α) Y(P))² Var(W̄/N̄) (delta method), plus the variance layer where an object
+// covers part of the pixel (an upper bound: it counts the catcher's W − N there too).
+Image composite_variance(const Image& photo_linear, const RenderLayers& layers, CompositeMode mode);
 // 1 channel: 1 where the render changed the pixel, 0 where it is the photo's.
 Image touched_mask(const RenderLayers& layers);
 // 1 channel: 1 on the objects (α > 0.01) and where the composite's luminance differs from the

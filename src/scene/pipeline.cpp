@@ -15,6 +15,7 @@
 #include "core/text_file.h"
 #include "light/irradiance.h"
 #include "output/composite.h"
+#include "output/denoise.h"
 #include "output/tonemap.h"
 #include "render/checkpoint.h"
 #include "render/gltf_mesh.h"
@@ -378,11 +379,19 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress, 
   return finish_render(scene, render(scene.camera, *integrator, settings, progress, control.state), prepare_seconds);
 }
 
-RenderResult finish_render(const LoadedScene& scene, RenderLayers layers, double prepare_seconds) {
+RenderResult finish_render(const LoadedScene& scene, RenderLayers layers, double prepare_seconds,
+                           std::optional<bool> denoise) {
   RenderResult r;
   r.prepare_seconds = prepare_seconds;
   r.layers = std::move(layers);
   r.composite_linear = composite(scene.photo_linear, r.layers, scene.spec.composite);
+  if (denoise.value_or(scene.spec.denoise)) {
+    const auto start = std::chrono::steady_clock::now();
+    const Image variance = composite_variance(scene.photo_linear, r.layers, scene.spec.composite);
+    r.composite_linear = denoise_composite(scene.photo_linear, r.composite_linear, variance, r.layers).composite;
+    r.denoised = true;
+    r.denoise_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
   r.composite_encoded = encode_composite(r.composite_linear, touched_mask(r.layers), scene.photo,
                                          scene.environment_info.response ? &*scene.environment_info.response : nullptr);
   return r;
@@ -451,6 +460,7 @@ nlohmann::json render_report(const LoadedScene& s, const RenderResult& r, const 
         {"adaptive", adaptive_report(s.spec.render.noise_target, r.layers)},
         {"nonfinite_samples", r.layers.nonfinite_samples}}},
       {"composite", name_of(kCompositeModes, s.spec.composite)},
+      {"denoise", r.denoised ? json{{"seconds", r.denoise_seconds}} : json(nullptr)},
       {"tonemap", effective_tonemap(tonemap_spec)},
       {"warnings", s.warnings.items},
   };

@@ -2,6 +2,7 @@
 // objects), render the layers, composite over the photo, write the outputs.
 #pragma once
 #include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "calib/calibration.h"
@@ -79,7 +80,9 @@ struct RenderResult {
   double prepare_seconds = 0;  // the integrator's precomputation (legacy blur, irradiance cube)
   RenderLayers layers;
   Image composite_linear;
-  Image composite_encoded;  // what goes into a PNG/JPEG
+  Image composite_encoded;     // what goes into a PNG/JPEG
+  bool denoised = false;       // the composite went through output/denoise.h (the layers never do)
+  double denoise_seconds = 0;  // its time, after the render's
 };
 
 // How a render may be stopped and resumed: `stop` ends it after the pass under way;
@@ -95,7 +98,9 @@ struct RenderControl {
 };
 RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress = {}, const RenderControl& control = {});
 // The composite of layers rendered (or merged from parts) for this scene.
-RenderResult finish_render(const LoadedScene& scene, RenderLayers layers, double prepare_seconds = 0);
+// `denoise`: whether the composite is denoised (output/denoise.h); unset: the scene's `denoise`.
+RenderResult finish_render(const LoadedScene& scene, RenderLayers layers, double prepare_seconds = 0,
+                           std::optional<bool> denoise = std::nullopt);
 
 // What a checkpoint must match to be resumed: a 64-bit FNV-1a hash of everything the render's
 // sums depend on — the camera, spp, seed, the integrator and its parameters, the photo and the

@@ -543,6 +543,7 @@ SceneSpec parse_scene_json(const json& doc, const std::string& path, const std::
     if (!mode) c->fail("expected " + quoted_choices(names_of(kCompositeModes)));
     scene.composite = *mode;
   }
+  if (auto d = root.find("denoise")) scene.denoise = d->boolean();
   parse_output(root.find("output"), dir, scene);
   root.finish();
   return scene;

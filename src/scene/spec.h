@@ -109,6 +109,7 @@ struct SceneSpec {
   std::vector<ObjectSpec> objects;
   RenderSpec render;
   CompositeMode composite = CompositeMode::kRatio;
+  bool denoise = false;  // the composite denoised (output/denoise.h); the layers stay as rendered
   OutputSpec output;
   Warnings warnings;  // found while parsing (a rounded rotation, an option without effect)
   // The settings the user gave (scene file or command line), by their scene-file name, e.g.

@@ -23,7 +23,7 @@ json error_json(const std::string& where, const std::string& what) { return {{"w
 
 }  // namespace
 
-void RenderJob::start(const std::string& integrator, int spp) {
+void RenderJob::start(const std::string& integrator, int spp, bool denoise) {
   const std::lock_guard<std::mutex> control(control_);
   stop_worker();
   {
@@ -31,7 +31,7 @@ void RenderJob::start(const std::string& integrator, int spp) {
     state_ = "loading", integrator_ = integrator, fraction_ = 0, error_.reset();
   }
   stop_ = false;
-  worker_ = std::thread([this, integrator, spp] { run(integrator, spp); });
+  worker_ = std::thread([this, integrator, spp, denoise] { run(integrator, spp, denoise); });
 }
 
 void RenderJob::stop() {
@@ -51,7 +51,7 @@ void RenderJob::publish(const std::string& name, Slot slot) {
 
 // The worker: load, preview the light, render pass by pass. Bad input ends it with the library's
 // message (`error`); nothing escapes the thread.
-void RenderJob::run(const std::string& integrator, int spp) {
+void RenderJob::run(const std::string& integrator, int spp, bool denoise) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   try {
@@ -80,14 +80,18 @@ void RenderJob::run(const std::string& integrator, int spp) {
       if (!publish_after_pass(p.spp_done, shown, spec.render.spp)) return;
       shown = p.spp_done;
       // Between passes: the threads are idle and the state holds the samples so far.
-      RenderResult r = finish_render(scene, layers_from_state(state));
+      RenderResult r = finish_render(scene, layers_from_state(state), 0, denoise);
       publish(name, {std::move(r.composite_linear), std::move(r.composite_encoded),
                      clipped_photo_weight(r.layers, scene.photo), p.spp_done, spec.render.spp, ++passes, p.noise,
                      seconds(), false});
     };
     const RenderResult last = render_scene(scene, progress, control);
-    Slot final_slot{last.composite_linear,
-                    last.composite_encoded,
+    // The image shown denoised or not as asked, whatever the scene file says for the saved one.
+    RenderResult redone;
+    if (last.denoised != denoise) redone = finish_render(scene, last.layers, 0, denoise);
+    const RenderResult& shown_last = last.denoised != denoise ? redone : last;
+    Slot final_slot{shown_last.composite_linear,
+                    shown_last.composite_encoded,
                     clipped_photo_weight(last.layers, scene.photo),
                     last.layers.spp_done,
                     spec.render.spp,

@@ -49,8 +49,9 @@ class RenderJob {
   RenderJob& operator=(const RenderJob&) = delete;
 
   // Starts a render with `integrator` ("": the scene's) and `spp` (0: the scene's), stopping one
-  // under way first.
-  void start(const std::string& integrator, int spp);
+  // under way first. `denoise`: the images shown are denoised (output/denoise.h); what
+  // save_outputs writes follows the scene file's `denoise`, as `insitu render` does.
+  void start(const std::string& integrator, int spp, bool denoise = true);
   // Stops the render under way and waits for it: at once, within a sample, whatever the spp
   // (RenderSettings::stop_at_once); the image keeps the samples taken.
   void stop();
@@ -79,7 +80,7 @@ class RenderJob {
     double noise = -1, seconds = 0;
     bool done = false;
   };
-  void run(const std::string& integrator, int spp);
+  void run(const std::string& integrator, int spp, bool denoise);
   void stop_worker();  // with control_ held
   void publish(const std::string& name, Slot slot);
 

@@ -213,7 +213,8 @@ ToneMapSettings query_tonemap(const httplib::Request& req) {
   return t;
 }
 
-// {"integrator": "" | name, "spp": 0 | n}: a render started (render_job.h).
+// {"integrator": "" | name, "spp": 0 | n, "denoise": true | false}: a render started (render_job.h);
+// its images are shown denoised unless "denoise" is false.
 void post_render(StudioServer::Impl& s, const httplib::Request& req, httplib::Response& res) {
   const json body = req.body.empty() ? json::object() : body_json(req);
   if (!body.is_object())
@@ -222,9 +223,12 @@ void post_render(StudioServer::Impl& s, const httplib::Request& req, httplib::Re
   const JsonValue integrator(body.is_object() && body.contains("integrator") ? body["integrator"] : kNone, req.path,
                              "$.integrator");
   const JsonValue spp(body.is_object() && body.contains("spp") ? body["spp"] : kNone, req.path, "$.spp");
+  const JsonValue denoise(body.is_object() && body.contains("denoise") ? body["denoise"] : kNone, req.path,
+                          "$.denoise");
   const std::string name = integrator.raw().is_null() ? "" : integrator.string();
   if (!name.empty() && !find_integrator(name)) integrator.fail(unknown_integrator_message(name));
-  s.render.start(name, spp.raw().is_null() ? 0 : int(spp.integer(1, 1 << 20)));
+  s.render.start(name, spp.raw().is_null() ? 0 : int(spp.integer(1, 1 << 20)),
+                 denoise.raw().is_null() || denoise.boolean());
   reply_json(res, s.render.status());
 }
 

@@ -244,7 +244,8 @@ def systematic_cases():
              (("output", "tonemap", "key"), 0, "range"), (("local_scene", 0, "mean_albedo"), "half", "number"),
              (("environment", "inverse_lighting"), "yes", "boolean"), (("render", "noise_target"), "1%", "number"),
              (("references",), {"polygon_px": []}, "array"), (("references", 0, "polygon_px"), [[1, 1], [9, 9]], "3"),
-             (("references", 0, "polygon_px", 1), "20, 20", "array"), (("references", 0, "albedo"), "white", "number")]
+             (("references", 0, "polygon_px", 1), "20, 20", "array"), (("references", 0, "albedo"), "white", "number"),
+             (("denoise",), "yes", "boolean")]
     for i, (path, value, word) in enumerate(typed):
         variant("wrong_type_%02d_%s" % (i, "_".join(str(k) for k in path).replace("+", "p")), path, value, r"WHERE: .*")
     # Numbers that are not finite or not sensible.

@@ -61,7 +61,8 @@ async function poll() {
 
 async function start_render(integrator) {
   const spp = $("spp").value === "" ? 0 : Number($("spp").value);
-  const { status: code, data } = await api("POST", "/api/render", { integrator, spp });
+  const denoise = $("denoise").checked;
+  const { status: code, data } = await api("POST", "/api/render", { integrator, spp, denoise });
   if (code !== 200) { $("render-error").replaceChildren(error_span(data.error)); return; }
   R.seen.light = false;
   R.shown = null;

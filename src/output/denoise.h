@@ -1,0 +1,52 @@
+// A feature-guided denoiser for the composite: non-local-means weights on the noisy colour and a
+// weighted first-order regression on noise-free features, evaluated at the pixel (the NL-means
+// regression Cycles used before OpenImageDenoise, and the first-order fit of Bitterli et al. 2016,
+// "Nonlinearly weighted first-order regression for denoising Monte Carlo renderings", NFOR).
+// docs/denoise.md has the derivation, the choices and the measured bias.
+//
+// Per changed pixel i, over the window N(i) of (2R + 1)² pixels j:
+//   weight   w_ij = exp(−max(0, d²_ij)) with the patch distance of Rousselle et al. 2012
+//            ("Adaptive rendering with non-local means filtering"), over 3 × 3 patches:
+//            d²_ij = mean_p [(Y_i+p − Y_j+p)² − (v_i+p + min(v_i+p, v_j+p))] / (ε + k² (v_i+p + v_j+p))
+//            Y the change's luminance divided by the albedo's (the texture demodulated, as
+//            Zimmer et al. 2015 and Bako et al. 2017 do: a textured floor's pixels then look
+//            alike), v the variance of its mean (composite_variance) divided likewise;
+//   fit      T_j ≈ β₀ + βᵀ (f_j − f_i), weighted least squares with a small ridge on β, the
+//            features f scaled to the window's range, of the render's change to the photo
+//            T = C − (1 − α) P (the photo P is exact: it never passes through the filter, so a
+//            clipped window or a sharp frame in it cannot blur; what the fit can bias is the change);
+//   output   (1 − α_i) P_i + β₀, with β₀ = Σ_j l_j T_j, l_j = w_ij uᵀ x_j and u = A⁻¹ e₀ (A the
+//            normal matrix): a linear smoother, whose variance Σ_j l_j² v_j is the estimate's own
+//            (`variance`).
+// The features: the albedo, the shading normal, the depth, the objects' coverage and the photo's
+// luminance behind them (the noise-free texture the catcher's change modulates).
+//
+// Pixels the render left untouched (composite.h's touched_mask) are returned as they came, bit
+// for bit; they take part in their neighbours' fits as exact values (v = 0).
+#pragma once
+#include "core/image.h"
+#include "render/render.h"
+
+namespace insitu {
+
+struct DenoiseSettings {
+  int radius = 6;       // R: the window is (2R + 1)² pixels
+  double k = 0.45;      // Rousselle et al. 2012's colour tolerance in standard errors
+  double ridge = 1e-3;  // of the window's total weight, on each scaled feature's coefficient
+};
+
+struct Denoised {
+  Image composite;  // RGB, linear
+  Image variance;   // 1 channel: the variance of the denoised luminance (0 where untouched)
+};
+
+// `composite_linear` is composite()'s, `variance` composite_variance()'s (1 channel).
+Denoised denoise_composite(const Image& photo_linear, const Image& composite_linear, const Image& variance,
+                           const RenderLayers& layers, const DenoiseSettings& settings = {});
+
+// The slow reference: the same fit per pixel by an explicit weighted least-squares solve
+// (Eigen's column-pivoting QR of √W X), one pixel. For the tests.
+Rgb denoise_pixel_reference(const Image& photo_linear, const Image& composite_linear, const Image& variance,
+                            const RenderLayers& layers, const DenoiseSettings& settings, int x, int y);
+
+}  // namespace insitu
