@@ -255,18 +255,22 @@ TEST(Cli, TradeoffWritesTableCsvPlotAndAb) {
   for (const char* f : {"tradeoff.csv", "tradeoff.png", "ab.png"})
     EXPECT_TRUE(std::filesystem::exists(fx.dir.file(std::string("t/") + f))) << f;
   for (const char* mode : {"| realtime | 1 |", "| realtime | 16 |", "| irradiance/sh9 | 16 |", "| path | 4 |",
-                           "| path adaptive 0.5 |", "| path/cosine only | 4 |"})
+                           "| path adaptive 0.5 |", "| path/cosine only | 4 |", "| path denoised | 4 |"})
     EXPECT_NE(r.out.find(mode), std::string::npos) << r.out;
   // More samples, closer to the reference.
   std::ifstream csv(fx.dir.file("t/tradeoff.csv"));
   std::string line;
-  double e1 = -1, e4 = -1;
+  double e1 = -1, e4 = -1, d4 = -1;
   while (std::getline(csv, line)) {
     // mode,spp,seconds,relative_rmse,rest_relative_rmse
     auto error_of = [&] { return std::stod(line.substr(line.find(',', line.find(',', line.find(',') + 1) + 1) + 1)); };
     if (line.rfind("path,1,", 0) == 0) e1 = error_of();
     if (line.rfind("path,4,", 0) == 0) e4 = error_of();
+    if (line.rfind("path denoised,4,", 0) == 0) d4 = error_of();
   }
+  // The denoised composite is nearer the reference than the noisy one it came from.
+  EXPECT_GT(d4, 0);
+  EXPECT_LT(d4, e4);
   EXPECT_GT(e1, e4);
   EXPECT_GT(e4, 0);
 }

@@ -15,7 +15,8 @@
 // integrator with adaptive sampling (render/adaptive.h) to each target, capped at the ladder's
 // largest spp; its rows give the mean spp the pixels took. Where the scene has objects and real
 // surfaces, the reference integrator is also run with its real surfaces' reflection sampled by
-// the cosine alone (path.cpp, toward_objects 0) and with one catcher bounce.
+// the cosine alone (path.cpp, toward_objects 0) and with one catcher bounce; and over the ladder
+// with its composite denoised (output/denoise.h).
 #include <opencv2/imgproc.hpp>
 
 #include <chrono>
@@ -84,13 +85,15 @@ Image plot(const std::vector<Row>& rows) {
   cv::putText(m, "seconds", {W / 2 - 60, H - 12}, cv::FONT_HERSHEY_SIMPLEX, 0.5, black);
   cv::putText(m, "relative RMSE against the reference (objects and shadows)", {left, 18}, cv::FONT_HERSHEY_SIMPLEX,
               0.45, black);
-  const cv::Scalar colours[] = {{40, 40, 200}, {200, 120, 40}, {40, 160, 40}, {160, 60, 160},
-                                {0, 140, 220}, {20, 20, 20},   {150, 150, 0}, {120, 120, 120}};
+  // One colour per mode (BGR): the demo's table has ten.
+  const cv::Scalar colours[] = {{40, 40, 200}, {200, 120, 40}, {40, 160, 40},   {160, 60, 160}, {0, 140, 220},
+                                {20, 20, 20},  {150, 150, 0},  {120, 120, 120}, {0, 200, 255},  {255, 80, 200}};
+  constexpr std::size_t kColours = sizeof(colours) / sizeof(colours[0]);
   std::vector<std::string> modes;
   for (const Row& r : rows)
     if (std::find(modes.begin(), modes.end(), r.mode) == modes.end()) modes.push_back(r.mode);
   for (std::size_t k = 0; k < modes.size(); ++k) {
-    const cv::Scalar c = colours[k % 8];
+    const cv::Scalar c = colours[k % kColours];
     cv::Point prev(-1, -1);
     for (const Row& r : rows) {
       if (r.mode != modes[k]) continue;
@@ -140,8 +143,9 @@ int run_tradeoff(const TradeoffArgs& a) {
   LoadedScene scene = load_scene(spec);
   print_warnings(scene.warnings);
   auto run = [&](const std::string& integrator, IrradianceMode mode, int spp, std::uint64_t seed, RenderResult* result,
-                 double noise_target = 0, const json& params = json::object()) {
+                 double noise_target = 0, const json& params = json::object(), bool denoise = false) {
     scene.spec.render.integrator = integrator;
+    scene.spec.denoise = denoise;
     JsonBlock render = scene.spec.render.block;
     render.value["irradiance"] = irradiance_mode_name(mode);
     for (const auto& [key, value] : params.items()) render.value[key] = value;
@@ -151,7 +155,7 @@ int run_tradeoff(const TradeoffArgs& a) {
     scene.spec.render.seed = seed;
     scene.spec.render.noise_target = noise_target;
     *result = render_scene(scene);
-    return result->prepare_seconds + result->layers.seconds;
+    return result->prepare_seconds + result->layers.seconds + result->denoise_seconds;
   };
   const std::string reference_name = reference_integrator().name, legacy_name = legacy_integrator().name;
   std::fprintf(stderr, "tradeoff: reference, %s at %d spp...\n", reference_name.c_str(), a.reference_spp);
@@ -163,9 +167,10 @@ int run_tradeoff(const TradeoffArgs& a) {
   std::vector<Row> rows;
   RenderResult legacy_result, best_reference;
   auto measure = [&](const std::string& name, const std::string& integrator, IrradianceMode mode, int spp,
-                     RenderResult* keep, double noise_target = 0, const json& params = json::object()) {
+                     RenderResult* keep, double noise_target = 0, const json& params = json::object(),
+                     bool denoise = false) {
     RenderResult r;
-    const double seconds = run(integrator, mode, spp, std::uint64_t(a.seed), &r, noise_target, params);
+    const double seconds = run(integrator, mode, spp, std::uint64_t(a.seed), &r, noise_target, params, denoise);
     const CompareResult c = compare_images(r.composite_linear, reference.composite_linear, &mask);
     const CompareResult c_rest = compare_images(r.composite_linear, reference.composite_linear, &rest);
     if (noise_target > 0) spp = int(std::lround(mean_spp(r.layers)));
@@ -210,6 +215,10 @@ int run_tradeoff(const TradeoffArgs& a) {
     for (int spp : a.ladder)
       measure(reference_name + "/cosine only", reference_name, IrradianceMode::kExact, spp, nullptr, 0,
               {{"toward_objects", 0}});
+  // Its composite denoised (output/denoise.h): the time includes the denoiser's.
+  for (int spp : a.ladder)
+    measure(reference_name + " denoised", reference_name, IrradianceMode::kExact, spp, nullptr, 0, json::object(),
+            true);
   const int cap = *std::max_element(a.ladder.begin(), a.ladder.end());
   for (double target : a.noise_targets)
     measure(reference_name + " adaptive", reference_name, IrradianceMode::kExact, cap, nullptr, target);
