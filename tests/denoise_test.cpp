@@ -58,7 +58,8 @@ double rms(const Image& a, const Image& b, int x0 = 0, int x1 = kW) {
 
 TEST(Denoise, TheFastSmootherIsTheReferenceSolve) {
   Floor f;
-  f.fill(random_texture, [](int x, int) { return x < 20 ? 0.4 : 0.8; }, 0.05, 1);
+  f.fill(
+      random_texture, [](int x, int) { return x < 20 ? 0.4 : 0.8; }, 0.05, 1);
   *f.layers.alpha.at(10, 10) = 0.5f, *f.layers.depth.at(10, 10) = 2.0f;  // an object's edge
   const DenoiseSettings s;
   const Denoised fast = denoise_composite(f.photo, f.noisy, f.variance, f.layers, s);
@@ -70,7 +71,8 @@ TEST(Denoise, TheFastSmootherIsTheReferenceSolve) {
 
 TEST(Denoise, UntouchedPixelsStayBitForBit) {
   Floor f;
-  f.fill(random_texture, [](int, int) { return 1.0; }, 0.05, 2);
+  f.fill(
+      random_texture, [](int, int) { return 1.0; }, 0.05, 2);
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < 15; ++x) f.layers.without_objects.set_rgb(x, y, Rgb::Constant(1.0f));  // W = N: untouched
   const Denoised d = denoise_composite(f.photo, f.noisy, f.variance, f.layers);
@@ -85,7 +87,8 @@ TEST(Denoise, UntouchedPixelsStayBitForBit) {
 // scaled to ±1: at most 1e-3 of the texture's contrast, 0.6 · 0.5 here).
 TEST(Denoise, ANoiseFreeImageLinearInTheAlbedoComesBackUnchanged) {
   Floor f;
-  f.fill(random_texture, [](int, int) { return 0.5; }, 0.0, 3);
+  f.fill(
+      random_texture, [](int, int) { return 0.5; }, 0.0, 3);
   const Denoised d = denoise_composite(f.photo, f.truth, f.variance, f.layers);
   EXPECT_LT(rms(d.composite, f.truth), 3e-4);
 }
@@ -95,7 +98,8 @@ TEST(Denoise, ANoiseFreeImageLinearInTheAlbedoComesBackUnchanged) {
 TEST(Denoise, NoiseFallsAndTheTextureStays) {
   Floor f;
   const double sigma = 0.05;
-  f.fill(random_texture, [](int, int) { return 0.5; }, sigma, 4);
+  f.fill(
+      random_texture, [](int, int) { return 0.5; }, sigma, 4);
   const Denoised d = denoise_composite(f.photo, f.noisy, f.variance, f.layers);
   EXPECT_NEAR(rms(f.noisy, f.truth), sigma, 0.1 * sigma);
   EXPECT_LT(rms(d.composite, f.truth), 0.3 * sigma);
@@ -106,7 +110,8 @@ TEST(Denoise, NoiseFallsAndTheTextureStays) {
 TEST(Denoise, AShadowsEdgeStaysSharp) {
   Floor f;
   const double sigma = 0.03;
-  f.fill(random_texture, [](int x, int) { return x < 20 ? 0.3 : 0.9; }, sigma, 5);
+  f.fill(
+      random_texture, [](int x, int) { return x < 20 ? 0.3 : 0.9; }, sigma, 5);
   const Denoised d = denoise_composite(f.photo, f.noisy, f.variance, f.layers);
   EXPECT_LT(rms(d.composite, f.truth, 18, 22), sigma);
   EXPECT_LT(rms(d.composite, f.truth, 0, 14), 0.4 * sigma);

@@ -112,8 +112,7 @@ Window window_of(const Inputs& in, const DenoiseSettings& s, int x, int y) {
       for (int d = 0; d < kFeatures; ++d) range[d] = std::max(range[d], double(std::abs(fj[d] - fi[d])));
     }
   // A feature that does not vary over the window (relative to its size) is left out of the fit.
-  for (int d = 0; d < kFeatures; ++d)
-    w.scale[d] = range[d] > 1e-6 * (std::abs(fi[d]) + 1e-3) ? 1.0 / range[d] : 0.0;
+  for (int d = 0; d < kFeatures; ++d) w.scale[d] = range[d] > 1e-6 * (std::abs(fi[d]) + 1e-3) ? 1.0 / range[d] : 0.0;
   return w;
 }
 
