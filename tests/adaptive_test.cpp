@@ -54,9 +54,10 @@ TEST(Adaptive, PassesAreShortAndEndOnWholeBatches) {
 
 // A pixel's sums over samples of luminance `y` (all on the catcher: with = y, without = 0).
 void add_sample(PixelSums& p, double y) {
-  p.with += Rgb::Constant(float(y));
-  p.w += y, p.y += y, p.y2 += y * y, p.w2 += y * y;
-  ++p.catcher, ++p.samples;
+  PixelSums leaf;
+  leaf.with = Rgb::Constant(float(y));
+  leaf.catcher = 1, leaf.samples = 1;
+  add_sums(p, leaf);
 }
 
 TEST(Adaptive, ErrorPoolsTheChangedNeighbours) {
@@ -128,7 +129,7 @@ Outcome simulate(Stop stop, std::uint32_t seed) {
   int n = 0;
   for (std::size_t i = 0; i < sums.size(); ++i) {
     if (sums[i].samples >= 1024) continue;  // ran to the cap: not stopped by the rule
-    const double e = (sums[i].y / sums[i].samples - truth) / truth / tau;
+    const double e = (sum_y(sums[i]) / sums[i].samples - truth) / truth / tau;
     o.rms_over_target += e * e, o.far_off += std::abs(e) > 3, ++n;
   }
   EXPECT_GT(n, w * h / 2) << "most pixels stop before the cap";
@@ -141,7 +142,7 @@ Outcome simulate(Stop stop, std::uint32_t seed) {
 void naive_stop(const std::vector<PixelSums>& sums, int, int, double tau, std::vector<std::uint8_t>& stopped) {
   for (std::size_t i = 0; i < sums.size(); ++i) {
     const PixelSums& p = sums[i];
-    const double mean = p.y / p.samples, var = std::max(0.0, (p.y2 - p.y * mean) / (p.samples - 1)) / p.samples;
+    const double mean = sum_y(p) / p.samples, var = double(p.m_yy) / (p.samples - 1) / p.samples;
     if (!stopped[i] && std::sqrt(var) <= tau * mean) stopped[i] = 1;
   }
 }

@@ -147,6 +147,22 @@ TEST(CliRender, DenoiseKeepsThePhotosUntouchedPixelsAndSaysSo) {
   expect_one_line_error(run_insitu(fx.dir, "render " + fx.write(j)), "$.denoise");
 }
 
+// A noise-free integrator's image is left as it is, and the user is told the flag did nothing.
+TEST(CliRender, DenoiseLeavesANoiseFreeIntegratorAlone) {
+  SceneFixture fx;
+  auto j = fx.scene;
+  j["render"] = {{"integrator", "realtime"}, {"spp", 1}};
+  j["objects"] = {{{"mesh", "good_quad.obj"}, {"translate", {0, 0.3, 0}}}};
+  const std::string scene = fx.write(j);
+  ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("raw.png")).exit_code, 0);
+  const CliRun d = run_insitu(fx.dir, "render " + scene + " --denoise -o " + fx.dir.file("d.png"));
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  EXPECT_NE(d.err.find("denoise: has no effect: the realtime integrator is not Monte Carlo"), std::string::npos)
+      << d.err;
+  EXPECT_TRUE(read_json(fx.dir.file("d.png.report.json"))["denoise"].is_null());
+  EXPECT_TRUE(exr_pixels(fx.dir.file("raw.layers.exr")) == exr_pixels(fx.dir.file("d.layers.exr")));
+}
+
 // --help shows the defaults, and every verb accepts the same seed range.
 TEST(CliRender, HelpShowsDefaults) {
   TempDir dir;

@@ -18,7 +18,7 @@ PixelSums leaf(int s) {
   PixelSums p;
   const double v = std::pow(10.0, u(rng));
   p.objects = Rgb(float(v), float(v / 3), float(v * 7));
-  p.y = v, p.y2 = v * v, p.w = v / 9, p.wn = v * 1e-3;
+  p.with = Rgb::Constant(float(v / 9)), p.without = Rgb::Constant(float(v * 1e-3));
   p.samples = 1;
   return p;
 }
@@ -31,6 +31,7 @@ PixelSums block_value(int start, int size) {
   PixelSums left = block_value(start, size / 2);
   add_sums(left, block_value(start + size / 2, size / 2));
   if (size == kBatchSamples) start_batch(left);  // a batch: its own sum, squared
+  if (left.batches > 0) left.batch_y = sum_y(left);
   return left;
 }
 
@@ -52,8 +53,9 @@ PixelBlocks counted(int a, int b) {
 }
 
 bool same(const PixelSums& a, const PixelSums& b) {
-  return (a.objects == b.objects).all() && a.y == b.y && a.y2 == b.y2 && a.w == b.w && a.wn == b.wn &&
-         a.samples == b.samples && a.batch_y == b.batch_y && a.batch_y2 == b.batch_y2 && a.batches == b.batches;
+  return (a.objects == b.objects).all() && (a.with == b.with).all() && (a.without == b.without).all() &&
+         a.m_yy == b.m_yy && a.m_ww == b.m_ww && a.m_nn == b.m_nn && a.m_wn == b.m_wn && a.m_batch == b.m_batch &&
+         a.samples == b.samples && a.batch_y == b.batch_y && a.batches == b.batches;
 }
 
 bool same(const PixelBlocks& a, const PixelBlocks& b) {

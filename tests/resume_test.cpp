@@ -49,9 +49,9 @@ void expect_same_layers(const RenderLayers& a, const RenderLayers& b) {
 bool same_sums(const PixelSums& a, const PixelSums& b) {
   return (a.objects == b.objects).all() && (a.with == b.with).all() && (a.without == b.without).all() &&
          (a.albedo == b.albedo).all() && a.normal == b.normal && a.coverage == b.coverage && a.depth == b.depth &&
-         a.y == b.y && a.y2 == b.y2 && a.w == b.w && a.n == b.n && a.w2 == b.w2 && a.n2 == b.n2 && a.wn == b.wn &&
+         a.m_yy == b.m_yy && a.m_ww == b.m_ww && a.m_nn == b.m_nn && a.m_wn == b.m_wn && a.m_batch == b.m_batch &&
          a.met == b.met && a.catcher == b.catcher && a.samples == b.samples && a.batch_y == b.batch_y &&
-         a.batch_y2 == b.batch_y2 && a.batches == b.batches;
+         a.batches == b.batches;
 }
 
 using test::exr_pixels;

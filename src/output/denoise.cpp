@@ -42,10 +42,14 @@ struct Inputs {
 
 // The variance, box-filtered over 5 × 5 pixels: a pixel's own estimate from a few samples is
 // itself noisy, and the distance divides by it (Rousselle et al. 2012 filter theirs likewise).
+// A pixel keeps its own estimate where that is larger: a firefly's variance spread over 25
+// pixels would make it look unlike its neighbours, so it kept its own value (a speckle of 45 %
+// far from the objects at 16 spp; 11 % with the maximum).
 std::vector<float> prefiltered_variance(const Image& variance) {
   cv::Mat in(variance.height, variance.width, CV_32F, const_cast<float*>(variance.data.data()));
-  cv::Mat out;
-  cv::blur(in, out, cv::Size(5, 5), cv::Point(-1, -1), cv::BORDER_REPLICATE);
+  cv::Mat box;
+  cv::blur(in, box, cv::Size(5, 5), cv::Point(-1, -1), cv::BORDER_REPLICATE);
+  cv::Mat out = cv::max(box, in);
   return std::vector<float>(out.begin<float>(), out.end<float>());
 }
 

@@ -13,12 +13,13 @@
 #include "core/file_check.h"
 #include "core/text_file.h"
 #include "render/pixel_blocks.h"
+#include "render/pixel_variance.h"
 
 namespace insitu {
 namespace {
 
 constexpr char kMagic[8] = {'I', 'N', 'S', 'I', 'T', 'U', 'C', 'K'};
-constexpr std::uint32_t kVersion = 6;
+constexpr std::uint32_t kVersion = 7;
 
 template <class T>
 void put(std::string& out, T v) {
@@ -34,17 +35,16 @@ T get(const std::string& in, std::size_t& at, const std::string& path) {
   return v;
 }
 
-// One pixel's sums, field by field (Eigen's types are not trivially copyable): 15 floats, 11
-// doubles, 4 int32.
-constexpr std::uint32_t kPixelBytes = 15 * 4 + 11 * 8 + 4 * 4;
+// One pixel's sums, field by field (Eigen's types are not trivially copyable): 22 floats and 3
+// int32. A block's batches and batch_y follow from its samples and sums (render_state.h).
+constexpr std::uint32_t kPixelBytes = 22 * 4 + 3 * 4;
 
 void put_sums(std::string& out, const PixelSums& p) {
   for (const Rgb* c : {&p.objects, &p.with, &p.without, &p.albedo})
     for (int k = 0; k < 3; ++k) put(out, (*c)[k]);
   for (int k = 0; k < 3; ++k) put(out, p.normal[k]);
-  for (double d : {p.coverage, p.depth, p.y, p.y2, p.w, p.n, p.w2, p.n2, p.wn, p.batch_y, p.batch_y2}) put(out, d);
+  for (float f : {p.coverage, p.depth, p.m_yy, p.m_ww, p.m_nn, p.m_wn, p.m_batch}) put(out, f);
   put(out, std::int32_t(p.met)), put(out, std::int32_t(p.catcher)), put(out, std::int32_t(p.samples));
-  put(out, std::int32_t(p.batches));
 }
 
 PixelSums get_sums(const std::string& in, std::size_t& at, const std::string& path) {
@@ -52,11 +52,12 @@ PixelSums get_sums(const std::string& in, std::size_t& at, const std::string& pa
   for (Rgb* c : {&p.objects, &p.with, &p.without, &p.albedo})
     for (int k = 0; k < 3; ++k) (*c)[k] = get<float>(in, at, path);
   for (int k = 0; k < 3; ++k) p.normal[k] = get<float>(in, at, path);
-  for (double* d : {&p.coverage, &p.depth, &p.y, &p.y2, &p.w, &p.n, &p.w2, &p.n2, &p.wn, &p.batch_y, &p.batch_y2})
-    *d = get<double>(in, at, path);
+  for (float* f : {&p.coverage, &p.depth, &p.m_yy, &p.m_ww, &p.m_nn, &p.m_wn, &p.m_batch})
+    *f = get<float>(in, at, path);
   p.met = get<std::int32_t>(in, at, path), p.catcher = get<std::int32_t>(in, at, path);
   p.samples = get<std::int32_t>(in, at, path);
-  p.batches = get<std::int32_t>(in, at, path);
+  p.batches = p.samples >= kBatchSamples ? p.samples / kBatchSamples : 0;
+  p.batch_y = p.batches > 0 ? sum_y(p) : 0.0;
   return p;
 }
 

@@ -4,12 +4,13 @@
 // of one. A checkpoint lies beside the output, OUT.checkpoint; a part is the state of a finished
 // render of a sample range, which `insitu merge` adds to the others.
 //
-// Layout (little-endian): "INSITUCK", u32 version (6), u32 bytes per block (164), u64
+// Layout (little-endian): "INSITUCK", u32 version (7), u32 bytes per block (100), u64
 // fingerprint, i32 width, height, spp, sample_begin, sample_end, passes_done, tiles_done, spp_done,
 // u64 nonfinite, f64 noise target (0: not adaptive), u32 length and the text of the settings (what
 // `insitu merge` needs to load the scene again: JSON, may be empty), then per pixel an i32 count
-// of blocks and the blocks (render/pixel_blocks.h), each a PixelSums field by field (4 RGB and the
-// normal as float32, 11 float64 sums, 4 int32 counts); with a noise target, then one u8 per pixel:
+// of blocks and the blocks (render/pixel_blocks.h), each a PixelSums field by field (4 RGB, the
+// normal, coverage, depth and 5 centred moments as float32, 3 int32 counts: met, catcher,
+// samples; the batches and batch_y follow from them); with a noise target, then one u8 per pixel:
 // 1 where adaptive sampling stopped it (render/adaptive.h); last, a u64 FNV-1a (core/fnv1a.h) of
 // every byte before it. A file whose sum differs (a bad disk, an edit: a changed sum or tile count
 // that is still a consistent state) is refused, and the CLI keeps it.

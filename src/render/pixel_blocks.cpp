@@ -4,12 +4,40 @@
 
 namespace insitu {
 
+namespace {
+
+// Chan, Golub and LeVeque's pairwise update of centred co-moments (1979, eq. 2.1b): the union of
+// a (n_a samples, means x̄_a, ȳ_a) and b has
+//   M_xy = M_xy,a + M_xy,b + (n_a n_b / (n_a + n_b)) (x̄_b − x̄_a)(ȳ_b − ȳ_a),
+// with the means from the sums S here.
+double comoment_update(double sa_x, double sb_x, double sa_y, double sb_y, double na, double nb) {
+  const double dx = sb_x / nb - sa_x / na, dy = sb_y / nb - sa_y / na;
+  return na * nb / (na + nb) * dx * dy;
+}
+
+}  // namespace
+
 void add_sums(PixelSums& into, const PixelSums& b) {
+  if (b.samples == 0) return;
+  if (into.samples == 0) {
+    into = b;
+    return;
+  }
+  const double na = into.samples, nb = b.samples;
+  const double ya = sum_y(into), yb = sum_y(b), wa = sum_w(into), wb = sum_w(b), xa = sum_n(into), xb = sum_n(b);
+  into.m_yy = float(double(into.m_yy) + b.m_yy + comoment_update(ya, yb, ya, yb, na, nb));
+  into.m_ww = float(double(into.m_ww) + b.m_ww + comoment_update(wa, wb, wa, wb, na, nb));
+  into.m_nn = float(double(into.m_nn) + b.m_nn + comoment_update(xa, xb, xa, xb, na, nb));
+  into.m_wn = float(double(into.m_wn) + b.m_wn + comoment_update(wa, wb, xa, xb, na, nb));
+  if (b.batches > 0 && into.batches > 0)
+    into.m_batch = float(double(into.m_batch) + b.m_batch +
+                         comoment_update(into.batch_y, b.batch_y, into.batch_y, b.batch_y, into.batches, b.batches));
+  else if (b.batches > 0)
+    into.m_batch = b.m_batch;
+  into.batch_y += b.batch_y, into.batches += b.batches;
   into.objects += b.objects, into.with += b.with, into.without += b.without, into.albedo += b.albedo;
   into.normal += b.normal;
-  into.coverage += b.coverage, into.depth += b.depth, into.y += b.y, into.y2 += b.y2;
-  into.w += b.w, into.n += b.n, into.w2 += b.w2, into.n2 += b.n2, into.wn += b.wn;
-  into.batch_y += b.batch_y, into.batch_y2 += b.batch_y2, into.batches += b.batches;
+  into.coverage += b.coverage, into.depth += b.depth;
   into.met += b.met, into.catcher += b.catcher, into.samples += b.samples;
 }
 
@@ -31,6 +59,7 @@ void push_block(PixelBlocks& blocks, int first, const PixelSums& block) {
     if (left.samples != size || !siblings(left_start, size)) break;
     add_sums(left, right);
     if (left.samples == kBatchSamples) start_batch(left);
+    if (left.batches > 0) left.batch_y = sum_y(left);  // what a block read from a file has
     blocks.pop_back();
     top_start = left_start;
   }

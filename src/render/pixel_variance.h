@@ -1,7 +1,7 @@
 // A pixel's variance, from its sums (render_state.h): what the variance layer, the noise figure
 // and adaptive sampling's stopping rule read.
 //
-// The per-sample estimate, s² = (Σy² − (Σy)²/n) / (n − 1) and Var(mean) = s²/n, is that of
+// The per-sample estimate, s² = Σ(y − ȳ)² / (n − 1) and Var(mean) = s²/n, is that of
 // independent samples. A pixel's samples are scrambled Sobol points (core/sampler.h), whose mean
 // errs less than that: the spread between two seeds was 0.24 of it at 64 spp
 // (Layers.VariancePredictsTheSpreadAcrossSeeds), so adaptive sampling stopped late. Batch means
@@ -10,7 +10,7 @@
 // Batch means (Schmeiser 1982, "Batch size effects in the analysis of simulation output") are
 // tighter and keep the sequence whole. The samples are cut into aligned blocks of B = 16 indices,
 // each a (0, 4, 2)-net in every pair of the sampler's dimensions. With b such blocks of sums Y_k:
-//   s_B² = (Σ Y_k² − (Σ Y_k)² / b) / (b − 1),   Var(mean of n samples) ≈ s_B² · (n/B) / n² = s_B² / (B n).
+//   s_B² = Σ (Y_k − Ȳ)² / (b − 1),   Var(mean of n samples) ≈ s_B² · (n/B) / n² = s_B² / (B n).
 // The block sums of one Owen-scrambled sequence are exchangeable, with covariance c ≤ 0 between
 // blocks (the nets of a larger net stratify against each other), so E[s_B²] = V − c ≥ V: the
 // estimate errs high, never low, and by less than the per-sample one, since each block's own
@@ -30,9 +30,7 @@ namespace insitu {
 constexpr int kBatchSamples = 16, kMinBatches = 8;
 
 // Called on a block the moment it holds kBatchSamples samples: it is one batch.
-inline void start_batch(PixelSums& block) {
-  block.batch_y = block.y, block.batch_y2 = block.y * block.y, block.batches = 1;
-}
+inline void start_batch(PixelSums& block) { block.batch_y = sum_y(block), block.m_batch = 0, block.batches = 1; }
 
 // The variance of one sample's y, as it bears on the pixel's mean (Var(mean) = per_sample / n),
 // and the degrees of freedom of its estimate.

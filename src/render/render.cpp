@@ -17,19 +17,22 @@ namespace insitu {
 namespace {
 
 // Variance of the ratio of means R = w̄/n̄ by the delta method, with the correlation of w and n
-// (Cochran 1977, §6.3): Var(R) ≈ Σ(wᵢ − R nᵢ)² / (k (k − 1) n̄²) over k samples.
+// (Cochran 1977, §6.3): Var(R) ≈ Σ(wᵢ − R nᵢ)² / (k (k − 1) n̄²) over k samples. Since
+// w̄ − R n̄ = 0, Σ(wᵢ − R nᵢ)² = M_ww − 2R M_wn + R² M_nn in the centred moments.
 double ratio_variance(const PixelSums& p, int k) {
-  if (k < 2 || !(p.n > 0)) return 0.0;
-  const double R = p.w / p.n, n_mean = p.n / k;
-  const double d2 = std::max(0.0, p.w2 - 2 * R * p.wn + R * R * p.n2);
+  const double w = sum_w(p), n = sum_n(p);
+  if (k < 2 || !(n > 0)) return 0.0;
+  const double R = w / n, n_mean = n / k;
+  const double d2 = std::max(0.0, double(p.m_ww) - 2 * R * double(p.m_wn) + R * R * double(p.m_nn));
   return d2 / (double(k) * (k - 1) * n_mean * n_mean);
 }
 
-// Variance of the mean of w − n: (Σ(w − n)² − (Σ(w − n))²/k) / (k (k − 1)).
+// Variance of the mean of w − n: Σ((w − n) − (w̄ − n̄))² / (k (k − 1)), that is
+// (M_ww − 2 M_wn + M_nn) / (k (k − 1)).
 double difference_variance(const PixelSums& p, int k) {
   if (k < 2) return 0.0;
-  const double s = p.w - p.n, s2 = p.w2 - 2 * p.wn + p.n2;
-  return std::max(0.0, (s2 - s * s / k) / (double(k) * (k - 1)));
+  const double m2 = double(p.m_ww) - 2 * double(p.m_wn) + double(p.m_nn);
+  return std::max(0.0, m2 / (double(k) * (k - 1)));
 }
 
 // Mean over pixels the render changed (an object covers them or the catcher's estimates differ)
@@ -79,27 +82,24 @@ Ray jittered_ray(const Camera& camera, int x, int y, Sampler& sampler) {
   return camera.ray({double(x) + jx, double(y) + jy});
 }
 
-// Adds one camera sample to its pixel; a non-finite one is refused (false) and added nowhere.
-// depth.Z is camera-space z: the distance t along the unit ray times d · (optical axis).
-bool accumulate(PixelSums& p, const CameraSample& cs, const Ray& ray, const Vec3f& axis_world) {
+// One camera sample as a leaf (its centred moments are 0); a non-finite one is refused (false)
+// and the leaf stays zero. depth.Z is camera-space z: the distance t along the unit ray times
+// d · (optical axis).
+bool sample_leaf(PixelSums& p, const CameraSample& cs, const Ray& ray, const Vec3f& axis_world) {
+  p.samples = 1;
   if (!cs.radiance.allFinite() || !std::isfinite(cs.coverage) || !cs.with_objects.allFinite() ||
       !cs.without_objects.allFinite())
     return false;
-  p.objects += cs.radiance * cs.coverage;
-  p.coverage += cs.coverage;
-  p.with += cs.with_objects;
-  p.without += cs.without_objects;
-  const double lum = luminance(Rgb(cs.radiance * cs.coverage + cs.with_objects - cs.without_objects));
-  p.y += lum;
-  p.y2 += lum * lum;
-  const double wy = luminance(cs.with_objects), ny = luminance(cs.without_objects);
-  p.w += wy, p.n += ny, p.w2 += wy * wy, p.n2 += ny * ny, p.wn += wy * ny;
-  p.catcher += (wy != 0 || ny != 0);
+  p.objects = cs.radiance * cs.coverage;
+  p.coverage = cs.coverage;
+  p.with = cs.with_objects;
+  p.without = cs.without_objects;
+  p.catcher = (luminance(cs.with_objects) != 0 || luminance(cs.without_objects) != 0);
   if (cs.depth > 0) {
-    ++p.met;
-    p.normal += cs.normal;
-    p.albedo += cs.albedo;
-    p.depth += double(cs.depth) * double(ray.dir.dot(axis_world));
+    p.met = 1;
+    p.normal = cs.normal;
+    p.albedo = cs.albedo;
+    p.depth = float(double(cs.depth) * double(ray.dir.dot(axis_world)));
   }
   return true;
 }
@@ -197,8 +197,7 @@ bool render_tile(const PassContext& c, int tile, int s0, int s1) {
         Sampler sampler(c.settings.seed, pixel, std::uint64_t(s));
         const Ray ray = jittered_ray(c.camera, x, y, sampler);
         PixelSums leaf;
-        if (!accumulate(leaf, c.integrator.sample(ray, sampler), ray, c.axis_world)) ++local_nonfinite;
-        leaf.samples = 1;
+        if (!sample_leaf(leaf, c.integrator.sample(ray, sampler), ray, c.axis_world)) ++local_nonfinite;
         push_block(pass_blocks, s0, leaf);
       }
       PixelBlocks& blocks = c.pixels[pixel];

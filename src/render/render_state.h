@@ -14,21 +14,43 @@
 
 namespace insitu {
 
-// What a pixel gathered over some of its samples. render/checkpoint.cpp writes every field.
+// What a pixel gathered over some of its samples. render/checkpoint.cpp writes every field but
+// batch_y, which a block's other fields give.
+//
+// The luminances a pixel's variance is of are not summed apart: the sum of y (the luminance the
+// render adds, O + W − N), of w and of n (the catcher's with and without the objects) are the
+// luminances of the RGB sums (sum_y, sum_w, sum_n below). Their second moments are kept centred,
+// Σ(y − ȳ)² and the like, merged by Chan, Golub and LeVeque's pairwise update (1979, "Updating
+// formulae and a pairwise algorithm for computing sample variances", render/pixel_blocks.cpp).
+// Raw moments Σy² − (Σy)²/n cancel catastrophically on a pixel whose samples barely differ,
+// which is why they needed 64 bits; centred ones lose nothing to cancellation and fit in 32, and
+// a noise-free pixel's are 0 exactly.
 struct PixelSums {
   Rgb objects = Rgb::Zero(), with = Rgb::Zero(), without = Rgb::Zero(), albedo = Rgb::Zero();
   Vec3f normal = Vec3f::Zero();
-  double coverage = 0, depth = 0, y = 0, y2 = 0;
-  // The catcher's luminance with (w) and without (n) the objects: sums of w, n, w², n², w·n over
-  // all samples, and how many samples saw the catcher, for the composite's choice of estimator.
-  double w = 0, n = 0, w2 = 0, n2 = 0, wn = 0;
+  float coverage = 0, depth = 0;
+  // Centred moments: Σ(y − ȳ)², Σ(w − w̄)², Σ(n − n̄)², Σ(w − w̄)(n − n̄) over the samples, and
+  // Σ(Y_k − Ȳ)² over the batch sums Y_k of y (render/pixel_variance.h).
+  float m_yy = 0, m_ww = 0, m_nn = 0, m_wn = 0, m_batch = 0;
+  // How many samples met a surface (normal, albedo, depth are over those) and saw the catcher.
   int met = 0, catcher = 0;
   int samples = 0;  // taken (a non-finite one counts, as zero): a cancelled pass leaves pixels unequal
-  // Batch means of y (render/pixel_variance.h): over the aligned blocks of kBatchSamples samples
-  // this sum holds whole, how many (batches), Σ of their sums of y, and Σ of those sums squared.
-  double batch_y = 0, batch_y2 = 0;
+  // The pixel's whole batches of kBatchSamples samples (render/pixel_variance.h) and the sum of
+  // y over them: in a block, sum_y itself once it holds a batch, else 0 (so it is not stored).
   int batches = 0;
+  double batch_y = 0;
 };
+
+// Σ of a pixel's luminances, from its RGB sums (luminance is linear): 64-bit arithmetic on the
+// 32-bit sums.
+inline double luminance_sum(const Rgb& c) {
+  return 0.2126 * double(c[0]) + 0.7152 * double(c[1]) + 0.0722 * double(c[2]);
+}
+inline double sum_y(const PixelSums& p) {
+  return luminance_sum(p.objects) + luminance_sum(p.with) - luminance_sum(p.without);
+}
+inline double sum_w(const PixelSums& p) { return luminance_sum(p.with); }
+inline double sum_n(const PixelSums& p) { return luminance_sum(p.without); }
 
 // A pixel's sums over the samples [first, first + n) it has, as the canonical aligned blocks of
 // that range, in order (render/pixel_blocks.h).
@@ -54,8 +76,8 @@ struct RenderState {
 };
 
 // Whether the render changed the pixel: an object covers part of it, or the catcher's estimates
-// with and without the objects differ in some sample (their sums differ).
-inline bool changed_pixel(const PixelSums& p) { return p.coverage != 0 || p.w != p.n || (p.with != p.without).any(); }
+// with and without the objects differ (their sums differ).
+inline bool changed_pixel(const PixelSums& p) { return p.coverage != 0 || (p.with != p.without).any(); }
 
 // |mean(O + W − N)| + mean(N): the scale a pixel's relative noise is of (render.h's noise figure,
 // adaptive.h's stopping rule).

@@ -39,6 +39,8 @@ void warn_ineffective_settings(const SceneSpec& spec, const ResolvedIntegrator& 
   if (spec.environment.room_box && !e.uses.room_box && !volume)
     w.add("environment.room_box",
           "has no effect: " + by + " looks the cube up by direction only (path and irradiance's volume mode use it)");
+  if (spec.denoise && !e.uses.monte_carlo)
+    w.add("denoise", "has no effect: " + by + " is not Monte Carlo, its image has no noise to remove");
   const ToneMap op = spec.output.tonemap.op;
   if (is_linear_output(spec.output.image)) {
     for (const char* key : {"output.tonemap", "output.tonemap.key", "output.tonemap.bias"})
@@ -379,13 +381,17 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress, 
   return finish_render(scene, render(scene.camera, *integrator, settings, progress, control.state), prepare_seconds);
 }
 
+bool denoises(const LoadedScene& scene, std::optional<bool> denoise) {
+  return denoise.value_or(scene.spec.denoise) && scene.integrator.entry->uses.monte_carlo;
+}
+
 RenderResult finish_render(const LoadedScene& scene, RenderLayers layers, double prepare_seconds,
                            std::optional<bool> denoise) {
   RenderResult r;
   r.prepare_seconds = prepare_seconds;
   r.layers = std::move(layers);
   r.composite_linear = composite(scene.photo_linear, r.layers, scene.spec.composite);
-  if (denoise.value_or(scene.spec.denoise)) {
+  if (denoises(scene, denoise)) {
     const auto start = std::chrono::steady_clock::now();
     const Image variance = composite_variance(scene.photo_linear, r.layers, scene.spec.composite);
     r.composite_linear = denoise_composite(scene.photo_linear, r.composite_linear, variance, r.layers).composite;

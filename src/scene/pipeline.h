@@ -97,8 +97,12 @@ struct RenderControl {
   bool stop_at_once = false;
 };
 RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress = {}, const RenderControl& control = {});
+// Whether finish_render denoises: when asked (unset: the scene's `denoise`) and the scene's
+// integrator is Monte Carlo; the others' images have no noise, and the studio's legacy A/B must
+// show the legacy image as it is.
+bool denoises(const LoadedScene& scene, std::optional<bool> denoise);
 // The composite of layers rendered (or merged from parts) for this scene.
-// `denoise`: whether the composite is denoised (output/denoise.h); unset: the scene's `denoise`.
+// `denoise`: whether the composite is denoised (output/denoise.h; see denoises).
 RenderResult finish_render(const LoadedScene& scene, RenderLayers layers, double prepare_seconds = 0,
                            std::optional<bool> denoise = std::nullopt);
 

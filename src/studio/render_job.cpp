@@ -88,8 +88,9 @@ void RenderJob::run(const std::string& integrator, int spp, bool denoise) {
     const RenderResult last = render_scene(scene, progress, control);
     // The image shown denoised or not as asked, whatever the scene file says for the saved one.
     RenderResult redone;
-    if (last.denoised != denoise) redone = finish_render(scene, last.layers, 0, denoise);
-    const RenderResult& shown_last = last.denoised != denoise ? redone : last;
+    const bool redo = last.denoised != denoises(scene, denoise);
+    if (redo) redone = finish_render(scene, last.layers, 0, denoise);
+    const RenderResult& shown_last = redo ? redone : last;
     Slot final_slot{shown_last.composite_linear,
                     shown_last.composite_encoded,
                     clipped_photo_weight(last.layers, scene.photo),
