@@ -7,7 +7,7 @@ packages=(
   cmake g++ make pkg-config
   libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libopencv-dev libceres-dev
   libtinyobjloader-dev libtinygltf-dev libdraco-dev libmeshoptimizer-dev libtbb-dev libeigen3-dev libcpp-httplib-dev
-  nlohmann-json3-dev libcli11-dev libfmt-dev libexiv2-dev libgtest-dev libbenchmark-dev zlib1g-dev
+  nlohmann-json3-dev libcli11-dev libfmt-dev libexiv2-dev libzstd-dev libgtest-dev libbenchmark-dev zlib1g-dev
   pybind11-dev python3-dev python3-numpy python3-openimageio
   chromium chromium-driver python3-selenium
 )

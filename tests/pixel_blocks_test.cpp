@@ -24,14 +24,17 @@ PixelSums leaf(int s) {
 }
 
 // The definition, slowly: an aligned block is its left half plus its right half (and a batch of its
-// own when it has kBatchSamples samples); a range is its maximal aligned blocks from the left,
-// added left to right.
+// own when it has kBatchSamples samples), rounded as a block keeps its sums (round_block); a range
+// is its maximal aligned blocks from the left, added left to right.
 PixelSums block_value(int start, int size) {
-  if (size == 1) return leaf(start);
-  PixelSums left = block_value(start, size / 2);
-  add_sums(left, block_value(start + size / 2, size / 2));
+  PixelSums left = leaf(start);
+  if (size > 1) {
+    left = block_value(start, size / 2);
+    add_sums(left, block_value(start + size / 2, size / 2));
+  }
   if (size == kBatchSamples) start_batch(left);  // a batch: its own sum, squared
   if (left.batches > 0) left.batch_y = sum_y(left);
+  round_block(left);
   return left;
 }
 

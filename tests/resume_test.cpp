@@ -16,6 +16,7 @@
 #include "cli_util.h"
 #include "exr_pixels.h"
 #include "render/checkpoint.h"
+#include "render/pixel_variance.h"
 #include "scene/pipeline.h"
 #include "scene_fixture.h"
 
@@ -214,13 +215,14 @@ TEST(Resume, ADamagedCheckpointIsRefusedAndKept) {
   write_checkpoint(path, state, render_fingerprint(s));
   const std::string good = test::slurp(path);
   // Offsets: magic, version, block size (16), fingerprint (24), then 8 int32: tiles_done at 48;
-  // nonfinite, noise target, the settings' length (76 with no settings), pixel 0's block count
-  // and its first block's first float at 80.
+  // the pixels' frames follow the settings. A changed byte within the blocks' frame may still
+  // decode (zstd checks its structure, not its content): the file's checksum refuses it.
   const float nan = std::numeric_limits<float>::quiet_NaN(), half = 0.5f;
   const std::int32_t one_tile_more = state.tiles_done + 1;
+  const std::size_t inside = good.size() - 64;
   for (const auto& [offset, bytes] : std::vector<std::pair<std::size_t, std::string>>{
-           {80, std::string(reinterpret_cast<const char*>(&half), 4)},
-           {80, std::string(reinterpret_cast<const char*>(&nan), 4)},
+           {inside, std::string(reinterpret_cast<const char*>(&half), 4)},
+           {inside, std::string(reinterpret_cast<const char*>(&nan), 4)},
            {48, std::string(reinterpret_cast<const char*>(&one_tile_more), 4)}}) {
     std::string damaged = good;
     damaged.replace(offset, bytes.size(), bytes);
@@ -239,27 +241,39 @@ TEST(Resume, ADamagedCheckpointIsRefusedAndKept) {
   }
 }
 
-// A pixel's block sizes come from the file: two whose sum passes INT_MAX (the fuzzer's find,
-// 2071690107 + 575230798) are refused as an inconsistent checkpoint, without overflowing the sum
-// (the sanitizer leg traps signed overflow), as is a block of no samples.
+// A pixel's samples come from the file, and its blocks from them: a pixel of more samples than
+// the part's range (2^30, as a fuzzer would try, or 16 of 8) or of samples no pass ends at is
+// refused as an inconsistent checkpoint before any block is decoded. A state whose blocks are not
+// canonical is a caller's error, and is not written.
 TEST(Resume, SampleCountsBeyondTheRenderAreRefused) {
   SceneFixture fx;
   const RenderState state = stopped_after_first_pass(fx);
-  for (const auto& sizes : {std::vector<int>{2071690107, 575230798}, std::vector<int>{0}, std::vector<int>{9}}) {
+  const std::string path = fx.dir.file("bad.checkpoint");
+  for (const int samples : {1 << 30, 16, 3}) {
     RenderState bad = state;
-    bad.pixels[0].assign(sizes.size(), PixelSums{});
-    for (std::size_t k = 0; k < sizes.size(); ++k) bad.pixels[0][k].samples = sizes[k];
-    const std::string path = fx.dir.file("bad.checkpoint");
+    bad.pixels[0].assign(1, PixelSums{});
+    bad.pixels[0][0].samples = samples;
+    bad.pixels[0][0].batches = samples >= kBatchSamples ? samples / kBatchSamples : 0;
+    if (samples == 3)
+      bad.pixels[0] = {bad.pixels[0][0], bad.pixels[0][0]}, bad.pixels[0][0].samples = 2, bad.pixels[0][1].samples = 1;
     write_checkpoint(path, bad, 42);
-    EXPECT_THROW(read_checkpoint(path, 42), InputError) << sizes.front();
+    try {
+      read_checkpoint(path, 42);
+      ADD_FAILURE() << "read a pixel of " << samples << " samples";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("inconsistent checkpoint (pixel 0)"), std::string::npos) << e.what();
+    }
   }
+  RenderState odd = state;
+  odd.pixels[0].assign(1, PixelSums{});
+  odd.pixels[0][0].samples = 9;
+  EXPECT_THROW(write_checkpoint(path, odd, 42), std::invalid_argument);
 }
 
 // The fuzz target's seeds (tests/fuzz/corpus/fuzz_checkpoint, written by hand to the layout of
-// render/checkpoint.h) are consistent states, so that fuzzing starts past the header's checks: a
-// finished part, and an adaptive render's checkpoint with a pixel stopped after its first pass.
-// A stopped pixel whose samples are not those of a pass's end, or a mask byte other than 0 or 1,
-// is refused.
+// render/checkpoint.h and converted to each later one) are consistent states, so that fuzzing starts past the header's
+// checks: a finished part, and an adaptive render's checkpoint with a pixel stopped after its first pass. A stopped
+// pixel whose samples are not those of a pass's end, or a mask byte other than 0 or 1, is refused.
 TEST(Resume, FuzzSeedsAreConsistentStates) {
   const std::string dir = test::source_dir() + "/tests/fuzz/corpus/fuzz_checkpoint/";
   const StateFile part = parse_state_bytes(test::slurp(dir + "finished_part.bin"), "finished_part.bin");
@@ -268,11 +282,15 @@ TEST(Resume, FuzzSeedsAreConsistentStates) {
   const StateFile adaptive = parse_state_bytes(test::slurp(dir + "adaptive_checkpoint.bin"), "adaptive_checkpoint.bin");
   EXPECT_EQ(adaptive.state.noise_target, 0.05);
   EXPECT_EQ(adaptive.state.stopped, (std::vector<std::uint8_t>{1, 0}));
-  std::string bytes = test::slurp(dir + "adaptive_checkpoint.bin");
-  bytes.back() = 2;
-  EXPECT_THROW(parse_state_bytes(bytes, "mask.checkpoint"), InputError);
-  bytes.back() = 1;  // both pixels stopped: pixel 1 has 16 samples, a pass's end too
-  EXPECT_NO_THROW(parse_state_bytes(bytes, "both.checkpoint"));
+  SceneFixture fx;
+  const std::string path = fx.dir.file("mask.checkpoint");
+  RenderState mask = adaptive.state;
+  mask.stopped = {1, 2};
+  write_checkpoint(path, mask, adaptive.fingerprint);
+  EXPECT_THROW(read_state_file(path), InputError);
+  mask.stopped = {1, 1};  // both pixels stopped: pixel 1 has 16 samples, a pass's end too
+  write_checkpoint(path, mask, adaptive.fingerprint);
+  EXPECT_NO_THROW(read_state_file(path));
 }
 
 // The fingerprint follows what the sums depend on, and only that.

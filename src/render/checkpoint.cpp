@@ -5,21 +5,24 @@
 #include <cstring>
 #include <fmt/format.h>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
 #include "core/error.h"
 #include "core/fnv1a.h"
+#include "core/image.h"
 #include "core/file_check.h"
 #include "core/text_file.h"
 #include "render/pixel_blocks.h"
+#include "render/plane_codec.h"
 #include "render/pixel_variance.h"
 
 namespace insitu {
 namespace {
 
 constexpr char kMagic[8] = {'I', 'N', 'S', 'I', 'T', 'U', 'C', 'K'};
-constexpr std::uint32_t kVersion = 7;
+constexpr std::uint32_t kVersion = 8;
 
 template <class T>
 void put(std::string& out, T v) {
@@ -35,59 +38,82 @@ T get(const std::string& in, std::size_t& at, const std::string& path) {
   return v;
 }
 
-// One pixel's sums, field by field (Eigen's types are not trivially copyable): 22 floats and 3
-// int32. A block's batches and batch_y follow from its samples and sums (render_state.h).
-constexpr std::uint32_t kPixelBytes = 22 * 4 + 3 * 4;
+// A block as 24 words (Eigen's types are not trivially copyable): its RGB sums, albedo, normal,
+// coverage, depth and 5 centred moments as float32 bits, then met and catcher. The sums without
+// the objects and two of the moments are stored XOR the ones they mostly equal (a pixel the
+// objects do not change has the same sums with and without them), so that equal bits are zeros.
+// A block's samples follow from its pixel's (canonical_sizes), its batches and batch_y from them.
+constexpr int kBlockWords = 24;
+constexpr std::uint32_t kBlockBytes = 4 * kBlockWords;
+// Blocks are written kChunkBlocks at a time, each chunk as 24 planes (render/plane_codec.h), so
+// that neither side holds more than one chunk's words beside the state.
+constexpr std::size_t kChunkBlocks = std::size_t(1) << 16;
 
-void put_sums(std::string& out, const PixelSums& p) {
-  for (const Rgb* c : {&p.objects, &p.with, &p.without, &p.albedo})
-    for (int k = 0; k < 3; ++k) put(out, (*c)[k]);
-  for (int k = 0; k < 3; ++k) put(out, p.normal[k]);
-  for (float f : {p.coverage, p.depth, p.m_yy, p.m_ww, p.m_nn, p.m_wn, p.m_batch}) put(out, f);
-  put(out, std::int32_t(p.met)), put(out, std::int32_t(p.catcher)), put(out, std::int32_t(p.samples));
+std::uint32_t bits(float f) {
+  std::uint32_t u;
+  std::memcpy(&u, &f, sizeof u);
+  return u;
 }
 
-PixelSums get_sums(const std::string& in, std::size_t& at, const std::string& path) {
+float from_bits(std::uint32_t u) {
+  float f;
+  std::memcpy(&f, &u, sizeof f);
+  return f;
+}
+
+void block_words(const PixelSums& p, std::uint32_t* w) {
+  for (int k = 0; k < 3; ++k) {
+    w[k] = bits(p.objects[k]), w[3 + k] = bits(p.with[k]), w[6 + k] = bits(p.without[k]) ^ w[3 + k];
+    w[9 + k] = bits(p.albedo[k]), w[12 + k] = bits(p.normal[k]);
+  }
+  w[15] = bits(p.coverage), w[16] = bits(p.depth), w[17] = bits(p.m_yy), w[18] = bits(p.m_ww);
+  w[19] = bits(p.m_nn) ^ w[18], w[20] = bits(p.m_wn) ^ w[18], w[21] = bits(p.m_batch);
+  w[22] = std::uint32_t(p.met), w[23] = std::uint32_t(p.catcher);
+}
+
+PixelSums block_from_words(const std::uint32_t* w, int samples) {
   PixelSums p;
-  for (Rgb* c : {&p.objects, &p.with, &p.without, &p.albedo})
-    for (int k = 0; k < 3; ++k) (*c)[k] = get<float>(in, at, path);
-  for (int k = 0; k < 3; ++k) p.normal[k] = get<float>(in, at, path);
-  for (float* f : {&p.coverage, &p.depth, &p.m_yy, &p.m_ww, &p.m_nn, &p.m_wn, &p.m_batch})
-    *f = get<float>(in, at, path);
-  p.met = get<std::int32_t>(in, at, path), p.catcher = get<std::int32_t>(in, at, path);
-  p.samples = get<std::int32_t>(in, at, path);
-  p.batches = p.samples >= kBatchSamples ? p.samples / kBatchSamples : 0;
+  for (int k = 0; k < 3; ++k) {
+    p.objects[k] = from_bits(w[k]), p.with[k] = from_bits(w[3 + k]), p.without[k] = from_bits(w[6 + k] ^ w[3 + k]);
+    p.albedo[k] = from_bits(w[9 + k]), p.normal[k] = from_bits(w[12 + k]);
+  }
+  p.coverage = from_bits(w[15]), p.depth = from_bits(w[16]), p.m_yy = from_bits(w[17]), p.m_ww = from_bits(w[18]);
+  p.m_nn = from_bits(w[19] ^ w[18]), p.m_wn = from_bits(w[20] ^ w[18]), p.m_batch = from_bits(w[21]);
+  p.met = std::int32_t(w[22]), p.catcher = std::int32_t(w[23]), p.samples = samples;
+  p.batches = samples >= kBatchSamples ? samples / kBatchSamples : 0;
   p.batch_y = p.batches > 0 ? sum_y(p) : 0.0;
   return p;
 }
 
 // A pixel that adaptive sampling stopped holds the samples of the first k ≥ 1 passes, k ≤ passes done.
-bool stopped_at_pass_end(const RenderState& st, int n) {
+bool stopped_at_pass_end(const RenderState& st, std::int64_t n) {
   for (int k = 1; k <= st.passes_done; ++k)
     if (n == plan_pass_start(st, k) - st.sample_begin) return true;
   return false;
 }
 
-// Each pixel holds the canonical blocks of [begin, begin + n) with n the samples of the passes
-// done, plus the pass under way for the tiles before tiles_done.
-void check_pixels(const RenderState& st, const std::string& path) {
+// Each pixel holds the samples [begin, begin + n) with n the samples of the passes done, plus
+// the pass under way for the tiles before tiles_done.
+void check_pixel_samples(const RenderState& st, const std::vector<std::uint32_t>& samples, const std::string& path) {
   const int begin = st.sample_begin;
   const int done = plan_pass_start(st, st.passes_done) - begin;
   const int next = st.passes_done < plan_passes(st) ? plan_pass_start(st, st.passes_done + 1) - begin : done;
   if (st.spp_done != done) throw InputError(path, "inconsistent checkpoint (samples done)");
-  for (std::size_t i = 0; i < st.pixels.size(); ++i) {
-    const int n = block_samples(st.pixels[i]);
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const std::int64_t n = samples[i];
     const bool stopped = !st.stopped.empty() && st.stopped[i];
-    if ((stopped ? !stopped_at_pass_end(st, n) : n != done && n != next) || !canonical_blocks(st.pixels[i], begin))
+    if (stopped ? !stopped_at_pass_end(st, n) : n != done && n != next)
       throw InputError(path, fmt::format("inconsistent checkpoint (pixel {})", i));
   }
 }
 
-// The header's plan: a size, a sample range within spp, passes and tiles within it.
+// The header's plan: a size within kMaxImagePixels, a sample range within spp, passes and tiles
+// within it.
 void check_plan(const RenderState& st, const std::string& path) {
-  const bool ok = st.width > 0 && st.height > 0 && st.spp > 0 && st.sample_begin >= 0 &&
-                  st.sample_begin < st.sample_end && st.sample_end <= st.spp && st.passes_done >= 0 &&
-                  st.passes_done <= plan_passes(st) && st.tiles_done >= 0 &&
+  const bool ok = st.width > 0 && st.height > 0 &&
+                  std::uint64_t(st.width) * std::uint64_t(st.height) <= kMaxImagePixels && st.spp > 0 &&
+                  st.sample_begin >= 0 && st.sample_begin < st.sample_end && st.sample_end <= st.spp &&
+                  st.passes_done >= 0 && st.passes_done <= plan_passes(st) && st.tiles_done >= 0 &&
                   st.tiles_done < long(tiles_across(st.width)) * long(tiles_across(st.height));
   if (!ok) throw InputError(path, "inconsistent checkpoint (size, samples or passes)");
 }
@@ -104,38 +130,106 @@ RenderState read_header(const std::string& in, std::size_t& at, const std::strin
   return st;
 }
 
-// One pixel's blocks. Their samples lie within the part's range [sample_begin, sample_end), summed
-// in 64 bits: the file's counts are not trusted to fit an int's sum.
-PixelBlocks read_blocks(const RenderState& st, const std::string& in, std::size_t& at, const std::string& path) {
-  const std::int32_t count = get<std::int32_t>(in, at, path);
-  if (count < 0 || count > 64 || (in.size() - at) / kPixelBytes < std::size_t(count))
-    throw InputError(path, "truncated checkpoint");
-  PixelBlocks blocks;
-  blocks.reserve(std::size_t(count));
-  std::int64_t samples = 0;
-  for (int k = 0; k < count; ++k) {
-    blocks.push_back(get_sums(in, at, path));
-    samples += blocks.back().samples;
-    if (blocks.back().samples < 1 || samples > st.sample_end - st.sample_begin)
-      throw InputError(path, "inconsistent checkpoint (samples in a pixel)");
-  }
-  return blocks;
+// A frame's size, then the frame: its bytes within the file.
+std::pair<const char*, std::size_t> frame_at(const std::string& in, std::size_t& at, const std::string& path) {
+  const std::uint64_t size = get<std::uint64_t>(in, at, path);
+  if (size > in.size() - at) throw InputError(path, "truncated checkpoint");
+  const char* frame = in.data() + at;
+  at += std::size_t(size);
+  return {frame, std::size_t(size)};
 }
 
-void read_pixels(RenderState& st, const std::string& in, std::size_t& at, const std::string& path) {
+// The first frame: every pixel's samples, then (adaptive) its stopped flag.
+std::vector<std::uint32_t> read_pixel_frame(RenderState& st, const std::string& in, std::size_t& at,
+                                            const std::string& path) {
   const std::size_t n = std::size_t(st.width) * std::size_t(st.height);
-  if ((in.size() - at) / 4 < n) throw InputError(path, "truncated checkpoint");
-  st.pixels.resize(n);
-  for (PixelBlocks& blocks : st.pixels) blocks = read_blocks(st, in, at, path);
+  const auto [frame, size] = frame_at(in, at, path);
+  PlaneReader z(frame, size, 4 * std::uint64_t(n) + (st.noise_target > 0 ? n : 0), path);
+  std::vector<std::uint32_t> samples = z.words(n);
   if (st.noise_target > 0) {
-    if (in.size() - at < n) throw InputError(path, "truncated checkpoint");
-    st.stopped.assign(in.begin() + std::ptrdiff_t(at), in.begin() + std::ptrdiff_t(at + n));
-    at += n;
+    st.stopped.resize(n);
+    z.bytes(st.stopped.data(), n);
     if (std::any_of(st.stopped.begin(), st.stopped.end(), [](std::uint8_t b) { return b > 1; }))
       throw InputError(path, "inconsistent checkpoint (stopped pixels)");
   }
+  z.finish();
+  check_pixel_samples(st, samples, path);
+  return samples;
+}
+
+// The second frame: the blocks of every pixel, the canonical ones of its samples (checked
+// before, so that the frame's size is the state's), kChunkBlocks at a time. The pixels share a
+// few sample counts (the passes' ends), whose decompositions are made once.
+void read_block_frame(RenderState& st, const std::vector<std::uint32_t>& samples, const std::string& in,
+                      std::size_t& at, const std::string& path) {
+  std::map<std::uint32_t, std::vector<int>> sizes_of;
+  std::uint64_t blocks = 0;
+  for (std::uint32_t n : samples) {
+    auto it = sizes_of.find(n);
+    if (it == sizes_of.end())
+      it = sizes_of.emplace(n, canonical_sizes(st.sample_begin, st.sample_begin + int(n))).first;
+    blocks += it->second.size();
+  }
+  const auto [frame, size] = frame_at(in, at, path);
+  PlaneReader z(frame, size, kBlockBytes * blocks, path);
+  st.pixels.assign(samples.size(), {});
+  std::vector<std::vector<std::uint32_t>> planes(kBlockWords);
+  std::size_t pixel = 0;
+  const std::vector<int>* sizes = samples.empty() ? nullptr : &sizes_of[samples[0]];
+  std::uint32_t w[kBlockWords];
+  for (std::size_t c = 0, left = std::size_t(blocks); left > 0; left -= c) {
+    c = std::min(left, kChunkBlocks);
+    for (auto& plane : planes) plane = z.words(c);
+    for (std::size_t b = 0; b < c; ++b) {
+      while (st.pixels[pixel].size() == sizes->size()) sizes = &sizes_of[samples[++pixel]];
+      for (int k = 0; k < kBlockWords; ++k) w[k] = planes[std::size_t(k)][b];
+      st.pixels[pixel].push_back(block_from_words(w, (*sizes)[st.pixels[pixel].size()]));
+    }
+  }
+  z.finish();
+}
+
+void read_pixels(RenderState& st, const std::string& in, std::size_t& at, const std::string& path) {
+  const std::vector<std::uint32_t> samples = read_pixel_frame(st, in, at, path);
+  read_block_frame(st, samples, in, at, path);
   if (at != in.size()) throw InputError(path, "inconsistent checkpoint (bytes after the last pixel)");
-  check_pixels(st, path);
+}
+
+std::string pixel_frame(const RenderState& st) {
+  std::vector<std::uint32_t> samples(st.pixels.size());
+  for (std::size_t i = 0; i < st.pixels.size(); ++i) {
+    if (!canonical_blocks(st.pixels[i], st.sample_begin))
+      throw std::invalid_argument(fmt::format("write_checkpoint: pixel {} has blocks of no canonical range", i));
+    samples[i] = std::uint32_t(block_samples(st.pixels[i]));
+  }
+  PlaneWriter z(4 * std::uint64_t(samples.size()) + (st.noise_target > 0 ? st.stopped.size() : 0));
+  z.words(samples);
+  if (st.noise_target > 0) z.bytes(st.stopped.data(), st.stopped.size());
+  return z.finish();
+}
+
+std::string block_frame(const RenderState& st) {
+  std::uint64_t blocks = 0;
+  for (const PixelBlocks& p : st.pixels) blocks += p.size();
+  PlaneWriter z(kBlockBytes * blocks);
+  std::vector<std::vector<std::uint32_t>> planes(kBlockWords);
+  std::uint32_t w[kBlockWords];
+  const auto flush = [&] {
+    for (auto& plane : planes) z.words(plane), plane.clear();
+  };
+  for (const PixelBlocks& p : st.pixels)
+    for (const PixelSums& b : p) {
+      block_words(b, w);
+      for (int k = 0; k < kBlockWords; ++k) planes[std::size_t(k)].push_back(w[k]);
+      if (planes[0].size() == kChunkBlocks) flush();
+    }
+  if (!planes[0].empty()) flush();
+  return z.finish();
+}
+
+void put_frame(std::string& out, const std::string& frame) {
+  put(out, std::uint64_t(frame.size()));
+  out += frame;
 }
 
 }  // namespace
@@ -147,7 +241,7 @@ void write_checkpoint(const std::string& path, const RenderState& st, std::uint6
   if (!st.resumable)
     throw std::invalid_argument("write_checkpoint: the state was stopped within its tiles and cannot be resumed");
   std::string out(kMagic, sizeof(kMagic));
-  put(out, kVersion), put(out, kPixelBytes), put(out, fingerprint);
+  put(out, kVersion), put(out, kBlockBytes), put(out, fingerprint);
   for (int v :
        {st.width, st.height, st.spp, st.sample_begin, st.sample_end, st.passes_done, st.tiles_done, st.spp_done})
     put(out, std::int32_t(v));
@@ -155,12 +249,8 @@ void write_checkpoint(const std::string& path, const RenderState& st, std::uint6
   put(out, st.noise_target);
   put(out, std::uint32_t(settings.size()));
   out += settings;
-  out.reserve(out.size() + st.pixels.size() * (4 + 3 * kPixelBytes));
-  for (const PixelBlocks& blocks : st.pixels) {
-    put(out, std::int32_t(blocks.size()));
-    for (const PixelSums& p : blocks) put_sums(out, p);
-  }
-  if (st.noise_target > 0) out.append(st.stopped.begin(), st.stopped.end());
+  put_frame(out, pixel_frame(st));
+  put_frame(out, block_frame(st));
   Fnv1a sum;
   sum.bytes(out.data(), out.size());
   put(out, sum.digest());
@@ -172,7 +262,7 @@ void check_layout(const std::string& in, std::size_t& at, const std::string& pat
   if (in.size() < sizeof(kMagic) || std::memcmp(in.data(), kMagic, sizeof(kMagic)) != 0)
     throw InputError(path, "not an insitu checkpoint or part");
   at = sizeof(kMagic);
-  if (get<std::uint32_t>(in, at, path) != kVersion || get<std::uint32_t>(in, at, path) != kPixelBytes)
+  if (get<std::uint32_t>(in, at, path) != kVersion || get<std::uint32_t>(in, at, path) != kBlockBytes)
     throw InputError(path, "a checkpoint of another insitu version");
 }
 

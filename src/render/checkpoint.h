@@ -4,16 +4,19 @@
 // of one. A checkpoint lies beside the output, OUT.checkpoint; a part is the state of a finished
 // render of a sample range, which `insitu merge` adds to the others.
 //
-// Layout (little-endian): "INSITUCK", u32 version (7), u32 bytes per block (100), u64
-// fingerprint, i32 width, height, spp, sample_begin, sample_end, passes_done, tiles_done, spp_done,
-// u64 nonfinite, f64 noise target (0: not adaptive), u32 length and the text of the settings (what
-// `insitu merge` needs to load the scene again: JSON, may be empty), then per pixel an i32 count
-// of blocks and the blocks (render/pixel_blocks.h), each a PixelSums field by field (4 RGB, the
-// normal, coverage, depth and 5 centred moments as float32, 3 int32 counts: met, catcher,
-// samples; the batches and batch_y follow from them); with a noise target, then one u8 per pixel:
-// 1 where adaptive sampling stopped it (render/adaptive.h); last, a u64 FNV-1a (core/fnv1a.h) of
-// every byte before it. A file whose sum differs (a bad disk, an edit: a changed sum or tile count
-// that is still a consistent state) is refused, and the CLI keeps it.
+// Layout (little-endian): "INSITUCK", u32 version (8), u32 bytes per block before compression
+// (96), u64 fingerprint, i32 width, height, spp, sample_begin, sample_end, passes_done,
+// tiles_done, spp_done, u64 nonfinite, f64 noise target (0: not adaptive), u32 length and the
+// text of the settings (what `insitu merge` needs to load the scene again: JSON, may be empty);
+// then two zstd frames of byte-shuffled planes (render/plane_codec.h), each after its u64 size:
+// every pixel's samples (u32; with a noise target, then one u8 per pixel: 1 where adaptive
+// sampling stopped it, render/adaptive.h), and every pixel's blocks (render/pixel_blocks.h), the
+// canonical ones of its samples, in chunks of 2^16 blocks, each chunk 24 planes of one PixelSums
+// field (checkpoint.cpp, block_words); last, a u64 FNV-1a (core/fnv1a.h) of every byte before it.
+// A block is 96 bytes before compression and about 27 after (docs/farm.md). A file whose sum
+// differs (a bad disk, an edit: a changed sum or tile count that is still a consistent state) is
+// refused, and the CLI keeps it. The reader checks the header and the pixels' samples before it
+// decodes a block, so that what it allocates is what the state it describes holds.
 // The fingerprint names the scene and settings it belongs to (scene/pipeline.h,
 // render_fingerprint): a checkpoint of another scene, other inputs or other settings is refused.
 #pragma once

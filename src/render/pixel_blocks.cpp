@@ -1,5 +1,6 @@
 #include "render/pixel_blocks.h"
 
+#include "core/float_bits.h"
 #include "render/pixel_variance.h"
 
 namespace insitu {
@@ -49,9 +50,16 @@ bool siblings(int left, int size) { return left % (2 * size) == 0; }
 
 }  // namespace
 
+void round_block(PixelSums& p) {
+  for (int k = 0; k < 3; ++k) p.albedo[k] = round_significand(p.albedo[k], kFeatureBits);
+  p.depth = round_significand(p.depth, kFeatureBits);
+  for (float* m : {&p.m_yy, &p.m_ww, &p.m_nn, &p.m_wn, &p.m_batch}) *m = round_significand(*m, kMomentBits);
+}
+
 void push_block(PixelBlocks& blocks, int first, const PixelSums& block) {
   int top_start = first + block_samples(blocks);  // where `block` starts
   blocks.push_back(block);
+  round_block(blocks.back());
   while (blocks.size() >= 2) {
     const PixelSums& right = blocks.back();
     PixelSums& left = blocks[blocks.size() - 2];
@@ -60,6 +68,7 @@ void push_block(PixelBlocks& blocks, int first, const PixelSums& block) {
     add_sums(left, right);
     if (left.samples == kBatchSamples) start_batch(left);
     if (left.batches > 0) left.batch_y = sum_y(left);  // what a block read from a file has
+    round_block(left);
     blocks.pop_back();
     top_start = left_start;
   }
@@ -80,15 +89,18 @@ int block_samples(const PixelBlocks& blocks) {
 }
 
 // The largest aligned block that starts at `start` and fits before `end`, one after another.
-int canonical_count(int first, int end) {
-  int count = 0;
-  for (int start = first; start < end; ++count) {
+std::vector<int> canonical_sizes(int first, int end) {
+  std::vector<int> sizes;
+  for (int start = first; start < end;) {
     int size = 1;
-    while ((start % (2 * size)) == 0 && start + 2 * size <= end && size < (1 << 29)) size *= 2;
+    while ((start % (2 * size)) == 0 && long(start) + 2 * long(size) <= end && size < (1 << 29)) size *= 2;
+    sizes.push_back(size);
     start += size;
   }
-  return count;
+  return sizes;
 }
+
+int canonical_count(int first, int end) { return int(canonical_sizes(first, end).size()); }
 
 bool canonical_blocks(const PixelBlocks& blocks, int first) {
   int start = first;

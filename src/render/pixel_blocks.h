@@ -27,9 +27,9 @@ namespace insitu {
 // into += b, field by field (the two sums of one pixel over disjoint samples).
 void add_sums(PixelSums& into, const PixelSums& b);
 
-// Pushes `block`, the aligned block that follows `blocks` (which start at sample `first`), and
-// merges siblings on top; a block merged to kBatchSamples samples becomes a batch
-// (render/pixel_variance.h).
+// Pushes `block`, the aligned block that follows `blocks` (which start at sample `first`),
+// rounded (round_block), and merges siblings on top, rounding each merge; a block merged to kBatchSamples samples
+// becomes a batch (render/pixel_variance.h).
 void push_block(PixelBlocks& blocks, int first, const PixelSums& block);
 
 // The pixel's sum over its whole range: its blocks added left to right (zero when empty).
@@ -38,8 +38,20 @@ PixelSums fold_blocks(const PixelBlocks& blocks);
 // The samples the blocks hold.
 int block_samples(const PixelBlocks& blocks);
 
-// How many blocks the canonical decomposition of the samples [first, end) has.
+// The sizes of the canonical decomposition of the samples [first, end), in order, and how many
+// there are.
+std::vector<int> canonical_sizes(int first, int end);
 int canonical_count(int first, int end);
+
+// What a block keeps of each sum. The RGB sums, the normal, the coverage and the counts are
+// float32 and int as added. The denoiser's albedo and depth features are rounded to binary16's
+// precision (kFeatureBits stored significand bits: 2.4e-4 relative each time) and the centred
+// moments to kMomentBits (7.6e-6), both in float32's range (core/float_bits.h). push_block rounds
+// every block it makes, a leaf or a merge, so the rounding depends only on the tree: a part or a
+// checkpoint holds exactly what memory holds, resume and merge stay bit for bit, and the bits
+// dropped are zeros that a file's compression removes (render/checkpoint.h).
+constexpr int kFeatureBits = 10, kMomentBits = 16;
+void round_block(PixelSums& block);
 
 // Whether `blocks`, starting at sample `first`, is a canonical decomposition: each block an
 // aligned power of two, no two adjacent siblings, holding its whole batches (render/pixel_variance.h)

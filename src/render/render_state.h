@@ -15,7 +15,8 @@
 namespace insitu {
 
 // What a pixel gathered over some of its samples. render/checkpoint.cpp writes every field but
-// batch_y, which a block's other fields give.
+// samples, batches and batch_y, which the pixel's samples and a block's other fields give. A
+// block keeps its albedo, depth and moments rounded (render/pixel_blocks.h, round_block).
 //
 // The luminances a pixel's variance is of are not summed apart: the sum of y (the luminance the
 // render adds, O + W − N), of w and of n (the catcher's with and without the objects) are the
