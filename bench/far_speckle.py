@@ -5,6 +5,9 @@
 # seed, the seed-to-seed noise alone.
 #   build/insitu calibrate --points scenes/demo/points.json --image scenes/demo/photo.jpg -o CAM.json
 #   /usr/bin/python3 bench/far_speckle.py scenes/demo/scene.json CAM.json A.layers.exr REF.layers.exr [B.layers.exr]
+# With FAR_SPECKLE_MAP=OUT.png it also says how many of the pixels off were left as the photo
+# (the same sums with and without the objects in every sample) and draws them: red over A's
+# composite, the far pixels tinted green.
 # A pixel's world point comes from the reference's depth layer (camera-space z) and the camera's
 # pose (x_cam = R x_world + t); its distance to the objects is to points about 5 cm apart on their
 # triangles (OBJ meshes, `translate` and `rotate` about +y; no `scale`). Needs numpy and
@@ -67,6 +70,22 @@ def distance_to_objects(scene_path, camera, depth):
     return dist.reshape(h, w)
 
 
+def draw_map(out_path, test_path, off, far):
+    same = np.all(channels(test_path, ['with.R', 'with.G', 'with.B']) ==
+                  channels(test_path, ['without.R', 'without.G', 'without.B']), -1)
+    print(f"off by more than 2 %: {off.sum()} pixels, {(off & same).sum()} of them left as the photo")
+    rgb = np.clip(channels(test_path, 'RGB'), 0, 1) ** (1 / 2.2)
+    rgb = np.where(far[..., None], 0.6 * rgb + [0, 0.12, 0], 0.5 * rgb)
+    grown = off.copy()
+    for dy in (-1, 0, 1):
+        for dx in (-1, 0, 1):
+            grown |= np.roll(np.roll(off, dy, 0), dx, 1)
+    rgb[grown] = [1, 0, 0]
+    out = oiio.ImageBuf(np.ascontiguousarray(rgb, dtype=np.float32))
+    if not out.write(out_path, oiio.UINT8):
+        sys.exit(f"{out_path}: {out.geterror()}")
+
+
 def main():
     scene_path, camera_path, test_path, ref_path = sys.argv[1:5]
     depth = channels(ref_path, ['depth.Z'])[:, :, 0]
@@ -76,6 +95,8 @@ def main():
     rel = np.abs(test - ref)[far] / np.maximum(ref[far], 1e-6)
     print(f"far pixels: {far.sum()} of {far.size}; off by more than 2 %: {100 * (rel > 0.02).mean():.2f} %, "
           f"more than 5 %: {100 * (rel > 0.05).mean():.2f} %, at most {100 * rel.max():.1f} %")
+    if os.environ.get('FAR_SPECKLE_MAP'):
+        draw_map(os.environ['FAR_SPECKLE_MAP'], test_path, far & (np.abs(test - ref) > 0.02 * np.maximum(ref, 1e-6)), far)
     if len(sys.argv) > 5:
         other = channels(sys.argv[5], 'RGB') @ LUMA
         noise = np.abs(test - other)[far] / np.maximum(ref[far], 1e-6) / np.sqrt(2)
