@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <random>
 
@@ -13,18 +12,12 @@
 namespace insitu {
 namespace {
 
-float from_bits(std::uint32_t u) {
-  float f;
-  std::memcpy(&f, &u, sizeof f);
-  return f;
-}
-
 TEST(FloatBits, MatchesTheReferenceOnNormalNumbers) {
   std::mt19937 rng(7);
   std::uniform_int_distribution<std::uint32_t> word;
   int tested = 0;
   for (int i = 0; i < 200000; ++i) {
-    const float x = from_bits(word(rng));
+    const float x = bits_float(word(rng));
     if (!std::isnormal(x)) continue;
     for (int bits : {1, 7, 10, 16, 22}) {
       ASSERT_EQ(round_significand(x, bits), round_significand_reference(x, bits)) << x << " " << bits;

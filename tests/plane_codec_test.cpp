@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <random>
 #include <zstd.h>
 
@@ -21,8 +20,7 @@ std::vector<std::uint32_t> smooth_floats(std::size_t n, int bits) {
   std::normal_distribution<float> noise(0.0f, 0.01f);
   std::vector<std::uint32_t> words(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const float f = round_significand(1.0f + 0.5f * std::sin(float(i) * 1e-3f) + noise(rng), bits);
-    std::memcpy(&words[i], &f, 4);
+    words[i] = float_bits(round_significand(1.0f + 0.5f * std::sin(float(i) * 1e-3f) + noise(rng), bits));
   }
   return words;
 }

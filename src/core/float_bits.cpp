@@ -1,8 +1,6 @@
 #include "core/float_bits.h"
 
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 
 namespace insitu {
 
@@ -10,14 +8,12 @@ namespace insitu {
 // and clearing the d low bits rounds the significand to nearest, ties to even; a carry out of
 // the significand steps the exponent up, as it should (1.111…1 rounds to 2.0).
 float round_significand(float x, int bits) {
-  std::uint32_t u;
-  std::memcpy(&u, &x, sizeof u);
+  std::uint32_t u = float_bits(x);
   if ((u & 0x7f800000u) == 0x7f800000u || bits >= 23) return x;
   const int drop = 23 - bits;
   const std::uint32_t odd = (u >> drop) & 1u;
   u = (u + (1u << (drop - 1)) - 1u + odd) & ~((1u << drop) - 1u);
-  float r;
-  std::memcpy(&r, &u, sizeof r);
+  const float r = bits_float(u);
   return std::isinf(r) ? x : r;
 }
 

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/float_bits.h"
 #include "core/fnv1a.h"
 #include "core/image.h"
 #include "core/file_check.h"
@@ -49,36 +50,24 @@ constexpr std::uint32_t kBlockBytes = 4 * kBlockWords;
 // that neither side holds more than one chunk's words beside the state.
 constexpr std::size_t kChunkBlocks = std::size_t(1) << 16;
 
-std::uint32_t bits(float f) {
-  std::uint32_t u;
-  std::memcpy(&u, &f, sizeof u);
-  return u;
-}
-
-float from_bits(std::uint32_t u) {
-  float f;
-  std::memcpy(&f, &u, sizeof f);
-  return f;
-}
-
 void block_words(const PixelSums& p, std::uint32_t* w) {
   for (int k = 0; k < 3; ++k) {
-    w[k] = bits(p.objects[k]), w[3 + k] = bits(p.with[k]), w[6 + k] = bits(p.without[k]) ^ w[3 + k];
-    w[9 + k] = bits(p.albedo[k]), w[12 + k] = bits(p.normal[k]);
+    w[k] = float_bits(p.objects[k]), w[3 + k] = float_bits(p.with[k]), w[6 + k] = float_bits(p.without[k]) ^ w[3 + k];
+    w[9 + k] = float_bits(p.albedo[k]), w[12 + k] = float_bits(p.normal[k]);
   }
-  w[15] = bits(p.coverage), w[16] = bits(p.depth), w[17] = bits(p.m_yy), w[18] = bits(p.m_ww);
-  w[19] = bits(p.m_nn) ^ w[18], w[20] = bits(p.m_wn) ^ w[18], w[21] = bits(p.m_batch);
+  w[15] = float_bits(p.coverage), w[16] = float_bits(p.depth), w[17] = float_bits(p.m_yy), w[18] = float_bits(p.m_ww);
+  w[19] = float_bits(p.m_nn) ^ w[18], w[20] = float_bits(p.m_wn) ^ w[18], w[21] = float_bits(p.m_batch);
   w[22] = std::uint32_t(p.met), w[23] = std::uint32_t(p.catcher);
 }
 
 PixelSums block_from_words(const std::uint32_t* w, int samples) {
   PixelSums p;
   for (int k = 0; k < 3; ++k) {
-    p.objects[k] = from_bits(w[k]), p.with[k] = from_bits(w[3 + k]), p.without[k] = from_bits(w[6 + k] ^ w[3 + k]);
-    p.albedo[k] = from_bits(w[9 + k]), p.normal[k] = from_bits(w[12 + k]);
+    p.objects[k] = bits_float(w[k]), p.with[k] = bits_float(w[3 + k]), p.without[k] = bits_float(w[6 + k] ^ w[3 + k]);
+    p.albedo[k] = bits_float(w[9 + k]), p.normal[k] = bits_float(w[12 + k]);
   }
-  p.coverage = from_bits(w[15]), p.depth = from_bits(w[16]), p.m_yy = from_bits(w[17]), p.m_ww = from_bits(w[18]);
-  p.m_nn = from_bits(w[19] ^ w[18]), p.m_wn = from_bits(w[20] ^ w[18]), p.m_batch = from_bits(w[21]);
+  p.coverage = bits_float(w[15]), p.depth = bits_float(w[16]), p.m_yy = bits_float(w[17]), p.m_ww = bits_float(w[18]);
+  p.m_nn = bits_float(w[19] ^ w[18]), p.m_wn = bits_float(w[20] ^ w[18]), p.m_batch = bits_float(w[21]);
   p.met = std::int32_t(w[22]), p.catcher = std::int32_t(w[23]), p.samples = samples;
   p.batches = samples >= kBatchSamples ? samples / kBatchSamples : 0;
   p.batch_y = p.batches > 0 ? sum_y(p) : 0.0;
