@@ -69,6 +69,29 @@ TEST(SplitRender, MergedPartsAreBitIdenticalToOneRender) {
   }
 }
 
+// `merge --denoise` denoises the merged composite as `render --denoise` does the whole render's:
+// the same image bit for bit (the denoiser is deterministic), the layers as rendered, and the
+// report's denoise seconds; without it the merge is not denoised.
+TEST(SplitRender, AMergeDenoisesAsTheWholeRenderDoes) {
+  SceneFixture fx;
+  const std::string scene = split_scene(fx, 16);
+  const std::string whole = fx.dir.file("whole.exr"), denoised = fx.dir.file("whole_d.exr");
+  ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " -o " + whole).exit_code, 0);
+  ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " --denoise -o " + denoised).exit_code, 0);
+  ASSERT_FALSE(exr_pixels(whole) == exr_pixels(denoised)) << "the scene's render has noise to remove";
+  const std::string a = fx.dir.file("a.part"), b = fx.dir.file("b.part"), out = fx.dir.file("m.exr");
+  ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " --samples 0:5 --part " + a).exit_code, 0);
+  ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " --samples 5:16 --part " + b).exit_code, 0);
+  const auto r = run_insitu(fx.dir, "merge " + a + " " + b + " --denoise -o " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(exr_pixels(out) == exr_pixels(denoised));
+  EXPECT_TRUE(exr_pixels(fx.dir.file("m.layers.exr")) == exr_pixels(fx.dir.file("whole_d.layers.exr")));
+  const auto report = nlohmann::json::parse(test::slurp(fx.dir.file("m.exr.report.json")));
+  EXPECT_TRUE(report["denoise"].is_object()) << report["denoise"].dump();
+  ASSERT_EQ(run_insitu(fx.dir, "merge " + a + " " + b + " -o " + out).exit_code, 0);
+  EXPECT_TRUE(exr_pixels(out) == exr_pixels(whole));
+}
+
 // A part of samples [A, B) merged alone (--allow-partial) is a render of those samples only: it
 // differs from the whole, and its samples layer says B − A.
 TEST(SplitRender, OnePartIsARenderOfItsSamples) {

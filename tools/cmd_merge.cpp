@@ -1,4 +1,4 @@
-// insitu merge PART... -o OUT [--layers PATH|none] [--tonemap OP] [--key K] [--allow-partial]
+// insitu merge PART... -o OUT [--layers PATH|none] [--tonemap OP] [--key K] [--denoise] [--allow-partial]
 //
 // The parts of a split render (`insitu render --samples A:B`, issue 17) added into the image, the
 // layers and the report that one render of all their samples gives, bit for bit: each pixel's
@@ -7,7 +7,8 @@
 // scene with the same inputs and settings, and cover the samples 0:spp without gap or overlap
 // (--allow-partial: any adjoining range, whose report then says "interrupted": true); the scene is
 // loaded again from the path and the overrides each part records, and its fingerprint must still
-// be theirs.
+// be theirs. --denoise denoises the merged composite (output/denoise.h), as `render --denoise`
+// does a whole render's: the parts hold the sums, never a denoised image.
 #include <algorithm>
 #include <cstdio>
 #include <fmt/format.h>
@@ -26,7 +27,7 @@ namespace {
 
 struct MergeArgs {
   std::vector<std::string> parts;
-  RenderArgs outputs;  // -o, --layers, --tonemap, --key
+  RenderArgs outputs;  // -o, --layers, --tonemap, --key, --denoise
   bool allow_partial = false;
 };
 
@@ -98,6 +99,7 @@ int run_merge(const MergeArgs& m) {
   if (!m.allow_partial) require_all_samples(parts);
   RenderArgs a = parts[0].record.args;
   a.output = m.outputs.output, a.layers = m.outputs.layers, a.tonemap = m.outputs.tonemap, a.key = m.outputs.key;
+  a.denoise = m.outputs.denoise;
   const SceneSpec spec = render_spec(a);
   const LoadedScene scene = load_scene(spec);
   print_warnings(scene.warnings);
@@ -138,6 +140,8 @@ Command add_merge_command(CLI::App& app) {
   cmd->add_option("--tonemap", m->outputs.tonemap, "for PNG/JPEG: " + quoted_choices(names_of(kToneMaps)))
       ->check(CLI::IsMember(names_of(kToneMaps)));
   cmd->add_option("--key", m->outputs.key, "tone-mapping key")->check(CLI::PositiveNumber);
+  cmd->add_flag("--denoise", m->outputs.denoise,
+                "denoise the merged composite (docs/denoise.md) [default: the scene's denoise, else off]");
   cmd->add_flag("--allow-partial", m->allow_partial,
                 "merge parts that do not cover all the render's samples (the report "
                 "says \"interrupted\": true)");
