@@ -5,21 +5,31 @@
 // docs/denoise.md has the derivation, the choices and the measured bias.
 //
 // Per changed pixel i, over the window N(i) of (2R + 1)² pixels j:
-//   weight   w_ij = exp(−max(0, d²_ij)) with the patch distance of Rousselle et al. 2012
-//            ("Adaptive rendering with non-local means filtering"), over 3 × 3 patches:
-//            d²_ij = mean_p [(Y_i+p − Y_j+p)² − (v_i+p + min(v_i+p, v_j+p))] / (ε + k² (v_i+p + v_j+p))
-//            Y the change's luminance divided by the albedo's (the texture demodulated, as
+//   weight   w_ij = exp(−max(0, d²_ij)), Rousselle et al. 2012's patch distance
+//            ("Adaptive rendering with non-local means filtering") over 3 × 3 patches of the
+//            guide: the change's luminance divided by the albedo's (the texture demodulated, as
 //            Zimmer et al. 2015 and Bako et al. 2017 do: a textured floor's pixels then look
-//            alike), v the variance of its mean (composite_variance) divided likewise;
+//            alike), with the variance of its mean (output/denoise_weights.h);
 //   fit      T_j ≈ β₀ + βᵀ (f_j − f_i), weighted least squares with a small ridge on β, the
 //            features f scaled to the window's range, of the render's change to the photo
 //            T = C − (1 − α) P (the photo P is exact: it never passes through the filter, so a
 //            clipped window or a sharp frame in it cannot blur; what the fit can bias is the change);
 //   output   (1 − α_i) P_i + β₀, with β₀ = Σ_j l_j T_j, l_j = w_ij uᵀ x_j and u = A⁻¹ e₀ (A the
 //            normal matrix): a linear smoother, whose variance Σ_j l_j² v_j is the estimate's own
-//            (`variance`).
+//            (`variance`, in the guide's units).
 // The features: the albedo, the shading normal, the depth, the objects' coverage and the photo's
 // luminance behind them (the noise-free texture the catcher's change modulates).
+//
+// Large images are fitted over blocks. With blocks of s × s pixels (DenoiseSettings::block; by
+// default the image's short side over 480, so 1 at 640 × 480 and 3 at 1920 × 1440), the fit is
+// made over a window of (2R + 1)² blocks, each the mean of its pixels' change, guide and features,
+// and each pixel i of block c takes the fit at its own features:
+//   T̂_i = β₀ + βᵀ (f_i − f_c)
+// so its texture, normal and edge within the block stay its own (output/denoise_inputs.h). The
+// window then covers the same share of the image and of the objects at every size, and each of
+// its taps averages s² pixels: the noise falls as it does at 640 × 480 with s² times the samples,
+// for the same cost, the fit being shared by the block's pixels. What a block gives up is an
+// edge no feature sees (a shadow's) within its s pixels. The variance stated is the block's β₀'s.
 //
 // Pixels the render left untouched (composite.h's touched_mask) are returned as they came, bit
 // for bit; they take part in their neighbours' fits as exact values (v = 0).
@@ -33,6 +43,7 @@ struct DenoiseSettings {
   int radius = 6;       // R: the window is (2R + 1)² pixels
   double k = 0.45;      // Rousselle et al. 2012's colour tolerance in standard errors
   double ridge = 1e-3;  // of the window's total weight, on each scaled feature's coefficient
+  int block = 0;        // s: the fit's taps are blocks of s × s pixels (0: by the image's size)
 };
 
 struct Denoised {
@@ -44,8 +55,9 @@ struct Denoised {
 Denoised denoise_composite(const Image& photo_linear, const Image& composite_linear, const Image& variance,
                            const RenderLayers& layers, const DenoiseSettings& settings = {});
 
-// The slow reference: the same fit per pixel by an explicit weighted least-squares solve
-// (Eigen's column-pivoting QR of √W X), one pixel. For the tests.
+// The slow reference: the same fit by an explicit weighted least-squares solve (Eigen's
+// column-pivoting QR of √W X) over the pixel's block's window, each weight from its own patch
+// distance; one pixel. For the tests.
 Rgb denoise_pixel_reference(const Image& photo_linear, const Image& composite_linear, const Image& variance,
                             const RenderLayers& layers, const DenoiseSettings& settings, int x, int y);
 
