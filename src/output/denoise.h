@@ -34,6 +34,8 @@
 // Pixels the render left untouched (composite.h's touched_mask) are returned as they came, bit
 // for bit; they take part in their neighbours' fits as exact values (v = 0).
 #pragma once
+#include <cstddef>
+
 #include "core/image.h"
 #include "render/render.h"
 
@@ -48,7 +50,11 @@ struct DenoiseSettings {
 
 struct Denoised {
   Image composite;  // RGB, linear
-  Image variance;   // 1 channel: the variance of the denoised luminance (0 where untouched)
+  int block = 1;    // s: the fit's taps were blocks of s × s pixels
+  // With blocks: the touched pixels of the blocks whose fit does not serve them (denoise_edges.h),
+  // each fitted over its own window.
+  std::size_t pixels_fitted_alone = 0;
+  Image variance;  // 1 channel: the variance of the denoised luminance (0 where untouched)
 };
 
 // `composite_linear` is composite()'s, `variance` composite_variance()'s (1 channel).

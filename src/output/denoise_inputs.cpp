@@ -31,7 +31,7 @@ std::vector<float> prefiltered_variance(const Image& variance) {
 
 }  // namespace
 
-Inputs gather(const Image& photo, const Image& comp, const Image& variance, const RenderLayers& l) {
+Inputs gather(const Image& photo, const Image& comp, const Image& variance, const RenderLayers& l, int s) {
   Inputs in;
   in.width = comp.width, in.height = comp.height, in.change = Image(comp.width, comp.height, 3);
   in.variance = prefiltered_variance(variance);
@@ -53,6 +53,7 @@ Inputs gather(const Image& photo, const Image& comp, const Image& variance, cons
       f[6] = std::min(*l.depth.at(x, y), kMaxFeatureDepth);
       f[7] = alpha;
       f[8] = (1 - alpha) * luminance(photo.rgb(x, y));
+      f[9] = (float(x) + 0.5f) / float(s), f[10] = (float(y) + 0.5f) / float(s);
     }
   return in;
 }

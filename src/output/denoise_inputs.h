@@ -10,8 +10,10 @@
 
 namespace insitu::denoise_detail {
 
-// albedo RGB, normal XYZ, depth, coverage, photo luminance behind the objects.
-constexpr int kFeatures = 9;
+// albedo RGB, normal XYZ, depth, coverage, photo luminance behind the objects (the shading
+// features, kShadingFeatures); then the position x, y of the pixel's centre in blocks (a pixel of
+// block 0 of 3 × 3 lies at 1/6, 1/2 or 5/6), which only the fit over blocks uses.
+constexpr int kShadingFeatures = 9, kFeatures = kShadingFeatures + 2;
 
 struct Inputs {
   int width = 0, height = 0;
@@ -24,9 +26,9 @@ struct Inputs {
   std::size_t index(int x, int y) const { return std::size_t(y) * width + x; }
 };
 
-// The pixels' inputs. `variance` is composite_variance()'s (1 channel).
+// The pixels' inputs, for blocks of s × s. `variance` is composite_variance()'s (1 channel).
 Inputs gather(const Image& photo_linear, const Image& composite_linear, const Image& variance,
-              const RenderLayers& layers);
+              const RenderLayers& layers, int s);
 
 // Blocks of s × s pixels (those at the right and bottom edges cut by the image): the means of the
 // change, the guide and the features, the variance of the guide's mean Σ v / n², and touched

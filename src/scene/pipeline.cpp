@@ -394,7 +394,10 @@ RenderResult finish_render(const LoadedScene& scene, RenderLayers layers, double
   if (denoises(scene, denoise)) {
     const auto start = std::chrono::steady_clock::now();
     const Image variance = composite_variance(scene.photo_linear, r.layers, scene.spec.composite);
-    r.composite_linear = denoise_composite(scene.photo_linear, r.composite_linear, variance, r.layers).composite;
+    Denoised d = denoise_composite(scene.photo_linear, r.composite_linear, variance, r.layers);
+    r.composite_linear = std::move(d.composite);
+    r.denoise_block = d.block;
+    r.denoise_pixels_alone = d.pixels_fitted_alone;
     r.denoised = true;
     r.denoise_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
@@ -466,7 +469,10 @@ nlohmann::json render_report(const LoadedScene& s, const RenderResult& r, const 
         {"adaptive", adaptive_report(s.spec.render.noise_target, r.layers)},
         {"nonfinite_samples", r.layers.nonfinite_samples}}},
       {"composite", name_of(kCompositeModes, s.spec.composite)},
-      {"denoise", r.denoised ? json{{"seconds", r.denoise_seconds}} : json(nullptr)},
+      {"denoise", r.denoised ? json{{"seconds", r.denoise_seconds},
+                                    {"block", r.denoise_block},
+                                    {"pixels_fitted_alone", r.denoise_pixels_alone}}
+                             : json(nullptr)},
       {"tonemap", effective_tonemap(tonemap_spec)},
       {"warnings", s.warnings.items},
   };

@@ -80,9 +80,11 @@ struct RenderResult {
   double prepare_seconds = 0;  // the integrator's precomputation (legacy blur, irradiance cube)
   RenderLayers layers;
   Image composite_linear;
-  Image composite_encoded;     // what goes into a PNG/JPEG
-  bool denoised = false;       // the composite went through output/denoise.h (the layers never do)
-  double denoise_seconds = 0;  // its time, after the render's
+  Image composite_encoded;               // what goes into a PNG/JPEG
+  bool denoised = false;                 // the composite went through output/denoise.h (the layers never do)
+  double denoise_seconds = 0;            // its time, after the render's
+  int denoise_block = 0;                 // the denoiser's block size, s × s pixels (output/denoise.h)
+  std::size_t denoise_pixels_alone = 0;  // of them, the pixels fitted one by one
 };
 
 // How a render may be stopped and resumed: `stop` ends it after the pass under way;
