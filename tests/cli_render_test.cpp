@@ -136,7 +136,9 @@ TEST(CliRender, DenoiseKeepsThePhotosUntouchedPixelsAndSaysSo) {
       bool touched = alpha[i] != 0;
       for (int c = 0; c < 3; ++c) touched |= with[c].at(i) != without[c].at(i);
       for (int c = 0; c < 3; ++c) {
-        if (!touched) EXPECT_EQ(denoised.stored.at(x, y)[c], photo.stored.at(x, y)[c]) << x << "," << y;
+        if (!touched) {
+          EXPECT_EQ(denoised.stored.at(x, y)[c], photo.stored.at(x, y)[c]) << x << "," << y;
+        }
         changed += denoised.stored.at(x, y)[c] != raw.stored.at(x, y)[c];
       }
       untouched += !touched;
