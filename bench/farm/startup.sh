@@ -58,21 +58,7 @@ t0=$(date +%s.%N); "$insitu" --version > /dev/null; t1=$(date +%s.%N)
 echo "startup: insitu --version: $(/usr/bin/python3 -c "print(f'{$t1 - $t0:.2f}')") s"
 
 if [ "$big" = 1 ]; then
-  cp -r room big && rm -rf big/out
-  /usr/bin/python3 - "$work/big" <<'PY'
-import json, sys, OpenImageIO as oiio
-d = sys.argv[1]
-src = oiio.ImageBuf(f"{d}/photo.jpg")
-dst = oiio.ImageBufAlgo.resize(src, roi=oiio.ROI(0, 3 * src.spec().width, 0, 3 * src.spec().height, 0, 1, 0, 3))
-for a in src.spec().extra_attribs:  # the EXIF exposure, which links the photo to the shots
-    dst.specmod().attribute(a.name, a.type, a.value)
-dst.set_write_format(oiio.UINT8)
-dst.write(f"{d}/photo.jpg")
-points = json.load(open(f"{d}/points.json"))
-for p in points:  # pixel coordinates from the top-left corner: ×3 exactly
-    p["uv"] = [3 * p["uv"][0], 3 * p["uv"][1]]
-json.dump(points, open(f"{d}/points.json", "w"), indent=2)
-PY
+  /usr/bin/python3 "$repo/bench/big_demo.py" "$work/big"
   batch big 1
   task big.json --index 0
   batch big 1 none
