@@ -27,14 +27,14 @@ int block_size(const DenoiseSettings& s, const Image& comp) {
   return s.block > 0 ? s.block : auto_block_size(comp.width, comp.height);
 }
 
-// The touched pixels of a whole image fitted pixel by pixel (block size 1): (1 − α) P + β₀.
+// A pixel of a whole image fitted pixel by pixel (block size 1): (1 − α) P + β₀.
 void write_pixel(const Inputs& px, const Fit<kPlainFit>& fit, const Image& photo, int x, int y, Denoised& out) {
   const Rgb t = predict(fit, px.f(x, y), px.f(x, y));
   out.composite.set_rgb(x, y, ((1 - px.f(x, y)[7]) * photo.rgb(x, y) + t).max(0.0f));
   *out.variance.at(x, y) = float(fit.variance);
 }
 
-// The touched pixels of block (bx, by): (1 − α) P + the change, from the block's fit at each
+// The estimated pixels of block (bx, by): (1 − α) P + the change, from the block's fit at each
 // pixel's own features and position, or, where the block's fit does not serve them
 // (denoise_edges.h), from each pixel's own fit over a window of pixels (the slow form of its
 // weights: such blocks are few). Returns how many pixels were fitted alone.
@@ -44,7 +44,7 @@ std::size_t write_block(const Inputs& px, const Inputs& fitted, const Fit<kPosit
   std::size_t alone = 0;
   for (int y = by * b; y < std::min(px.height, (by + 1) * b); ++y)
     for (int x = bx * b; x < std::min(px.width, (bx + 1) * b); ++x) {
-      if (!px.touched[px.index(x, y)]) continue;
+      if (!px.estimated[px.index(x, y)]) continue;
       if (edge) {
         write_pixel(px, fit_window<kPlainFit>(px, s, window_of(px, s, x, y), x, y), photo, x, y, out);
         ++alone;
@@ -66,7 +66,8 @@ Denoised denoise_composite(const Image& photo, const Image& comp, const Image& v
   const Inputs px = gather(photo, comp, variance, l, b);
   const Inputs blocks = b > 1 ? blocks_of(px, b) : Inputs{};
   const Inputs& fitted = b > 1 ? blocks : px;
-  Denoised out{comp, b, 0, Image(comp.width, comp.height, 1, 0.0f)};
+  Denoised out{comp, b, 0, Image(comp.width, comp.height, 1, 0.0f), Image(comp.width, comp.height, 1, 0.0f)};
+  for (std::size_t i = 0; i < px.estimated.size(); ++i) out.estimated.data[i] = px.estimated[i];
   // Strips of kStripRows rows (of blocks): the patch distances of a strip come from the box sums
   // of the rows around it, one above and one below (so 1.25 × the terms), and its weights take
   // 8 · 8 · width · (2R + 1)² bytes (7 MB for 640 wide, R = 6).
@@ -78,7 +79,7 @@ Denoised denoise_composite(const Image& photo, const Image& comp, const Image& v
     std::size_t strip_alone = 0;
     for (int y = y0; y < y1; ++y)
       for (int x = 0; x < fitted.width; ++x) {
-        if (!fitted.touched[fitted.index(x, y)]) continue;
+        if (!fitted.estimated[fitted.index(x, y)]) continue;
         const Window w = window_from(fitted, s, weights, x, y);
         if (b == 1)
           write_pixel(px, fit_window<kPlainFit>(px, s, w, x, y), photo, x, y, out);
@@ -98,7 +99,7 @@ Rgb denoise_pixel_reference(const Image& photo, const Image& comp, const Image& 
   check_sizes(photo, comp, variance, l);
   const int b = block_size(s, comp);
   const Inputs px = gather(photo, comp, variance, l, b);
-  if (!px.touched[px.index(x, y)]) return comp.rgb(x, y);
+  if (!px.estimated[px.index(x, y)]) return comp.rgb(x, y);
   Rgb t = Rgb::Zero();
   const Inputs fitted = b > 1 ? blocks_of(px, b) : Inputs{};
   const int bx = x / b, by = y / b;

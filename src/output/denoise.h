@@ -31,8 +31,11 @@
 // for the same cost, the fit being shared by the block's pixels. What a block gives up is an
 // edge no feature sees (a shadow's) within its s pixels. The variance stated is the block's β₀'s.
 //
-// Pixels the render left untouched (composite.h's touched_mask) are returned as they came, bit
-// for bit; they take part in their neighbours' fits as exact values (v = 0).
+// The pixels estimated are those the render touched (composite.h's touched_mask) and those within
+// 2 pixels of them: all the samples of a pixel beside a faint change may have missed it, and its
+// own variance, 0, does not say it is exact (it takes its neighbours'). Every other pixel is
+// returned as it came, bit for bit, and takes part in its neighbours' fits as an exact value
+// (v = 0).
 #pragma once
 #include <cstddef>
 
@@ -51,10 +54,11 @@ struct DenoiseSettings {
 struct Denoised {
   Image composite;  // RGB, linear
   int block = 1;    // s: the fit's taps were blocks of s × s pixels
-  // With blocks: the touched pixels of the blocks whose fit does not serve them (denoise_edges.h),
-  // each fitted over its own window.
+  // With blocks: the estimated pixels of the blocks whose fit does not serve them
+  // (denoise_edges.h), each fitted over its own window.
   std::size_t pixels_fitted_alone = 0;
-  Image variance;  // 1 channel: the variance of the denoised luminance (0 where untouched)
+  Image variance;   // 1 channel: the variance of the denoised luminance (0 where not estimated)
+  Image estimated;  // 1 channel: 1 where the composite is the denoiser's estimate, 0 where it is the input's
 };
 
 // `composite_linear` is composite()'s, `variance` composite_variance()'s (1 channel).

@@ -21,7 +21,9 @@ struct Inputs {
   // Per pixel: the guide (the change's luminance divided by the albedo's) and the variance of its
   // mean; the features.
   std::vector<float> luminance, variance, features;
-  std::vector<std::uint8_t> touched;  // the render changed it (composite.h's touched_mask)
+  // The denoiser estimates it: the render changed it (composite.h's touched_mask), or it lies
+  // within 2 pixels of one the render changed (gather). Every other pixel is exact.
+  std::vector<std::uint8_t> estimated;
   const float* f(int x, int y) const { return &features[(std::size_t(y) * width + x) * kFeatures]; }
   std::size_t index(int x, int y) const { return std::size_t(y) * width + x; }
 };
@@ -31,7 +33,7 @@ Inputs gather(const Image& photo_linear, const Image& composite_linear, const Im
               const RenderLayers& layers, int s);
 
 // Blocks of s × s pixels (those at the right and bottom edges cut by the image): the means of the
-// change, the guide and the features, the variance of the guide's mean Σ v / n², and touched
+// change, the guide and the features, the variance of the guide's mean Σ v / n², and estimated
 // where any of the block's pixels is.
 Inputs blocks_of(const Inputs& pixels, int s);
 

@@ -391,17 +391,21 @@ RenderResult finish_render(const LoadedScene& scene, RenderLayers layers, double
   r.prepare_seconds = prepare_seconds;
   r.layers = std::move(layers);
   r.composite_linear = composite(scene.photo_linear, r.layers, scene.spec.composite);
+  // The pixels that are not the photo's own: those the render touched, and with the denoiser
+  // those it estimated (output/denoise.h).
+  Image changed = touched_mask(r.layers);
   if (denoises(scene, denoise)) {
     const auto start = std::chrono::steady_clock::now();
     const Image variance = composite_variance(scene.photo_linear, r.layers, scene.spec.composite);
     Denoised d = denoise_composite(scene.photo_linear, r.composite_linear, variance, r.layers);
     r.composite_linear = std::move(d.composite);
+    changed = std::move(d.estimated);
     r.denoise_block = d.block;
     r.denoise_pixels_alone = d.pixels_fitted_alone;
     r.denoised = true;
     r.denoise_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
-  r.composite_encoded = encode_composite(r.composite_linear, touched_mask(r.layers), scene.photo,
+  r.composite_encoded = encode_composite(r.composite_linear, changed, scene.photo,
                                          scene.environment_info.response ? &*scene.environment_info.response : nullptr);
   return r;
 }
