@@ -164,12 +164,15 @@ TEST(EnvSampling, ASamplerSharingRecordsIsTheSamplerOfItsOwnCube) {
     const Vec3f d = Vec3f(g(rng), g(rng), g(rng)).normalized();
     ASSERT_EQ(shared.pdf(d), own.pdf(d)) << d.transpose();
     ASSERT_TRUE((shared.radiance(d) == cube.lookup_nearest(d)).all()) << d.transpose();
+    const EnvLookup l = shared.lookup(d);
+    ASSERT_TRUE(l.pdf == own.pdf(d) && (l.radiance == cube.lookup_nearest(d)).all()) << d.transpose();
   }
   EXPECT_THROW(EnvSampler(random_cube(8, 1), records, share), std::logic_error);
   EXPECT_THROW(EnvSampler(cube, shared, share), std::logic_error);
 }
 
-// radiance() is the cube's nearest texel, bit for bit, in every direction (record layout).
+// radiance() is the cube's nearest texel, bit for bit, in every direction (record layout), and
+// lookup() gives that radiance and pdf()'s density from its one projection.
 TEST(EnvSampling, RadianceIsTheCubesNearestTexel) {
   const CubeMap cube = random_cube(32, 7);
   const EnvSampler s(cube);
@@ -178,6 +181,8 @@ TEST(EnvSampling, RadianceIsTheCubesNearestTexel) {
   for (int k = 0; k < 100000; ++k) {
     const Vec3f d = Vec3f(g(rng), g(rng), g(rng)).normalized();
     ASSERT_TRUE((s.radiance(d) == cube.lookup_nearest(d)).all()) << d.transpose();
+    const EnvLookup l = s.lookup(d);
+    ASSERT_TRUE(l.pdf == s.pdf(d) && (l.radiance == cube.lookup_nearest(d)).all()) << d.transpose();
   }
 }
 

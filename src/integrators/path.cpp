@@ -245,6 +245,12 @@ class PathIntegrator final : public Integrator {
   // The room's light seen from p along dir (room_light.h): with a room box, the box's faces emit
   // what the capture point saw toward them, so a point near a window sees more of it.
   Rgb env_radiance(const Vec3f& p, const Vec3f& dir) const { return room_.radiance(p, dir); }
+  // The same, found by a BSDF sample of density pdf_bsdf: weighed by MIS against the room light's
+  // samples (one lookup for the radiance and the light's density).
+  Rgb room_light_mis(const Vec3f& p, const Vec3f& dir, float pdf_bsdf) const {
+    const RoomLookup l = room_.lookup(p, dir);
+    return l.radiance * power_heuristic(pdf_bsdf, l.pdf);
+  }
 
   // Whether the room's light sampled from `origin` reaches it: the local scene blocks it for
   // everything (its light is reached by BSDF samples only, weight 1; a sample on the floor face
@@ -310,14 +316,12 @@ class PathIntegrator final : public Integrator {
         // more): they see their own shadows and light on it. A wall is the room's emitter too:
         // its light is weighed against the room light's samples of it.
         const CatcherEstimate e = estimate_catcher(c, wi, sampler, depth, catcher_bounces_);
-        const Rgb photo = c.wall
-                              ? Rgb(env_radiance(ray.origin, wi) * power_heuristic(bs.pdf, room_.pdf(ray.origin, wi)))
-                              : room_radiance(c.x, wi);
+        const Rgb photo = c.wall ? room_light_mis(ray.origin, wi, bs.pdf) : room_radiance(c.x, wi);
         L += throughput * (c.albedo_from_photo ? Rgb(photo + e.change) : e.with());
         break;
       }
       if (!hit.valid()) {
-        L += throughput * env_radiance(ray.origin, wi) * power_heuristic(bs.pdf, room_.pdf(ray.origin, wi));
+        L += throughput * room_light_mis(ray.origin, wi, bs.pdf);
         break;
       }
       if (depth >= 2) {
@@ -408,9 +412,13 @@ class PathIntegrator final : public Integrator {
     const CatcherHit behind_hit = find_catcher({origin, wi}, kInfinity);
     const bool object_first = hit.valid() && (!behind_hit.valid || hit.t < behind_hit.t);
     if (base || object_first) {
-      const Rgb behind = behind_hit.valid ? Rgb(kPiF * e.rho_over_pi * room_radiance(behind_hit.x, wi) * scale)
-                                          : Rgb(kPiF * e.rho_over_pi * env_radiance(origin, wi) *
-                                                (scale * power_heuristic(pdf_wi, room_.pdf(origin, wi))));
+      Rgb behind;
+      if (behind_hit.valid) {
+        behind = kPiF * e.rho_over_pi * room_radiance(behind_hit.x, wi) * scale;
+      } else {
+        const RoomLookup l = room_.lookup(origin, wi);
+        behind = kPiF * e.rho_over_pi * l.radiance * (scale * power_heuristic(pdf_wi, l.pdf));
+      }
       if (base) e.without += behind;
       if (object_first)
         e.change += kPiF * e.rho_over_pi * trace_from({origin, wi}, hit, sampler, depth + 1) * scale - behind;

@@ -141,16 +141,23 @@ EnvSample EnvSampler::sample(float u_texel, float u_s, float u_t) const {
   return sample_in(std::min(m - 1, count - 1), u_s, u_t);
 }
 
-float EnvSampler::pdf(const Vec3f& dir) const {
-  const FaceCoord fc = direction_to_face(dir);
+// pdf(ω) = P_i · r³ / A_texel, r the distance to the face plane's point (the header's comment).
+float EnvSampler::pdf_at(const FaceCoord& fc) const {
   const Vec3f p = face_to_direction(fc.face, fc.s, fc.t);
   const float r = p.norm();
   return prob(texel_of(fc.face, fc.s, fc.t)) * r * r * r / (4.0f / float(n_ * n_));
 }
 
+float EnvSampler::pdf(const Vec3f& dir) const { return pdf_at(direction_to_face(dir)); }
+
 Rgb EnvSampler::radiance(const Vec3f& dir) const {
   const FaceCoord fc = direction_to_face(dir);
   return rgb(texel_of(fc.face, fc.s, fc.t));
+}
+
+EnvLookup EnvSampler::lookup(const Vec3f& dir) const {
+  const FaceCoord fc = direction_to_face(dir);
+  return {rgb(texel_of(fc.face, fc.s, fc.t)), pdf_at(fc)};
 }
 
 }  // namespace insitu

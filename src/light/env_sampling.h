@@ -53,6 +53,12 @@ struct EnvSample {
   float pdf;  // per steradian
 };
 
+// The radiance along a direction and the density of sampling it, found with one texel lookup.
+struct EnvLookup {
+  Rgb radiance;
+  float pdf;  // per steradian
+};
+
 // The smallest float ≥ x (x finite): what a float compares with as with x itself.
 float float_at_or_above(double x);
 
@@ -70,6 +76,8 @@ class EnvSampler {
   float pdf(const Vec3f& dir) const;
   // The cube's nearest texel (CubeMap::lookup_nearest, the same value).
   Rgb radiance(const Vec3f& dir) const;
+  // radiance(dir) and pdf(dir), the same values, from one projection onto the cube.
+  EnvLookup lookup(const Vec3f& dir) const;
 
  private:
   struct alignas(16) Texel {
@@ -78,6 +86,7 @@ class EnvSampler {
   };
   std::size_t texel_of(int face, float s, float t) const;
   EnvSample sample_in(std::size_t k, float u_s, float u_t) const;
+  float pdf_at(const FaceCoord& fc) const;
   // P_i from the cube's luminance and the shares, into prob(k) (a float&); the CDF and the guide.
   template <class ProbAt>
   void build(const CubeMap& radiance, const TexelShare& share, bool mis_compensation, ProbAt prob);

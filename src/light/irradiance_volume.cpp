@@ -38,7 +38,8 @@ Sh9 IrradianceVolume::project(const RoomLight& room, const Vec3f& p, int samples
     const float z = 1 - 2 * stratum(k, 3, s.next()), phi = 2 * kPiF * stratum(k, 4, s.next());
     const float r = std::sqrt(std::max(0.0f, 1 - z * z));
     const Vec3f d(r * std::cos(phi), r * std::sin(phi), z);
-    accumulate(acc, room.radiance(p, d), d, room.pdf(p, d));
+    const RoomLookup l = room.lookup(p, d);
+    accumulate(acc, l.radiance, d, l.pdf);
   }
   for (Rgb& c : acc.coeff) c /= float(std::max(1, samples));
   return acc;

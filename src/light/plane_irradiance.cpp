@@ -21,7 +21,10 @@ Rgb PlaneIrradiance::estimate(const RoomLight& room, const Vec3f& x, const Vec3f
     if (rs.pdf > 0 && cos_l > 0) sum += rs.radiance * (cos_l / rs.pdf * power_heuristic(rs.pdf, cos_l / kPiF));
     const Vec3f wi = cosine_sample(n, s.next(), s.next());
     const float pdf_b = n.dot(wi) / kPiF;
-    if (pdf_b > 0) sum += kPiF * room.radiance(x, wi) * power_heuristic(pdf_b, room.pdf(x, wi));
+    if (pdf_b > 0) {
+      const RoomLookup l = room.lookup(x, wi);
+      sum += kPiF * l.radiance * power_heuristic(pdf_b, l.pdf);
+    }
   }
   return sum / float(std::max(1, samples));
 }

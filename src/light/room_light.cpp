@@ -184,46 +184,44 @@ RoomLight::Exit RoomLight::locate(const Vec3f& x, const Vec3f& dir) const {
   return e;
 }
 
-float RoomLight::pdf(const Vec3f& dir, const Exit& e) const {
-  if (!e.valid) return 0.0f;
+// Along dir, leaving the box at e: through an opening the light is distant (the cube by
+// direction), with the portal strategies' density; a wall shows what c saw of it, with the wall
+// strategy's density converted to x (the header's p_x(ω)).
+RoomLookup RoomLight::lookup(const Vec3f& dir, const Exit& e) const {
+  if (!e.valid) return {env_->radiance(dir), 0.0f};
   const float cos_x = std::abs(dir[e.axis]);
-  if (!(cos_x > 0)) return 0.0f;
-  if (e.openings > 0)  // directional and area portal strategies
-    return p_dir_ * outside_->pdf(dir) + p_area_ * float(e.openings) * e.t * e.t / (opening_area_ * cos_x);
+  if (e.openings > 0) {
+    if (!outside_) return {env_->radiance(dir), 0.0f};
+    const EnvLookup l = outside_->lookup(dir);
+    if (!(cos_x > 0)) return {l.radiance, 0.0f};
+    return {l.radiance, p_dir_ * l.pdf + p_area_ * float(e.openings) * e.t * e.t / (opening_area_ * cos_x)};
+  }
+  const EnvSampler& walls = walls_ ? *walls_ : *env_;
   const Vec3f v = e.q - box_->capture;
   const float t_c = v.norm();
-  if (!(t_c > 0)) return 0.0f;
+  if (!(t_c > 0)) return {walls.radiance(dir), 0.0f};
   const Vec3f w_c = v / t_c;
+  const EnvLookup l = walls.lookup(w_c);
+  if (!(cos_x > 0)) return {l.radiance, 0.0f};
   // cos θ_c = |ω_c[axis]|: the face's normal is that axis.
   const float cos_c = std::abs(w_c[e.axis]);
-  const EnvSampler& walls = walls_ ? *walls_ : *env_;
-  return p_wall_ * walls.pdf(w_c) * cos_c / (t_c * t_c) * (e.t * e.t) / cos_x;
+  return {l.radiance, p_wall_ * l.pdf * cos_c / (t_c * t_c) * (e.t * e.t) / cos_x};
 }
 
-float RoomLight::pdf(const Vec3f& x, const Vec3f& dir) const {
-  if (!inside(x)) return env_->pdf(dir);
-  return pdf(dir, locate(x, dir));
-}
-
-// Through an opening the light is distant (cube by direction); a wall shows what c saw of it.
-Rgb RoomLight::radiance(const Vec3f& dir, const Exit& e) const {
-  if (!e.valid) return env_->radiance(dir);
-  if (e.openings > 0) return outside_ ? outside_->radiance(dir) : env_->radiance(dir);
-  const Vec3f v = e.q - box_->capture;
-  return (walls_ ? *walls_ : *env_).radiance(v.squaredNorm() > 0 ? Vec3f(v.normalized()) : dir);
-}
-
-Rgb RoomLight::radiance(const Vec3f& x, const Vec3f& dir) const {
-  return inside(x) ? radiance(dir, locate(x, dir)) : env_->radiance(dir);
+RoomLookup RoomLight::lookup(const Vec3f& x, const Vec3f& dir) const {
+  if (inside(x)) return lookup(dir, locate(x, dir));
+  const EnvLookup l = env_->lookup(dir);
+  return {l.radiance, l.pdf};
 }
 
 // The sample along dir, which leaves the box at e: the mixture's pdf and the radiance there, as
-// pdf() and radiance() give them.
+// lookup() gives them.
 RoomSample RoomLight::along(const Vec3f& dir, const Exit& e) const {
   RoomSample s;
   if (!e.valid) return s;
-  s.radiance = radiance(dir, e);
-  s.pdf = s.radiance.allFinite() ? pdf(dir, e) : 0.0f;
+  const RoomLookup l = lookup(dir, e);
+  s.radiance = l.radiance;
+  s.pdf = s.radiance.allFinite() ? l.pdf : 0.0f;
   s.dir = dir;
   s.distance = e.t;
   return s;

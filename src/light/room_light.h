@@ -56,6 +56,12 @@ struct RoomBox {
   std::vector<RoomOpening> openings;
 };
 
+// The radiance arriving at x along a direction and the density of sample() producing it.
+struct RoomLookup {
+  Rgb radiance = Rgb::Zero();
+  float pdf = 0;  // per steradian at x (the mixture's)
+};
+
 struct RoomSample {
   Vec3f dir = Vec3f::Zero();  // unit, from x toward the sampled point
   float distance = 0;         // to the sampled point on the box
@@ -71,8 +77,11 @@ class RoomLight {
   RoomLight(const RoomLight&) = delete;  // hundreds of MB at a 1024 face: never copied by accident
   RoomLight& operator=(const RoomLight&) = delete;
   RoomSample sample(const Vec3f& x, float u_pick, float u_s, float u_t) const;
-  float pdf(const Vec3f& x, const Vec3f& dir) const;     // of sample() producing dir at x
-  Rgb radiance(const Vec3f& x, const Vec3f& dir) const;  // arriving at x along dir
+  // radiance(x, dir) and pdf(x, dir) at once, from one exit from the box and one texel lookup:
+  // what MIS against a BSDF sample needs.
+  RoomLookup lookup(const Vec3f& x, const Vec3f& dir) const;
+  float pdf(const Vec3f& x, const Vec3f& dir) const { return lookup(x, dir).pdf; }  // of sample() producing dir at x
+  Rgb radiance(const Vec3f& x, const Vec3f& dir) const { return lookup(x, dir).radiance; }  // arriving at x along dir
   // The distance from p to the box along dir, and the axis of the face it leaves through (p inside).
   bool exit(const Vec3f& p, const Vec3f& dir, float* t, int* axis) const;
   // How many openings hold the point q of the box's face across `axis` (0: a wall).
@@ -91,8 +100,7 @@ class RoomLight {
     Vec3f q = Vec3f::Zero();
   };
   Exit locate(const Vec3f& x, const Vec3f& dir) const;
-  float pdf(const Vec3f& dir, const Exit& e) const;
-  Rgb radiance(const Vec3f& dir, const Exit& e) const;
+  RoomLookup lookup(const Vec3f& dir, const Exit& e) const;
   RoomSample along(const Vec3f& dir, const Exit& e) const;
   RoomSample sample_wall(const Vec3f& x, float u, float u_s, float u_t) const;
   RoomSample sample_outside(const Vec3f& x, float u, float u_s, float u_t) const;
