@@ -1,5 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <vector>
+
 #include "output/composite.h"
 #include "scene/pipeline.h"
 #include "scene_fixture.h"
@@ -120,6 +126,34 @@ TEST(Composite, ChangedMaskIsWhereTheChangeShows) {
   EXPECT_EQ(*m.at(15, 5), 1.0f);
   EXPECT_EQ(*m.at(12, 1), 0.0f);
   EXPECT_EQ(*m.at(0, 9), 0.0f);
+}
+
+// The bisection over the running maximum gives the scan's value bit for bit, on a curve with dips
+// and plateaus (where the scan's "made non-decreasing" matters), below its first value, beyond its
+// last, exactly on its values and on NaN; and it inverts: g(code) comes back as the code.
+TEST(Composite, InverseResponseByBisectionIsTheScans) {
+  ResponseCurve r;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0, 1);
+  for (int k = 0; k < 3; ++k)
+    for (int z = 0; z < 256; ++z) {
+      const float rising = std::pow(float(z) / 255.0f, 2.2f) * float(k + 1);
+      r.g[std::size_t(k)][std::size_t(z)] = z % 37 == 5            ? 0.5f * rising
+                                            : z % 41 == 7 && z > 0 ? r.g[std::size_t(k)][std::size_t(z - 1)]
+                                                                   : rising;
+    }
+  const InverseResponse inverse(r);
+  std::vector<float> values = {
+      -1.0f, 0.0f, 1e-9f, 3.0f, 4.0f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()};
+  for (int k = 0; k < 3; ++k)
+    for (float g : r.g[std::size_t(k)]) values.push_back(g), values.push_back(std::nextafter(g, 10.0f));
+  for (int i = 0; i < 100000; ++i) values.push_back(3.2f * u(rng));
+  for (int k = 0; k < 3; ++k)
+    for (float v : values) {
+      const float scan = inverse_response(r, k, v), bisection = inverse(k, v);
+      ASSERT_EQ(std::memcmp(&scan, &bisection, sizeof(float)), 0) << "channel " << k << " value " << v;
+    }
+  EXPECT_NEAR(inverse(1, r.g[1][200]), 200.0f / 255.0f, 1e-6f);
 }
 
 }  // namespace

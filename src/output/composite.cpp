@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
+
+#include <tbb/parallel_for.h>
 
 #include "core/colour.h"
 #include "light/hdr_merge.h"
@@ -99,6 +102,24 @@ float inverse_response(const ResponseCurve& r, int channel, float v) {
   return 1.0f;
 }
 
+InverseResponse::InverseResponse(const ResponseCurve& r) {
+  for (std::size_t k = 0; k < 3; ++k) {
+    rising_[k][0] = r.g[k][0];
+    for (std::size_t z = 1; z < 256; ++z) rising_[k][z] = std::max(rising_[k][z - 1], r.g[k][z]);
+  }
+}
+
+// inverse_response's scan ends at the first z ≥ 1 with v ≤ the running maximum at z: a lower bound.
+float InverseResponse::operator()(int channel, float v) const {
+  const auto& m = rising_[std::size_t(channel)];
+  if (!(v > m[0])) return 0.0f;
+  const auto it = std::lower_bound(m.begin() + 1, m.end(), v);
+  if (it == m.end()) return 1.0f;
+  const int z = int(it - m.begin());
+  const float cur = *it, prev = m[std::size_t(z - 1)];
+  return (float(z - 1) + (cur > prev ? (v - prev) / (cur - prev) : 1.0f)) / 255.0f;
+}
+
 Image clipped_photo_weight(const RenderLayers& l, const ImageFile& photo) {
   Image w = clipped_degree(photo);
   for (int y = 0; y < w.height; ++y)
@@ -108,18 +129,20 @@ Image clipped_photo_weight(const RenderLayers& l, const ImageFile& photo) {
 
 Image encode_composite(const Image& c, const Image& touched, const ImageFile& photo, const ResponseCurve* response) {
   const bool use_response = response && photo.display_referred && photo.bits == 8;
+  const std::optional<InverseResponse> inverse =
+      use_response ? std::optional<InverseResponse>(*response) : std::nullopt;
   Image out(c.width, c.height, 3);
-  for (int y = 0; y < c.height; ++y)
+  tbb::parallel_for(0, c.height, [&](int y) {
     for (int x = 0; x < c.width; ++x) {
       const bool untouched = *touched.at(x, y) == 0.0f;
       for (int k = 0; k < 3; ++k) {
         if (untouched && photo.display_referred)
           out.at(x, y)[k] = photo.stored.at(x, y)[k];
         else
-          out.at(x, y)[k] =
-              use_response ? inverse_response(*response, k, c.at(x, y)[k]) : linear_to_srgb(c.at(x, y)[k]);
+          out.at(x, y)[k] = inverse ? (*inverse)(k, c.at(x, y)[k]) : linear_to_srgb(c.at(x, y)[k]);
       }
     }
+  });
   return out;
 }
 

@@ -24,6 +24,7 @@
 // recovered from brackets when there is one, else the sRGB curve — so that a pixel changed only a
 // little is encoded only a little differently.
 #pragma once
+#include <array>
 #include "core/image.h"
 #include "light/hdr_merge.h"
 #include "output/settings.h"
@@ -61,5 +62,16 @@ Image encode_composite(const Image& composite_linear, const Image& touched, cons
 // The inverse of a response curve, continuous: the code value (0…1) whose g is `linear`, by
 // interpolation between the two codes around it (g made non-decreasing first).
 float inverse_response(const ResponseCurve& response, int channel, float linear);
+
+// The same inverse, with g made non-decreasing once and the codes around a value found by
+// bisection (8 steps, not a scan of up to 256): bit for bit inverse_response's value.
+class InverseResponse {
+ public:
+  explicit InverseResponse(const ResponseCurve& response);
+  float operator()(int channel, float linear) const;
+
+ private:
+  std::array<std::array<float, 256>, 3> rising_;  // running maximum of g, per channel
+};
 
 }  // namespace insitu
