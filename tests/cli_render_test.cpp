@@ -177,6 +177,27 @@ TEST(CliRender, DenoiseLeavesANoiseFreeIntegratorAlone) {
   EXPECT_TRUE(exr_pixels(fx.dir.file("raw.layers.exr")) == exr_pixels(fx.dir.file("d.layers.exr")));
 }
 
+// One sample a pixel gives the denoiser no noise to weigh by: it is skipped, the image is the one
+// rendered without it, bit for bit, and the report says why.
+TEST(CliRender, DenoiseAtOneSampleIsSkippedAndSaysSo) {
+  SceneFixture fx;
+  auto j = fx.scene;
+  j["render"] = {{"integrator", "path"}, {"spp", 1}};
+  j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
+  j["objects"] = {{{"mesh", "good_quad.obj"}, {"translate", {0, 0.3, 0}}}};
+  const std::string scene = fx.write(j);
+  ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("raw.png")).exit_code, 0);
+  const CliRun d = run_insitu(fx.dir, "render " + scene + " --denoise -o " + fx.dir.file("d.png"));
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  const nlohmann::json report = read_json(fx.dir.file("d.png.report.json"))["denoise"];
+  EXPECT_NE(report.value("skipped", "").find("no pixel has two samples"), std::string::npos) << report;
+  EXPECT_EQ(slurp(fx.dir.file("raw.png")), slurp(fx.dir.file("d.png")));
+  EXPECT_TRUE(exr_pixels(fx.dir.file("raw.layers.exr")) == exr_pixels(fx.dir.file("d.layers.exr")));
+  // Two samples: denoised.
+  ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " --spp 2 --denoise -o " + fx.dir.file("d2.png")).exit_code, 0);
+  EXPECT_GE(read_json(fx.dir.file("d2.png.report.json"))["denoise"]["seconds"].get<double>(), 0.0);
+}
+
 // --help shows the defaults, and every verb accepts the same seed range.
 TEST(CliRender, HelpShowsDefaults) {
   TempDir dir;

@@ -381,6 +381,15 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress, 
   return finish_render(scene, render(scene.camera, *integrator, settings, progress, control.state), prepare_seconds);
 }
 
+namespace {
+
+// Whether some pixel has two samples or more, the least its variance is estimated from.
+bool has_sample_spread(const RenderLayers& layers) {
+  return std::any_of(layers.samples.data.begin(), layers.samples.data.end(), [](float n) { return n >= 2; });
+}
+
+}  // namespace
+
 bool denoises(const LoadedScene& scene, std::optional<bool> denoise) {
   return denoise.value_or(scene.spec.denoise) && scene.integrator.entry->uses.monte_carlo;
 }
@@ -394,7 +403,8 @@ RenderResult finish_render(const LoadedScene& scene, RenderLayers layers, double
   // The pixels that are not the photo's own: those the render touched, and with the denoiser
   // those it estimated (output/denoise.h).
   Image changed = touched_mask(r.layers);
-  if (denoises(scene, denoise)) {
+  r.denoise_asked = denoises(scene, denoise);
+  if (r.denoise_asked && has_sample_spread(r.layers)) {
     const auto start = std::chrono::steady_clock::now();
     const Image variance = composite_variance(scene.photo_linear, r.layers, scene.spec.composite);
     Denoised d = denoise_composite(scene.photo_linear, r.composite_linear, variance, r.layers);
@@ -411,6 +421,16 @@ RenderResult finish_render(const LoadedScene& scene, RenderLayers layers, double
 }
 
 namespace {
+
+nlohmann::json denoise_report(const RenderResult& r) {
+  if (r.denoised)
+    return {
+        {"seconds", r.denoise_seconds}, {"block", r.denoise_block}, {"pixels_fitted_alone", r.denoise_pixels_alone}};
+  if (r.denoise_asked)
+    return {
+        {"skipped", "no pixel has two samples, the least its noise is estimated from: the composite is as rendered"}};
+  return nullptr;
+}
 
 // Adaptive sampling's outcome: the target, the mean spp, and how many pixels took each count.
 nlohmann::json adaptive_report(double noise_target, const RenderLayers& layers) {
@@ -473,10 +493,7 @@ nlohmann::json render_report(const LoadedScene& s, const RenderResult& r, const 
         {"adaptive", adaptive_report(s.spec.render.noise_target, r.layers)},
         {"nonfinite_samples", r.layers.nonfinite_samples}}},
       {"composite", name_of(kCompositeModes, s.spec.composite)},
-      {"denoise", r.denoised ? json{{"seconds", r.denoise_seconds},
-                                    {"block", r.denoise_block},
-                                    {"pixels_fitted_alone", r.denoise_pixels_alone}}
-                             : json(nullptr)},
+      {"denoise", denoise_report(r)},
       {"tonemap", effective_tonemap(tonemap_spec)},
       {"warnings", s.warnings.items},
   };

@@ -81,6 +81,7 @@ struct RenderResult {
   RenderLayers layers;
   Image composite_linear;
   Image composite_encoded;               // what goes into a PNG/JPEG
+  bool denoise_asked = false;            // denoises() held for this result
   bool denoised = false;                 // the composite went through output/denoise.h (the layers never do)
   double denoise_seconds = 0;            // its time, after the render's
   int denoise_block = 0;                 // the denoiser's block size, s × s pixels (output/denoise.h)
@@ -104,7 +105,10 @@ RenderResult render_scene(const LoadedScene& scene, const ProgressFn& progress =
 // show the legacy image as it is.
 bool denoises(const LoadedScene& scene, std::optional<bool> denoise);
 // The composite of layers rendered (or merged from parts) for this scene.
-// `denoise`: whether the composite is denoised (output/denoise.h; see denoises).
+// `denoise`: whether the composite is denoised (output/denoise.h; see denoises). It is not where
+// no pixel has two samples: the denoiser weighs its neighbours by the noise it estimates from the
+// spread of a pixel's samples, which one sample does not have (the composite would come back as
+// it went in, a second later).
 RenderResult finish_render(const LoadedScene& scene, RenderLayers layers, double prepare_seconds = 0,
                            std::optional<bool> denoise = std::nullopt);
 

@@ -88,7 +88,7 @@ void RenderJob::run(const std::string& integrator, int spp, bool denoise) {
     const RenderResult last = render_scene(scene, progress, control);
     // The image shown denoised or not as asked, whatever the scene file says for the saved one.
     RenderResult redone;
-    const bool redo = last.denoised != denoises(scene, denoise);
+    const bool redo = last.denoise_asked != denoises(scene, denoise);
     if (redo) redone = finish_render(scene, last.layers, 0, denoise);
     const RenderResult& shown_last = redo ? redone : last;
     Slot final_slot{shown_last.composite_linear,
