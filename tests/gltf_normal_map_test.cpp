@@ -133,5 +133,16 @@ TEST(GltfNormalMap, TheFilesTangentIsItsFrame) {
   EXPECT_TRUE(shading_normal(write_mapped_quad(dir, 1.0, {0, 0, -1, 1}), 1).isApprox(expected, 1e-5f));
 }
 
+// surface() reads three tangents a triangle: a mesh with any other count is refused when the scene
+// is built, not read past its end.
+TEST(GltfNormalMap, TangentsOtherThanThreeATriangleAreRefused) {
+  test::TempDir dir;
+  Warnings w;
+  Mesh mesh = load_mesh(write_mapped_quad(dir, 1.0), w);
+  ASSERT_EQ(mesh.tangents.size(), 3 * mesh.triangles.size());
+  mesh.tangents.pop_back();
+  EXPECT_THROW(EmbreeScene({mesh}), std::logic_error);
+}
+
 }  // namespace
 }  // namespace insitu
