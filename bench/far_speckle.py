@@ -9,7 +9,8 @@
 # (the same sums with and without the objects in every sample) and draws them: red over A's
 # composite, the far pixels tinted green.
 # A pixel's world point comes from the reference's depth layer (camera-space z) and the camera's
-# pose (x_cam = R x_world + t); its distance to the objects is to points about 5 cm apart on their
+# pose (x_cam = R x_world + t); a pixel any of whose reference samples met an object (coverage > 0)
+# is not far, whatever its mean depth. Its distance to the objects is to points about 5 cm apart on their
 # triangles (OBJ meshes, `translate` and `rotate` about +y; no `scale`). Needs numpy and
 # OpenImageIO's Python module (python3-openimageio).
 import json
@@ -89,7 +90,10 @@ def draw_map(out_path, test_path, off, far):
 def main():
     scene_path, camera_path, test_path, ref_path = sys.argv[1:5]
     depth = channels(ref_path, ['depth.Z'])[:, :, 0]
-    far = (distance_to_objects(scene_path, json.load(open(camera_path)), depth) > 0.5) & (depth > 0)
+    # A pixel that shows an object is not far from it, whatever its depth: at an object's edge the
+    # depth is the mean of the object's and of the surface behind it, a point near neither.
+    covered = channels(ref_path, ['objects.A'])[:, :, 0] > 0
+    far = (distance_to_objects(scene_path, json.load(open(camera_path)), depth) > 0.5) & (depth > 0) & ~covered
     ref = channels(ref_path, 'RGB') @ LUMA
     test = channels(test_path, 'RGB') @ LUMA
     rel = np.abs(test - ref)[far] / np.maximum(ref[far], 1e-6)

@@ -3,6 +3,7 @@
 # catalogue still"): the relative RMSE over the objects and the pixels they change, with the
 # reference's own noise taken out.
 #   /usr/bin/python3 bench/still_error.py REF_A.layers.exr REF_B.layers.exr TEST.layers.exr...
+#   /usr/bin/python3 bench/still_error.py --bias REF_A REF_B TEST TEST... (seeds of one setting: bias())
 # REF_A and REF_B are renders of the same scene with different seeds (independent samples); the
 # reference is their mean R = (A + B) / 2. For a test image X whose noise is independent of theirs,
 #   E[Σ (X − R)²] = Σ (X − truth)² + Σ Var(R),   and   E[Σ (A − B)²] = 4 Σ Var(R),
@@ -48,8 +49,8 @@ def region(reference, photo, alpha, threshold=0.03):
     return (alpha > 0.01) | (diff > threshold * base)
 
 
-def errors(ref_a, ref_b, tests):
-    """The region's size, the reference's noise, and per test (raw, against the truth or None)."""
+def references(ref_a, ref_b):
+    """The two references A and B, their mean R, the region, Σ R² over it, and R's noise² there."""
     a = channels(ref_a, ['R', 'G', 'B'])
     b = channels(ref_b, ['R', 'G', 'B'])
     if a.shape != b.shape:
@@ -59,19 +60,58 @@ def errors(ref_a, ref_b, tests):
     ref = 0.5 * (a + b)
     mask = region(ref, photo, alpha)
     norm = np.sum(ref[mask] ** 2)
-    ref_noise2 = np.sum((a - b)[mask] ** 2) / 4 / norm
+    return a, b, ref, mask, norm, np.sum((a - b)[mask] ** 2) / 4 / norm
+
+
+def test_image(path, shape):
+    x = channels(path, ['R', 'G', 'B'])
+    if x.shape != shape:
+        sys.exit(f"still_error: {path}: {x.shape[1]}x{x.shape[0]}, not the reference's size")
+    return x
+
+
+def errors(ref_a, ref_b, tests):
+    """The region's size, the reference's noise, and per test (raw, against the truth or None)."""
+    _, _, ref, mask, norm, ref_noise2 = references(ref_a, ref_b)
     out = []
     for path in tests:
-        x = channels(path, ['R', 'G', 'B'])
-        if x.shape != ref.shape:
-            sys.exit(f"still_error: {path}: {x.shape[1]}x{x.shape[0]}, not the reference's size")
+        x = test_image(path, ref.shape)
         raw2 = np.sum((x - ref)[mask] ** 2) / norm
         err2 = raw2 - ref_noise2
         out.append((np.sqrt(raw2), np.sqrt(err2) if err2 > 0 else None))
     return int(mask.sum()), mask.size, np.sqrt(ref_noise2), out
 
 
+def bias(ref_a, ref_b, tests):
+    """The tests' common bias against the truth over the region, relative to its RMS, and the noise
+    of one test. The tests are K ≥ 2 renders of one setting with different seeds, X̄ their mean and
+    s² = Σ_k (X_k − X̄)² / (K − 1) per pixel. Against the truth t, X̄ − t = b + (noise of variance
+    s²/K), and R's noise is independent of both, so
+        b² = (Σ (X̄ − R)² − Σ s² / K − Σ (A − B)² / 4) / Σ R²,    noise² of one = Σ s² / Σ R².
+    Also b²'s standard error, from the spread of its per-pixel terms."""
+    a, b, ref, mask, norm, ref_noise2 = references(ref_a, ref_b)
+    xs = np.stack([test_image(path, ref.shape)[mask] for path in tests])
+    k = len(xs)
+    mean = xs.mean(0)
+    s2 = np.sum((xs - mean) ** 2, 0) / (k - 1)
+    # Per pixel and channel: its term of b² · Σ R². The terms' spread gives b²'s standard error
+    # as if the pixels were independent (the references' are; a denoised image's are not, so
+    # this understates it).
+    terms = (mean - ref[mask]) ** 2 - s2 / k - (a - b)[mask] ** 2 / 4
+    b2 = np.sum(terms) / norm
+    se_b2 = np.sqrt(terms.size * np.var(terms)) / norm
+    return b2, se_b2, np.sqrt(np.sum(s2) / norm), np.sqrt(ref_noise2)
+
+
 def main():
+    if len(sys.argv) > 1 and sys.argv[1] == '--bias':
+        if len(sys.argv) < 6:
+            sys.exit("usage: still_error.py --bias REF_A REF_B TEST TEST...")
+        b2, se, noise, ref_noise = bias(sys.argv[2], sys.argv[3], sys.argv[4:])
+        root = lambda v: f"{100 * np.sqrt(v):.2f} %" if v > 0 else "0"
+        print(f"bias {root(b2)} (b² = {1e4 * b2:.3f} ± {1e4 * se:.3f} %²; b² + 2σ: "
+              f"{root(b2 + 2 * se)}), noise of one test {100 * noise:.2f} %, reference noise {100 * ref_noise:.2f} %")
+        return
     if len(sys.argv) < 4:
         sys.exit("usage: still_error.py REF_A REF_B TEST...")
     count, size, noise, out = errors(sys.argv[1], sys.argv[2], sys.argv[3:])
