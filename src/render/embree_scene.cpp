@@ -76,6 +76,11 @@ UvSets uv_at(const Mesh& mesh, const Triangle& tri, float b1, float b2) {
 }
 
 EmbreeScene::EmbreeScene(std::vector<Mesh> meshes) : impl_(std::make_unique<Impl>()), meshes_(std::move(meshes)) {
+  // surface() reads three tangents a triangle wherever a mesh has any. Checked before the device
+  // exists: the destructor, which releases it, does not run when the constructor throws.
+  for (const Mesh& mesh : meshes_)
+    if (!mesh.tangents.empty() && mesh.tangents.size() != 3 * mesh.triangles.size())
+      throw std::logic_error("EmbreeScene: a mesh's tangents are not three a triangle");
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) throw std::runtime_error("cannot create the Embree device");
   rtcSetDeviceErrorFunction(impl_->device, embree_error, impl_.get());
@@ -83,9 +88,6 @@ EmbreeScene::EmbreeScene(std::vector<Mesh> meshes) : impl_(std::make_unique<Impl
   rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
   for (std::size_t m = 0; m < meshes_.size(); ++m) {
     const Mesh& mesh = meshes_[m];
-    // surface() reads three tangents a triangle wherever there are any.
-    if (!mesh.tangents.empty() && mesh.tangents.size() != 3 * mesh.triangles.size())
-      throw std::logic_error("EmbreeScene: a mesh's tangents are not three a triangle");
     RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                            3 * sizeof(float), mesh.positions.size()));
