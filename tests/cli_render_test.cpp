@@ -104,15 +104,21 @@ TEST(CliRender, OptionsWithoutEffectAreWarnedAndReportedAsDone) {
   EXPECT_NE(run_insitu(fx.dir, "render " + fx.write(j)).err.find("render.max_depth: has no effect"), std::string::npos);
 }
 
+// A quad 0.3 m over a floor plane, rendered by path at `spp`: something for the denoiser.
+nlohmann::json quad_over_floor(const SceneFixture& fx, int spp) {
+  auto j = fx.scene;
+  j["render"] = {{"integrator", "path"}, {"spp", spp}};
+  j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
+  j["objects"] = {{{"mesh", "good_quad.obj"}, {"translate", {0, 0.3, 0}}}};
+  return j;
+}
+
 // --denoise (and the scene's "denoise"): the PNG keeps the photo's bytes wherever the render left
 // the pixel and the pixels within 2 of it untouched (no coverage, W = N: the layers say which),
 // changes the others, and the report says it was done; the layers stay as rendered.
 TEST(CliRender, DenoiseKeepsThePhotosUntouchedPixelsAndSaysSo) {
   SceneFixture fx;
-  auto j = fx.scene;
-  j["render"] = {{"integrator", "path"}, {"spp", 4}};
-  j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
-  j["objects"] = {{{"mesh", "good_quad.obj"}, {"translate", {0, 0.3, 0}}}};
+  auto j = quad_over_floor(fx, 4);
   const std::string scene = fx.write(j);
   ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("raw.png")).exit_code, 0);
   const CliRun d = run_insitu(fx.dir, "render " + scene + " --denoise -o " + fx.dir.file("d.png"));
@@ -181,10 +187,7 @@ TEST(CliRender, DenoiseLeavesANoiseFreeIntegratorAlone) {
 // rendered without it, bit for bit, and the report says why.
 TEST(CliRender, DenoiseAtOneSampleIsSkippedAndSaysSo) {
   SceneFixture fx;
-  auto j = fx.scene;
-  j["render"] = {{"integrator", "path"}, {"spp", 1}};
-  j["local_scene"] = {{{"plane", {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
-  j["objects"] = {{{"mesh", "good_quad.obj"}, {"translate", {0, 0.3, 0}}}};
+  auto j = quad_over_floor(fx, 1);
   const std::string scene = fx.write(j);
   ASSERT_EQ(run_insitu(fx.dir, "render " + scene + " -o " + fx.dir.file("raw.png")).exit_code, 0);
   const CliRun d = run_insitu(fx.dir, "render " + scene + " --denoise -o " + fx.dir.file("d.png"));
