@@ -132,13 +132,13 @@ void BM_BareEmbree(benchmark::State& state) {
 BENCHMARK(BM_BareEmbree)->ArgsProduct({{1, 2}, {0, kHeavy}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The same rays through insitu's own tracing layer, what the integrators call: EmbreeScene's
-// intersect() and occluded(), and surface() at every hit (the shading point: barycentric position,
+// intersect() and transmittance(), and surface() at every hit (the shading point: barycentric position,
 // normals, UV, material). Its rays/s over BM_BareEmbree's is the overhead of the layer itself.
 void trace_insitu(const EmbreeScene& objects, const std::vector<LoggedRay>& rays) {
   for (const LoggedRay& r : rays) {
     const Ray ray{Vec3f(r.org[0], r.org[1], r.org[2]), Vec3f(r.dir[0], r.dir[1], r.dir[2])};
     if (r.shadow) {
-      benchmark::DoNotOptimize(objects.occluded(ray, r.t_near, r.t_far));
+      benchmark::DoNotOptimize(objects.transmittance(ray, r.t_near, r.t_far));
       continue;
     }
     const Hit hit = objects.intersect(ray, r.t_near, r.t_far);

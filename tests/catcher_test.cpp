@@ -32,10 +32,12 @@ double cosine_over_square(double half, double h) {
 //   E_total   = L · 2√2 atan(1/√2)                      (the face seen from its axis, Howell)
 //   E_blocked = L · 4 · ½ · 2 · A/√(1+A²) · atan(A/√(1+A²)),  A = a/h  (the square, same formula)
 // so the shadow ratio is 1 − E_blocked/E_total (0.5679 for A = ½). A black occluder sends no
-// light back, so W/N is exactly that ratio in expectation.
-TEST(Catcher, ShadowRatioOfASquareOccluderIsTheAnalyticFormFactor) {
+// light back, so W/N is exactly that ratio in expectation. A sheer one of opacity a (MTL `d`, a
+// glTF BLEND) blocks a of what it covers: 1 − a E_blocked/E_total, its shadow rays attenuated and
+// its traced rays passing with probability 1 − a.
+void expect_analytic_square_shadow(const std::string& mtl, double opacity) {
   test::TempDir dir;
-  dir.write("q.mtl", "newmtl black\nKd 0 0 0\n");
+  dir.write("q.mtl", mtl);
   const std::string obj =
       "mtllib q.mtl\nusemtl black\nv -0.5 1 -0.5\nv 0.5 1 -0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\nf 1 2 3 4\n";
   Warnings w;
@@ -73,15 +75,23 @@ TEST(Catcher, ShadowRatioOfASquareOccluderIsTheAnalyticFormFactor) {
   const double A = 0.5, s = A / std::sqrt(1 + A * A);
   const double E_total = 2 * std::sqrt(2.0) * std::atan(1 / std::sqrt(2.0)) * 2.0;
   const double E_blocked = 4 * 0.5 * 2 * s * std::atan(s) * 2.0;
-  const double expected_ratio = 1 - E_blocked / E_total;
+  const double expected_ratio = 1 - opacity * E_blocked / E_total;
   // The closed forms against a midpoint quadrature of the same integrals (cosine_over_square).
-  EXPECT_NEAR(expected_ratio, 1 - cosine_over_square(0.5, 1.0) / cosine_over_square(1.0, 1.0), 1e-5);
+  EXPECT_NEAR(E_blocked / E_total, cosine_over_square(0.5, 1.0) / cosine_over_square(1.0, 1.0), 1e-5);
   // The unoccluded estimate is the exact L = ρ/π·E_total on average; the ratio of means carries
   // the standard error of `with`.
   const double mean_with = with / count, se_with = std::sqrt((with2 / count - mean_with * mean_with) / count);
   const double exact_without = 0.5 / kPi * E_total;
   EXPECT_NEAR(without / count, exact_without, 0.01 * exact_without);
-  EXPECT_NEAR(mean_with / exact_without, expected_ratio, 4 * se_with / exact_without + 0.005);
+  EXPECT_NEAR(mean_with / exact_without, expected_ratio, 4 * se_with / exact_without + 0.005) << opacity;
+}
+
+TEST(Catcher, ShadowRatioOfASquareOccluderIsTheAnalyticFormFactor) {
+  expect_analytic_square_shadow("newmtl black\nKd 0 0 0\n", 1.0);
+}
+
+TEST(Catcher, ASheerSquaresShadowIsItsOpacityOfTheOpaqueOnes) {
+  expect_analytic_square_shadow("newmtl black\nKd 0 0 0\nd 0.4\n", 0.4);
 }
 
 // With a catcher plane, no objects (or objects out of view) leave the photo bit for bit, and the

@@ -29,6 +29,10 @@
 // shadow of a glass top on the floor, the photo seen through it — is found by BSDF samples, and
 // a ray through glass that meets the floor sees the photo there, P + (W − N) as below.
 //
+// Cut-outs. A traced ray meets a surface of alpha a with probability a; a shadow ray is attenuated
+// by 1 − a, as Cycles's transparent shadows are (EmbreeScene::transmittance): a sheer surface's
+// shadow, on the floor and on the objects, is a fraction of every light sample, not all of some.
+//
 // Catcher. A camera sample that meets the local scene (a plane or a mesh) before any object estimates
 // the plane's reflected radiance twice with the same random numbers: with the objects (their
 // shadow on the environment sample, and what the BSDF sample sees of them, traced as above) and
@@ -103,6 +107,7 @@ namespace insitu {
 namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
+constexpr int kSheerLayers = 16;  // the sheer surfaces a camera ray crosses, at most, before it chooses
 
 class PathIntegrator final : public Integrator {
  public:
@@ -142,21 +147,41 @@ class PathIntegrator final : public Integrator {
     return std::make_shared<RoomCache>(*in.environment, in.room);
   }
 
+  // The camera ray crosses the sheer surfaces it meets (cut-outs of opacity 0 < a < 1) rather
+  // than choosing one: each covers a share r·a of the pixel's sample (r what the surfaces before
+  // it left), shaded as present, and what lies behind is seen through the rest, r·(1 − a): an
+  // opaque object, the real room (its W and N scaled by r, which the composite's (1 − α) P W/N
+  // and (1 − α) P + W − N both take as the room seen through the sheer share), or the photo
+  // (1 − α). kSheerLayers of them at most; past them the stochastic choice.
   CameraSample sample(const Ray& camera_ray, Sampler& sampler) const override {
     CameraSample out;
-    const Hit hit = objects_->intersect(camera_ray);
-    const CatcherHit c = find_catcher(camera_ray, hit.valid() ? hit.t : kInfinity, /*walls=*/true);
-    if (c.valid) {
-      catcher(camera_ray, c, sampler, out);
-      return out;
+    Ray ray = camera_ray;
+    float r = 1, coverage = 0;
+    Rgb objects = Rgb::Zero();  // premultiplied by coverage
+    for (int layer = 0;; ++layer) {
+      const Hit hit = layer < kSheerLayers ? objects_->intersect_sheer(ray) : objects_->intersect(ray);
+      const CatcherHit c = find_catcher(ray, hit.valid() ? hit.t : kInfinity, /*walls=*/true);
+      if (c.valid) {
+        CameraSample behind;
+        catcher(ray, c, sampler, behind);
+        out.with_objects = r * behind.with_objects, out.without_objects = r * behind.without_objects;
+        if (layer == 0) out.normal = behind.normal, out.albedo = behind.albedo, out.depth = behind.depth;
+        break;
+      }
+      if (!hit.valid()) break;
+      const SurfacePoint sp = objects_->surface(ray, hit);
+      if (layer == 0) out.normal = sp.ns_world, out.albedo = sp.material->base_colour(sp.uv), out.depth = hit.t;
+      // Past kSheerLayers the surface met was chosen with probability a: it is there, whole.
+      const bool sheer = layer < kSheerLayers && sp.material->cutout();
+      const float a = sheer ? std::min(1.0f, sp.material->opacity(sp.uv)) : 1.0f;
+      objects += r * trace_from(ray, hit, sampler, 0, a);
+      coverage += r * a;
+      r *= 1 - a;
+      if (!(r > 0)) break;
+      ray = {offset_origin(sp.p_world, -sp.ng_world), ray.dir};
     }
-    if (!hit.valid()) return out;
-    out.coverage = 1.0f;
-    const SurfacePoint sp = objects_->surface(camera_ray, hit);
-    out.normal = sp.ns_world;
-    out.albedo = sp.material->base_colour(sp.uv);
-    out.depth = hit.t;
-    out.radiance = trace_from(camera_ray, hit, sampler, 0);
+    out.coverage = coverage;
+    if (coverage > 0) out.radiance = objects / coverage;
     return out;
   }
 
@@ -254,13 +279,15 @@ class PathIntegrator final : public Integrator {
 
   // Whether the room's light sampled from `origin` reaches it: the local scene blocks it for
   // everything (its light is reached by BSDF samples only, weight 1; a sample on the floor face
-  // meets the floor plane at its own distance), the objects only `with_objects`.
+  // meets the floor plane at its own distance), the objects only with them.
   bool blocked_by_catcher(const Vec3f& origin, const RoomSample& rs) const {
     const float t_max = std::isfinite(rs.distance) ? rs.distance * (1 + 1e-3f) : kInfinity;
     return find_catcher({origin, rs.dir}, t_max).valid;
   }
-  bool blocked_by_objects(const Vec3f& origin, const RoomSample& rs) const {
-    return objects_->occluded({origin, rs.dir}, 0.0f, std::isfinite(rs.distance) ? rs.distance : kInfinity);
+  // The share of that light the objects let through: 0 behind an opaque one, 1 − a through a
+  // cut-out surface of opacity a (EmbreeScene::transmittance), exactly 1 where none is in the way.
+  float through_objects(const Vec3f& origin, const RoomSample& rs) const {
+    return objects_->transmittance({origin, rs.dir}, 0.0f, std::isfinite(rs.distance) ? rs.distance : kInfinity);
   }
 
   // Radiance of the real room at a point of a catcher plane seen along `dir`.
@@ -274,16 +301,19 @@ class PathIntegrator final : public Integrator {
     return env_radiance(p, dir);
   }
 
-  // Radiance arriving along `ray` (which has hit an object at `hit`), by path tracing.
-  Rgb trace_from(Ray ray, Hit hit, Sampler& sampler, int depth) const {
+  // Radiance arriving along `ray` (which has hit an object at `hit`), by path tracing. With
+  // `presence` a < 1 the first surface is a sheer one, and what is returned is a times its
+  // radiance: its emission and light sample weighed by a, and its BSDF sample taken with
+  // probability a, as Cycles samples the Transparent BSDF that alpha mixes in.
+  Rgb trace_from(Ray ray, Hit hit, Sampler& sampler, int depth, float presence = 1) const {
     Rgb throughput = Rgb::Ones(), L = Rgb::Zero();
-    for (; depth < max_depth_; ++depth) {
+    for (; depth < max_depth_; ++depth, presence = 1) {
       const SurfacePoint sp = objects_->surface(ray, hit);
       // A ray that leaves a glass through its back face has crossed its volume (Beer–Lambert).
       if (sp.backfacing) throughput *= absorbed(*sp.material, (sp.p_world - ray.origin).norm());
       // Emission (glTF's emissive), found by the camera or a BSDF sample only: emitting objects
       // are not sampled as lights.
-      L += throughput * sp.material->emitted(sp.uv);
+      L += presence * throughput * sp.material->emitted(sp.uv);
       Bsdf bsdf = Bsdf::from_material(*sp.material, sp.uv, sp.backfacing);
       // Cycles bends every closure's normal so that its mirror direction stays above the surface,
       // and shadows the diffuse where that normal is not the smooth one.
@@ -300,7 +330,8 @@ class PathIntegrator final : public Integrator {
       // Rays leave from the side they go to: a refraction from behind the surface.
       const Vec3f origin = offset_origin(sp.p_world, sp.ng_world);
       const Vec3f origin_behind = offset_origin(sp.p_world, -sp.ng_world);
-      L += throughput * next_event(sp, bsdf, frame, wo, origin, origin_behind, sampler);
+      L += presence * throughput * next_event(sp, bsdf, frame, wo, origin, origin_behind, sampler);
+      if (presence < 1 && !(sampler.next() < presence)) break;  // taken with probability a: weight a / a
       // BSDF sample.
       BsdfSample bs;
       const float ul = sampler.next(), u1 = sampler.next(), u2 = sampler.next();
@@ -350,8 +381,11 @@ class PathIntegrator final : public Integrator {
     if (!(rs.pdf > 0) || wl.z() == 0 || (behind && !bsdf.transmits()) || (rs.dir.dot(sp.ng_world) > 0) == behind)
       return Rgb::Zero();
     const Vec3f& from = behind ? origin_behind : origin;
-    if (blocked_by_catcher(from, rs) || blocked_by_objects(from, rs)) return Rgb::Zero();
-    return bsdf.eval(wo, wl) * rs.radiance * (std::abs(wl.z()) / rs.pdf * power_heuristic(rs.pdf, bsdf.pdf(wo, wl)));
+    if (blocked_by_catcher(from, rs)) return Rgb::Zero();
+    const float through = through_objects(from, rs);
+    if (!(through > 0)) return Rgb::Zero();
+    return bsdf.eval(wo, wl) * rs.radiance *
+           (through * std::abs(wl.z()) / rs.pdf * power_heuristic(rs.pdf, bsdf.pdf(wo, wl)));
   }
 
   // ρ/π of a local-scene point met along `dir`: the surface's, or the photo's P/E (E the room's
@@ -394,12 +428,12 @@ class PathIntegrator final : public Integrator {
     const RoomSample rs = room_.sample(origin, ue, us, ut);
     const float cos_l = n.dot(rs.dir);
     if (rs.pdf > 0 && cos_l > 0) {
-      const bool shadowed = blocked_by_objects(origin, rs);
-      if ((base || shadowed) && !blocked_by_catcher(origin, rs)) {
+      const float blocked = 1 - through_objects(origin, rs);  // exactly 0 where no object is in the way
+      if ((base || blocked > 0) && !blocked_by_catcher(origin, rs)) {
         const Rgb contribution =
             e.rho_over_pi * rs.radiance * (cos_l / rs.pdf * power_heuristic(rs.pdf, reflected.pdf(rs.dir)));
         if (base) e.without += contribution;
-        if (shadowed) e.change -= contribution;
+        if (blocked > 0) e.change -= blocked * contribution;
       }
     }
     const float uc = sampler.next(), u1 = sampler.next(), u2 = sampler.next();

@@ -7,7 +7,7 @@
 #include <string>
 #include <fmt/format.h>
 
-#include "core/sampler.h"
+#include "render/cutouts.h"
 #include "render/ray_log.h"
 #include "render/shading_normal.h"
 
@@ -16,7 +16,8 @@ namespace insitu {
 struct EmbreeScene::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
-  std::string error;  // the first error Embree reported, if any
+  std::string error;     // the first error Embree reported, if any
+  bool cutouts = false;  // some mesh has a cut-out material: queries carry render/cutouts.h's filters
 };
 
 namespace {
@@ -26,37 +27,6 @@ namespace {
 void embree_error(void* user, RTCError code, const char* str) {
   auto* impl = static_cast<EmbreeScene::Impl*>(user);
   if (impl->error.empty()) impl->error = fmt::format("Embree error {}: {}", int(code), str ? str : "");
-}
-
-std::uint64_t float_bits(float a, float b) {
-  std::uint32_t x = 0, y = 0;
-  std::memcpy(&x, &a, 4);
-  std::memcpy(&y, &b, 4);
-  return (std::uint64_t(y) << 32) | x;
-}
-
-// Cut-out surfaces (glTF's alpha MASK and BLEND, Material::opacity), as pbrt-v4 does them: a hit
-// is ignored where the surface is absent: always at opacity 0, and with probability 1 − opacity
-// by a hash of the ray and the triangle, so that a shadow ray and a traced ray along the same
-// line agree, and every sample of a pixel decides anew. Embree calls this for each candidate hit
-// of a geometry that has a cut-out material, for traced and shadow rays alike.
-void alpha_filter(const RTCFilterFunctionNArguments* args) {
-  const auto* mesh = static_cast<const Mesh*>(args->geometryUserPtr);
-  for (unsigned i = 0; i < args->N; ++i) {
-    if (args->valid[i] != -1) continue;
-    const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
-    const Triangle& tri = mesh->triangles[prim];
-    const Material& mat = mesh->materials[std::size_t(tri.material)];
-    if (!mat.cutout()) continue;
-    const float a = mat.opacity(uv_at(*mesh, tri, RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i)));
-    if (a >= 1) continue;
-    RTCRayN* r = args->ray;
-    const unsigned n = args->N;
-    const std::uint64_t h = hash4(float_bits(RTCRayN_org_x(r, n, i), RTCRayN_org_y(r, n, i)),
-                                  float_bits(RTCRayN_org_z(r, n, i), RTCRayN_dir_x(r, n, i)),
-                                  float_bits(RTCRayN_dir_y(r, n, i), RTCRayN_dir_z(r, n, i)), prim);
-    if (!(a > 0) || hash_to_unit(h) >= a) args->valid[i] = 0;
-  }
 }
 
 bool has_cutout(const Mesh& mesh) {
@@ -99,15 +69,12 @@ EmbreeScene::EmbreeScene(std::vector<Mesh> meshes) : impl_(std::make_unique<Impl
     if (!ib) throw std::runtime_error(impl_->error.empty() ? "Embree: no index buffer" : impl_->error);
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
       for (int k = 0; k < 3; ++k) ib[3 * i + k] = mesh.triangles[i].v[k];
-    if (has_cutout(mesh)) {
-      rtcSetGeometryUserData(geom, const_cast<Mesh*>(&mesh));
-      rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
-      rtcSetGeometryOccludedFilterFunction(geom, alpha_filter);
-    }
+    if (has_cutout(mesh)) impl_->cutouts = true;
     rtcCommitGeometry(geom);
     rtcAttachGeometryByID(impl_->scene, geom, unsigned(m));
     rtcReleaseGeometry(geom);
   }
+  if (impl_->cutouts) rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
   rtcCommitScene(impl_->scene);
   if (!impl_->error.empty()) throw std::runtime_error(impl_->error);
 }
@@ -127,8 +94,16 @@ LoggedRay logged(const Ray& ray, float t_near, float t_far, bool shadow) {
 }  // namespace
 
 Hit EmbreeScene::intersect(const Ray& ray, float t_near, float t_far) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+  return nearest(ray, t_near, t_far, CutoutQuery::kStochastic);
+}
+
+Hit EmbreeScene::intersect_sheer(const Ray& ray, float t_near, float t_far) const {
+  return nearest(ray, t_near, t_far, CutoutQuery::kSheer);
+}
+
+Hit EmbreeScene::nearest(const Ray& ray, float t_near, float t_far, CutoutQuery query) const {
+  CutoutContext context;
+  init_cutout_context(context, meshes_, impl_->cutouts, query);
   RTCRayHit rh;
   rh.ray.org_x = ray.origin.x();
   rh.ray.org_y = ray.origin.y();
@@ -145,7 +120,7 @@ Hit EmbreeScene::intersect(const Ray& ray, float t_near, float t_far) const {
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   if (log_) log_->record(logged(ray, t_near, t_far, false));
-  rtcIntersect1(impl_->scene, &context, &rh);
+  rtcIntersect1(impl_->scene, &context.rtc, &rh);
   Hit hit;
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
   hit.t = rh.ray.tfar;
@@ -156,9 +131,9 @@ Hit EmbreeScene::intersect(const Ray& ray, float t_near, float t_far) const {
   return hit;
 }
 
-bool EmbreeScene::occluded(const Ray& ray, float t_near, float t_far) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+float EmbreeScene::transmittance(const Ray& ray, float t_near, float t_far) const {
+  CutoutContext context;
+  init_cutout_context(context, meshes_, impl_->cutouts, CutoutQuery::kShadow);
   RTCRay r;
   r.org_x = ray.origin.x();
   r.org_y = ray.origin.y();
@@ -173,8 +148,8 @@ bool EmbreeScene::occluded(const Ray& ray, float t_near, float t_far) const {
   r.id = 0;
   r.flags = 0;
   if (log_) log_->record(logged(ray, t_near, t_far, true));
-  rtcOccluded1(impl_->scene, &context, &r);
-  return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+  rtcOccluded1(impl_->scene, &context.rtc, &r);
+  return r.tfar < 0.0f ? 0.0f : context.transmittance;  // Embree sets tfar to -inf on a hit
 }
 
 SurfacePoint EmbreeScene::surface(const Ray& ray, const Hit& hit) const {

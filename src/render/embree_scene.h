@@ -1,5 +1,7 @@
 // The Embree 3 scene of the objects: one triangle geometry per mesh, geometry ID = mesh index.
-// Cut-out materials (Material::opacity) let rays through where they are absent.
+// Cut-out materials (Material::opacity) let rays through where they are absent, and each query
+// treats a sheer one (0 < opacity < 1) its own way (render/cutouts.h): intersect() meets it with
+// probability a, intersect_sheer() always, transmittance() is attenuated by 1 − a.
 #pragma once
 #include <memory>
 #include <vector>
@@ -11,7 +13,8 @@ struct RTCSceneTy;  // Embree's scene handle (RTCScene), for a bare loop over th
 
 namespace insitu {
 
-class RayLog;  // render/ray_log.h
+class RayLog;            // render/ray_log.h
+enum class CutoutQuery;  // render/cutouts.h
 
 struct Hit {
   float t = 0;
@@ -44,8 +47,15 @@ class EmbreeScene {
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
   Hit intersect(const Ray& ray, float t_near = 0.0f, float t_far = std::numeric_limits<float>::infinity()) const;
-  // Any hit in (t_near, t_far): a shadow ray.
-  bool occluded(const Ray& ray, float t_near, float t_far) const;
+  // The nearest surface that is there at all: a sheer one whatever its opacity (> 0), which the
+  // caller weighs by it (Material::opacity at the hit).
+  Hit intersect_sheer(const Ray& ray, float t_near = 0.0f, float t_far = std::numeric_limits<float>::infinity()) const;
+  // The fraction of light that passes along the ray in (t_near, t_far): 0 where an opaque surface
+  // lies on it, Π (1 − a_k) over the cut-out surfaces of opacity 0 < a_k < 1 it crosses, 1
+  // where it crosses none (exactly 1: a shadow ray that meets nothing changes nothing).
+  float transmittance(const Ray& ray, float t_near, float t_far) const;
+  // Any hit that stops light in (t_near, t_far): transmittance() == 0.
+  bool occluded(const Ray& ray, float t_near, float t_far) const { return transmittance(ray, t_near, t_far) == 0.0f; }
   SurfacePoint surface(const Ray& ray, const Hit& hit) const;
   const std::vector<Mesh>& meshes() const { return meshes_; }
   bool empty() const { return meshes_.empty(); }
@@ -57,6 +67,7 @@ class EmbreeScene {
   struct Impl;  // Embree's device and scene (public for the error callback; defined in the .cpp)
 
  private:
+  Hit nearest(const Ray& ray, float t_near, float t_far, CutoutQuery query) const;
   std::unique_ptr<Impl> impl_;
   std::vector<Mesh> meshes_;
   RayLog* log_ = nullptr;

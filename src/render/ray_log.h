@@ -1,6 +1,6 @@
 // A record of the rays an EmbreeScene traces, for measuring the kernel against a bare Embree loop
 // over the very same rays (bench/kernel_bench.cpp). Off unless a log is attached
-// (EmbreeScene::set_ray_log); attached, every intersect() and occluded() appends its ray to the
+// (EmbreeScene::set_ray_log); attached, every intersect() and transmittance() appends its ray to the
 // calling thread's list, in the order that thread traced them (so a replay keeps their coherence).
 #pragma once
 #include <tbb/enumerable_thread_specific.h>
@@ -13,7 +13,7 @@ namespace insitu {
 struct LoggedRay {
   float org[3], dir[3];
   float t_near, t_far;
-  bool shadow;  // occluded() (any hit) rather than intersect() (closest hit)
+  bool shadow;  // transmittance() (any hit) rather than intersect() (closest hit)
 };
 
 class RayLog {
