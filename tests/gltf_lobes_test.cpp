@@ -438,8 +438,8 @@ TEST(GltfLobes, CameraRaysCrossSheerSurfacesWithoutChoosing) {
 // Past 16 sheer surfaces the camera ray chooses: twenty quads of alpha 0.1 cover 1 − 0.9¹⁶ of
 // every sample for certain, and the last four take the rest, 0.9¹⁶, whole or not at all: with
 // probability 1 − 0.9⁴ the sample's coverage is 1, else 1 − 0.9¹⁶ (binomial, 4σ).
-TEST(GltfLobes, PastSixteenSheerSurfacesTheCameraRayChooses) {
-  test::TempDir dir;
+// Twenty sheer quads of alpha 0.1 over the unit square, at z = 0, −0.1, … −1.9.
+std::vector<Mesh> twenty_sheer_quads(const test::TempDir& dir) {
   std::vector<Mesh> meshes;
   for (int k = 0; k < 20; ++k) {
     Warnings w;
@@ -450,7 +450,24 @@ TEST(GltfLobes, PastSixteenSheerSurfacesTheCameraRayChooses) {
     for (Vec3f& p : m.positions) p.z() = -0.1f * float(k);
     meshes.push_back(std::move(m));
   }
-  const EmbreeScene scene(std::move(meshes));
+  return meshes;
+}
+
+// More sheer surfaces than the shadow filter keeps in place: each still attenuates, once.
+TEST(GltfLobes, ShadowRaysThroughTwentySheerSurfacesKeepTheirTransmittance) {
+  test::TempDir dir;
+  const EmbreeScene scene(twenty_sheer_quads(dir));
+  for (int k = 0; k < 1000; ++k) {
+    Sampler s(6, std::uint64_t(k), 0);
+    const Ray down{Vec3f(0.1f + 0.8f * s.next(), 0.1f + 0.8f * s.next(), 1.0f), Vec3f(0, 0, -1)};
+    EXPECT_NEAR(scene.transmittance(down, 0.0f, 3.0f), std::pow(0.9, 20), 1e-5) << down.origin.transpose();
+    EXPECT_NEAR(scene.transmittance(down, 0.0f, 1.55f), std::pow(0.9, 6), 1e-5) << down.origin.transpose();
+  }
+}
+
+TEST(GltfLobes, PastSixteenSheerSurfacesTheCameraRayChooses) {
+  test::TempDir dir;
+  const EmbreeScene scene(twenty_sheer_quads(dir));
   const auto path = path_in_the_dark(scene);
   const double certain = 1 - std::pow(0.9, 16), whole = 1 - std::pow(0.9, 4);
   const int n = 4000;

@@ -29,9 +29,13 @@
 // shadow of a glass top on the floor, the photo seen through it — is found by BSDF samples, and
 // a ray through glass that meets the floor sees the photo there, P + (W − N) as below.
 //
-// Cut-outs. A traced ray meets a surface of alpha a with probability a; a shadow ray is attenuated
-// by 1 − a, as Cycles's transparent shadows are (EmbreeScene::transmittance): a sheer surface's
-// shadow, on the floor and on the objects, is a fraction of every light sample, not all of some.
+// Cut-outs. A shadow ray is attenuated by 1 − a at each surface of alpha a it crosses, as
+// Cycles's transparent shadows are (EmbreeScene::transmittance): a sheer surface's shadow, on the
+// floor and on the objects, is a fraction of every light sample, not all of some. The camera ray
+// crosses up to kSheerLayers sheer surfaces without choosing: each is shaded, weighed by a times
+// what the ones before it left, and the rest goes on behind it (sample()), as Cycles weighs the
+// Transparent BSDF that alpha mixes in. Past them, and on every later bounce, a traced ray meets
+// a surface of alpha a with probability a (stochastic opacity).
 //
 // Catcher. A camera sample that meets the local scene (a plane or a mesh) before any object estimates
 // the plane's reflected radiance twice with the same random numbers: with the objects (their

@@ -61,13 +61,23 @@ void shadow_filter(const RTCFilterFunctionNArguments* args) {
     args->valid[i] = 0;
     if (!(c.opacity > 0)) continue;
     const std::uint64_t key = (std::uint64_t(c.mesh) << 32) | c.triangle;
-    if (std::find(ctx->crossed.begin(), ctx->crossed.end(), key) != ctx->crossed.end()) continue;
-    ctx->crossed.push_back(key);
+    if (!ctx->first_crossing(key)) continue;
     ctx->transmittance *= 1 - c.opacity;
   }
 }
 
 }  // namespace
+
+bool CutoutContext::first_crossing(std::uint64_t key) {
+  const auto in_place = crossed.begin() + crossed_count;
+  if (std::find(crossed.begin(), in_place, key) != in_place) return false;
+  if (std::find(crossed_more.begin(), crossed_more.end(), key) != crossed_more.end()) return false;
+  if (crossed_count < int(crossed.size()))
+    crossed[std::size_t(crossed_count++)] = key;
+  else
+    crossed_more.push_back(key);
+  return true;
+}
 
 void init_cutout_context(CutoutContext& ctx, const std::vector<Mesh>& meshes, bool cutouts, CutoutQuery query) {
   rtcInitIntersectContext(&ctx.rtc);

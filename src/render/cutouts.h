@@ -18,6 +18,7 @@
 #pragma once
 #include <embree3/rtcore.h>
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -28,8 +29,14 @@ namespace insitu {
 struct CutoutContext {
   RTCIntersectContext rtc;  // first: Embree passes its address to the filter
   const std::vector<Mesh>* meshes = nullptr;
-  float transmittance = 1;             // the shadow filter's product so far
-  std::vector<std::uint64_t> crossed;  // the sheer triangles it has attenuated by: (mesh << 32) | triangle
+  float transmittance = 1;  // the shadow filter's product so far
+  // The sheer triangles it has attenuated by, (mesh << 32) | triangle: the first few in place (a
+  // shadow ray crosses few), the rest on the heap.
+  std::array<std::uint64_t, 8> crossed{};
+  int crossed_count = 0;
+  std::vector<std::uint64_t> crossed_more;
+  // Whether the triangle `key` is crossed for the first time, which then records it.
+  bool first_crossing(std::uint64_t key);
 };
 
 enum class CutoutQuery { kStochastic, kSheer, kShadow };

@@ -2,7 +2,6 @@
 
 #include <embree3/rtcore.h>
 
-#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <fmt/format.h>
