@@ -7,6 +7,9 @@
 // peak_mb, the resident memory's peak above what it was before the fit (Linux's VmHWM, reset
 // through /proc/self/clear_refs after glibc's malloc_trim returned the setup's free memory), and
 // the fit's parts, pixels and face.
+// BM_UnseenOutside/n: the fit of the light through the window that the capture point saw as wall
+// (relight/unseen_outside.h) on the same room and photo, after the clipped light's: its own time
+// and peak memory, and f.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -20,6 +23,7 @@
 #include "core/image.h"
 #include "light/plane_irradiance.h"
 #include "relight/inverse_lighting.h"
+#include "relight/unseen_outside.h"
 
 namespace {
 using namespace insitu;
@@ -27,7 +31,7 @@ using namespace insitu;
 const RoomBox kBox{Vec3f(-2.5f, 0, -3),
                    Vec3f(2.5f, 2.6f, 3),
                    Vec3f(0, 1.2f, 0),
-                   {RoomOpening{0, Vec3f(-2.5f, 0.9f, -2.2f), Vec3f(-2.5f, 2.1f, -0.6f)}}};
+                   {RoomOpening{0, Vec3f(-2.5f, 0.9f, -2.2f), Vec3f(-2.5f, 2.1f, -0.6f)}}, std::nullopt};
 
 // The room's true radiance along d from the capture point (texels of a face of n), and with the
 // grain: 11 % of the ceiling's texels near the lamp at the clip level.
@@ -88,29 +92,58 @@ Image photo_of(const Camera& camera) {
   return resize(small, camera.width, camera.height);
 }
 
-void BM_InverseLighting(benchmark::State& state) {
-  const int n = int(state.range(0));
-  const Shots shots = grainy_shots(n);
-  const Camera camera = Camera::look_at(Vec3d(1.7, 1.45, 2.5), Vec3d(-0.2, 0.45, -1.2), Vec3d(0, 1, 0), 62, 1920, 1440);
-  const Image photo = photo_of(camera);
-  const Image photo_clipped(1920, 1440, 1, 0.0f);
+// The fit's input at a catalogue still's size (the cubes and images it points to held by the caller).
+struct Still {
+  explicit Still(int n)
+      : shots(grainy_shots(n)),
+        camera(Camera::look_at(Vec3d(1.7, 1.45, 2.5), Vec3d(-0.2, 0.45, -1.2), Vec3d(0, 1, 0), 62, 1920, 1440)),
+        photo(photo_of(camera)),
+        photo_clipped(1920, 1440, 1, 0.0f) {
+    in.radiance = &shots.radiance, in.clipped = &shots.clipped, in.room = kBox, in.camera = &camera;
+    in.photo_linear = &photo, in.photo_clipped = &photo_clipped;
+    in.planes.push_back({Vec3f::Zero(), Vec3f(0, 1, 0), std::nullopt, std::nullopt});
+  }
+  Shots shots;
+  Camera camera;
+  Image photo, photo_clipped;
   InverseLightingInput in;
-  in.radiance = &shots.radiance, in.clipped = &shots.clipped, in.room = kBox, in.camera = &camera;
-  in.photo_linear = &photo, in.photo_clipped = &photo_clipped;
-  in.planes.push_back({Vec3f::Zero(), Vec3f(0, 1, 0), std::nullopt, std::nullopt});
-  InverseLightingResult r;
+};
+
+// fit() in the benchmark's loop, its peak memory as the counter peak_mb; returns its last result.
+template <typename Fit>
+auto timed(benchmark::State& state, const Fit& fit) {
+  decltype(fit()) r;
   double peak_mb = 0;
   for (auto _ : state) {
     const bench::PeakMemory memory;
-    r = recover_clipped_sources(in);
+    r = fit();
     peak_mb = std::max(peak_mb, memory.peak_mb());
   }
   state.counters["peak_mb"] = peak_mb;
+  return r;
+}
+
+void BM_InverseLighting(benchmark::State& state) {
+  const Still still(int(state.range(0)));
+  const InverseLightingInput& in = still.in;
+  const InverseLightingResult r = timed(state, [&] { return recover_clipped_sources(in); });
   state.counters["parts"] = double(r.parts.size());
   state.counters["pixels"] = r.pixels;
   state.counters["fit_face"] = r.fit_face_size;
   state.SetLabel(r.status);
 }
 BENCHMARK(BM_InverseLighting)->Arg(256)->Arg(1024)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+
+void BM_UnseenOutside(benchmark::State& state) {
+  const Still still(int(state.range(0)));
+  const CubeMap completed = recover_clipped_sources(still.in).apply(still.shots.radiance);
+  InverseLightingInput in = still.in;
+  in.radiance = &completed;
+  const UnseenOutsideFit r = timed(state, [&] { return fit_unseen_outside(in); });
+  state.counters["f"] = r.scale;
+  state.counters["pixels"] = r.pixels;
+  state.SetLabel(r.status);
+}
+BENCHMARK(BM_UnseenOutside)->Arg(1024)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
 
 }  // namespace

@@ -227,7 +227,7 @@ Comparison compare_with_cycles(ExportFixture& fx, int spp, bool mirror_world = f
   const Image cycles = render_with_cycles(fx.dir, paths.script, spp);
   const BlenderExportPaths paths2 = blender_export_paths(fx.dir.file("export2.py"));
   BlenderExport e2 = make_blender_export(s2, paths2);
-  e2.world = e.world;
+  e2.world = e.world, e2.outside = e.outside;
   write_blender_export(e2, paths2);
   const Image cycles2 = render_with_cycles(fx.dir, paths2.script, spp);
   EXPECT_EQ(cycles.width, s.camera.width);

@@ -219,7 +219,7 @@ TEST(Catcher, RoomBoxParallaxFavoursThePointNearTheWindow) {
     RenderInputs in;
     in.objects = &empty;
     in.environment = &env;
-    if (box) in.room = RoomBox{Vec3f(-5, 0, -5), Vec3f(5, 3, 5), Vec3f(0, 1.5f, 0), {}};
+    if (box) in.room = RoomBox{Vec3f(-5, 0, -5), Vec3f(5, 3, 5), Vec3f(0, 1.5f, 0), {}, std::nullopt};
     CatcherPlane floor;
     floor.point = Vec3f::Zero();
     floor.normal = Vec3f(0, 1, 0);

@@ -430,7 +430,9 @@ TEST(GltfLobes, CameraRaysCrossSheerSurfacesWithoutChoosing) {
       Sampler s(9, 0, std::uint64_t(k));
       const CameraSample cs = path->sample({Vec3f(0.5f, 0.4f, 2.0f), Vec3f(0, 0, -1)}, s);
       EXPECT_NEAR(cs.coverage, quads == 1 ? 0.4f : 0.7f, 1e-6f) << quads;
-      if (quads == 1) EXPECT_TRUE(cs.radiance.isApprox(Rgb(1, 1, 1), 1e-6f)) << cs.radiance.transpose();
+      if (quads == 1) {
+        EXPECT_TRUE(cs.radiance.isApprox(Rgb(1, 1, 1), 1e-6f)) << cs.radiance.transpose();
+      }
     }
   }
 }

@@ -25,6 +25,7 @@
 #include "light/texel_geometry.h"
 #include "relight/inverse_lighting.h"
 #include "relight/inverse_lighting_pixels.h"
+#include "relight/unseen_outside.h"
 #include "light/plane_irradiance.h"
 #include "test_util.h"
 
@@ -215,7 +216,7 @@ void make_room(Fixture& fx, float lamp = 25.0f, const Rgb& lamp_colour = Rgb::On
   paint_disc(fx.truth, Vec3f(0.2f, 1, 0.1f), std::cos(0.25f), lamp * lamp_colour);
   std::tie(fx.clipped, fx.mask) = clip(fx.truth, 0.5f);
   fx.camera = Camera::look_at(Vec3d(1.5, 1.6, 1.5), Vec3d(-1, 0.3, -1), Vec3d(0, 1, 0), 80, 48, 36);
-  fx.in.room = RoomBox{Vec3f(-2, 0, -2), Vec3f(2, 2.5f, 2), Vec3f(0, 1, 0), {}};
+  fx.in.room = RoomBox{Vec3f(-2, 0, -2), Vec3f(2, 2.5f, 2), Vec3f(0, 1, 0), {}, std::nullopt};
   see_room(fx);
 }
 
@@ -465,7 +466,7 @@ std::array<int, 3> sun_in_a_window(Fixture& fx) {
   fx.truth.update_borders();
   std::tie(fx.clipped, fx.mask) = clip(fx.truth, 0.5f);
   fx.camera = Camera::look_at(Vec3d(-1.5, 1.6, 1.5), Vec3d(1, 0.2, -0.3), Vec3d(0, 1, 0), 80, 48, 36);
-  fx.in.room = RoomBox{Vec3f(-2, 0, -2), Vec3f(2, 2.5f, 2), capture, {window}};
+  fx.in.room = RoomBox{Vec3f(-2, 0, -2), Vec3f(2, 2.5f, 2), capture, {window}, std::nullopt};
   return sun;
 }
 
@@ -486,6 +487,38 @@ TEST(InverseLighting, TheSunInAWindowIsPlacedByItsPatch) {
   EXPECT_NEAR(r.sources[0].added_power, window_true, 0.1 * window_true);
   EXPECT_GT(sun_added, 0.7 * true_added);
   EXPECT_LT(sun_added, 1.3 * true_added);
+}
+
+// The sky above a window that the capture point saw as wall, of radiance L_u, lights the floor
+// below the window and not the floor far from it: the photo of that floor determines L_u (the
+// fit's u is the sky c saw, 1; the walls 0.2). With L_u = 0 (a night above the seen sky) and 3
+// (a bright sky above a dim horizon) the fit finds each; the stand-in, the wall, is 0.2.
+TEST(UnseenOutside, TheSkyAboveAWindowIsFittedFromTheFloorBelowIt) {
+  for (const float truth : {0.0f, 3.0f}) {
+    SCOPED_TRACE(truth);
+    Fixture fx;
+    sun_in_a_window(fx);
+    fx.truth = test::constant_cube(kFace, Rgb(0.2f, 0.2f, 0.2f));  // no sun: the window's sky alone
+    const std::vector<float> shares = RoomLight(CubeMap(1), fx.in.room).opening_shares(kFace);
+    for (int f = 0; f < 6; ++f)
+      for (int j = 0; j < kFace; ++j)
+        for (int i = 0; i < kFace; ++i)
+          if (shares[(std::size_t(f) * kFace + std::size_t(j)) * kFace + std::size_t(i)] > 0)
+            fx.truth.set_texel(f, i, j, Rgb::Constant(1.0f));
+    fx.truth.update_borders();
+    fx.camera = Camera::look_at(Vec3d(1.5, 1.8, 0.5), Vec3d(-2, 0.0, -0.2), Vec3d(0, 1, 0), 80, 48, 36);
+    fx.in.room->unseen_outside = Rgb::Constant(truth);
+    see_room(fx);  // the photo with the truth's unseen outside
+    fx.in.room->unseen_outside = std::nullopt;
+    fx.in.radiance = &fx.truth;
+    fx.in.clipped = nullptr;
+    const UnseenOutsideFit fit = fit_unseen_outside(fx.in);
+    std::printf("truth %.1f: x%.3f +- %.3f (%s), %.1f %% of the light\n", truth, fit.scale, fit.sigma,
+                fit.status.c_str(), 100 * fit.light_share);
+    ASSERT_EQ(fit.status, "fitted") << fit.message;
+    EXPECT_NEAR(luminance(fit.unit), 1.0f, 1e-3f);
+    EXPECT_NEAR(fit.scale, truth, std::max(0.1, 0.1 * truth));
+  }
 }
 
 // Distant light over an open plane: E_k / E_0 is the same at every pixel, so the source's scale

@@ -50,7 +50,7 @@ TEST(Path, WhiteFurnaceAtEveryScale) {
         RoomBox{Vec3f(-6, -6, -6) * m,
                 Vec3f(6, 6, 7) * m,
                 Vec3f(1.5f, 0.5f, -2) * m,
-                {{0, Vec3f(-6, -1, -3) * m, Vec3f(-6, 3, 2) * m}, {2, Vec3f(1, -6, 7) * m, Vec3f(3, 0, 7) * m}}};
+                {{0, Vec3f(-6, -1, -3) * m, Vec3f(-6, 3, 2) * m}, {2, Vec3f(1, -6, 7) * m, Vec3f(3, 0, 7) * m}}, std::nullopt};
     const auto path_room = make_integrator("path", in_room, one_bounce);
     const auto irr = make_integrator("irradiance", in);
     const std::vector<Ray> rays = {{Vec3f(0.3f, 0.2f, 5) * float(scale), Vec3f(-0.05f, 0.02f, -1).normalized()},
@@ -156,7 +156,7 @@ TEST(Path, WallsOfTheRoomBoxCatchShadows) {
   RenderInputs in;
   in.objects = &box;
   in.environment = &env;
-  in.room = RoomBox{Vec3f(-5, 0, -5), Vec3f(5, 3, 5), Vec3f(0, 1.5f, 0), {}};
+  in.room = RoomBox{Vec3f(-5, 0, -5), Vec3f(5, 3, 5), Vec3f(0, 1.5f, 0), {}, std::nullopt};
   // The walls' own change, one real bounce: white walls (ρ = 1) would pass the box's shadow on
   // round the room without loss (CatcherBounces… below).
   const auto path = make_integrator("path", in, {{"catcher_bounces", 1}});

@@ -29,7 +29,7 @@ CubeMap coloured_room() {
   return cube;
 }
 
-const RoomBox kWbBox{Vec3f(-2, 0, -2.5f), Vec3f(2.5f, 2.6f, 2), Vec3f(0.3f, 1.0f, -0.4f), {}};
+const RoomBox kWbBox{Vec3f(-2, 0, -2.5f), Vec3f(2.5f, 2.6f, 2), Vec3f(0.3f, 1.0f, -0.4f), {}, std::nullopt};
 
 // Where a ray from inside the box leaves it (the slab method, by hand).
 Vec3f box_exit(const Vec3f& o, const Vec3f& d) {

@@ -32,7 +32,7 @@ std::vector<RoomOpening> window_and_door() {
 struct Room {
   explicit Room(CubeMap c = test::random_cube(4, 11), std::vector<RoomOpening> openings = {})
       : cube(std::move(c)),
-        light(cube, RoomBox{Vec3f(-2.5f, 0, -3), Vec3f(2.5f, 2.6f, 3), Vec3f(-0.2f, 0.9f, -1.2f), openings}) {}
+        light(cube, RoomBox{Vec3f(-2.5f, 0, -3), Vec3f(2.5f, 2.6f, 3), Vec3f(-0.2f, 0.9f, -1.2f), openings, std::nullopt}) {}
   CubeMap cube;
   EnvSampler env{cube};
   RoomLight light;
@@ -186,6 +186,32 @@ TEST(RoomLight, SunThroughTheWindowFallsOnlyWhereTheWindowLetsItIn) {
   }
   EXPECT_GT(lit_hits, 4000 * r.light.opening_probability() / 4);
   EXPECT_EQ(shade_hits, 0);
+}
+
+// Through the window, a direction the capture point saw as wall (steeply up, from the floor below
+// it) carries RoomBox::unseen_outside where that is known, and the wall c saw along it where not;
+// one c saw through the window keeps the cube's radiance either way, and every density is the
+// same: only what the light is there changes, not how it is drawn.
+TEST(RoomLight, TheUnseenOutsideFillsWhatTheCaptureSawAsWall) {
+  const CubeMap cube = test::random_cube(16, 4);
+  const RoomBox box{Vec3f(-2.5f, 0, -3), Vec3f(2.5f, 2.6f, 3), Vec3f(-0.2f, 0.9f, -1.2f), window_and_door(), std::nullopt};
+  RoomBox filled = box;
+  filled.unseen_outside = Rgb(7, 8, 9);
+  const RoomLight stand_in(cube, box), known(cube, filled);
+  const Vec3f below(-2.3f, 0.1f, -1.4f), up = Vec3f(-0.2f, 1.9f, 0).normalized();
+  float t = 0;
+  int axis = 0;
+  ASSERT_TRUE(known.exit(below, up, &t, &axis));
+  ASSERT_EQ(known.openings_at(below + t * up, axis), 1);  // it leaves through the window
+  ASSERT_TRUE(known.exit(box.capture, up, &t, &axis));
+  ASSERT_EQ(known.openings_at(box.capture + t * up, axis), 0);  // where c saw the ceiling
+  EXPECT_TRUE(known.radiance(below, up).isApprox(Rgb(7, 8, 9), 0.0f)) << known.radiance(below, up).transpose();
+  EXPECT_TRUE(stand_in.radiance(below, up).isApprox(cube.lookup_nearest(up), 0.0f));
+  EXPECT_EQ(known.pdf(below, up), stand_in.pdf(below, up));
+  // From c toward the window's middle: seen outside, at a point on the way there.
+  const Vec3f seen = (Vec3f(-2.5f, 1.45f, -1.4f) - box.capture).normalized(), on_the_way = box.capture + 1.0f * seen;
+  EXPECT_TRUE(known.radiance(on_the_way, seen).isApprox(stand_in.radiance(on_the_way, seen), 0.0f));
+  EXPECT_EQ(known.pdf(on_the_way, seen), stand_in.pdf(on_the_way, seen));
 }
 
 // Outside the box, and without one, the room is the distant cube.

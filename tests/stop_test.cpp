@@ -19,7 +19,7 @@
 namespace insitu {
 namespace {
 
-const RoomBox kRoom{Vec3f(-2.5f, 0, -3), Vec3f(2.5f, 2.6f, 3), Vec3f(-0.2f, 0.9f, -1.2f), {}};
+const RoomBox kRoom{Vec3f(-2.5f, 0, -3), Vec3f(2.5f, 2.6f, 3), Vec3f(-0.2f, 0.9f, -1.2f), {}, std::nullopt};
 const std::atomic<bool> kStop{true}, kGo{false};
 
 TEST(Stop, TheIrradianceGridsEndWhenAsked) {

@@ -1,8 +1,9 @@
 // insitu export-blender SCENE -o scene.py [--spp N]
 //
-// The whole scene for Blender/Cycles (interop/blender_export.h): scene.py, scene.meshes.bin and
-// scene.world.exr. `blender --python scene.py` builds it; `blender -b --python scene.py -- --render
-// out.png` renders the composite over the photo.
+// The whole scene for Blender/Cycles (interop/blender_export.h): scene.py, scene.meshes.bin,
+// scene.world.exr, and scene.outside.exr in a room box whose unseen outside the photo determined.
+// `blender --python scene.py` builds it; `blender -b --python scene.py -- --render out.png` renders
+// the composite over the photo.
 #include <cstdio>
 #include <filesystem>
 
@@ -29,7 +30,10 @@ int run_export_blender(const ExportArgs& a) {
     it = it->rfind("output.", 0) == 0 ? spec.given.erase(it) : std::next(it);
   if (a.spp > 0) spec.render.spp = a.spp;
   const BlenderExportPaths paths = blender_export_paths(a.output);
-  std::vector<NamedPath> outputs = {{paths.script, "-o"}, {paths.meshes, "the meshes"}, {paths.world, "the world"}};
+  std::vector<NamedPath> outputs = {{paths.script, "-o"},
+                                    {paths.meshes, "the meshes"},
+                                    {paths.world, "the world"},
+                                    {paths.outside, "the world outside the openings"}};  // written only with a room box
   for (std::size_t i = 0; i < spec.objects.size(); ++i)  // written only for a compressed glTF
     if (is_gltf_path(spec.objects[i].mesh)) outputs.push_back({paths.gltf_copy(i), "a decompressed copy"});
   std::vector<NamedPath> inputs = scene_input_files(spec);
@@ -47,6 +51,7 @@ int run_export_blender(const ExportArgs& a) {
   write_blender_export(e, paths);
   for (const auto& copy : e.gltf_copies) std::printf("%s\n", copy.first.c_str());
   for (const auto& p : {paths.script, paths.meshes, paths.world}) std::printf("%s\n", p.c_str());
+  if (e.outside.width > 0) std::printf("%s\n", paths.outside.c_str());
   return 0;
 }
 
@@ -58,7 +63,8 @@ Command add_export_blender_command(CLI::App& app) {
       "export-blender", "write the scene as a Blender script (camera, objects, room, shadow catchers, world)");
   cmd->add_option("scene", a->scene, "the scene file (JSON)")->required();
   cmd->add_option("-o,--output", a->output,
-                  "the script (.py); SCRIPT_STEM.meshes.bin and SCRIPT_STEM.world.exr are written beside it")
+                  "the script (.py); SCRIPT_STEM.meshes.bin and SCRIPT_STEM.world.exr (and, with a room box, "
+                  "SCRIPT_STEM.outside.exr) are written beside it")
       ->required();
   cmd->add_option("--spp", a->spp, "Cycles samples per pixel [default: the scene's render.spp]")
       ->check(CLI::Range(1, kMaxSpp));

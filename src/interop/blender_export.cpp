@@ -119,12 +119,29 @@ int max_bounces(const LoadedScene& s) {
   return it != s.integrator.params.end() ? it->get<int>() : 5;  // the path integrator's default
 }
 
+// The world seen through the openings: the environment, with the directions the capture point
+// saw as wall given the unseen outside where the photo determined it (light/room_light.h).
+std::optional<CubeMap> outside_world(const LoadedScene& s) {
+  if (!s.room || !s.room->unseen_outside) return std::nullopt;
+  CubeMap cube = s.environment;
+  const int n = cube.size();
+  const std::vector<float> shares = RoomLight(CubeMap(1), s.room).opening_shares(n);
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        if (shares[(std::size_t(f) * std::size_t(n) + std::size_t(j)) * std::size_t(n) + std::size_t(i)] == 0.0f)
+          cube.set_texel(f, i, j, *s.room->unseen_outside);
+  cube.update_borders();
+  return cube;
+}
+
 }  // namespace
 
 BlenderExportPaths blender_export_paths(const std::string& script_path) {
   fs::path p(script_path);
   const fs::path stem = p.extension() == ".py" ? p.replace_extension() : p;
-  return {script_path, stem.string() + ".meshes.bin", stem.string() + ".world.exr", stem.string()};
+  return {script_path, stem.string() + ".meshes.bin", stem.string() + ".world.exr", stem.string() + ".outside.exr",
+          stem.string()};
 }
 
 std::string BlenderExportPaths::gltf_copy(std::size_t i) const { return fmt::format("{}.objects{}.glb", stem, i); }
@@ -132,6 +149,7 @@ std::string BlenderExportPaths::gltf_copy(std::size_t i) const { return fmt::for
 BlenderExport make_blender_export(const LoadedScene& s, const BlenderExportPaths& paths) {
   BlenderExport e;
   e.world = cube_to_equirect(s.environment);
+  if (const std::optional<CubeMap> outside = outside_world(s)) e.outside = cube_to_equirect(*outside);
   std::string& py = e.script;
   py = header(s, paths) + kBlenderExportPrelude + "\n";
   py += fmt::format("MESHES = data_file({}, {})\n", py_string(fs::path(paths.meshes).filename().string()),
@@ -142,7 +160,11 @@ BlenderExport make_blender_export(const LoadedScene& s, const BlenderExportPaths
   py += fmt::format("render_settings(scene, {}, {}, {})\n", s.spec.render.spp, max_bounces(s),
                     s.spec.render.seed % 2147483647);
   py += blender_camera_lines(s.camera, s.spec.photo);
-  py += "set_world(scene, WORLD)\n";
+  if (e.outside.width > 0)
+    py += fmt::format("set_world(scene, data_file({}, {}))\n", py_string(fs::path(paths.outside).filename().string()),
+                      py_string(abs_path(paths.outside)));
+  else
+    py += "set_world(scene, WORLD)\n";
   if (const auto& box = s.spec.environment.room_box)
     py += fmt::format("room_box(scene, {}, WORLD, {})\n", py_quads(room_wall_quads(*box, s.spec.local_scene)),
                       py_vec(to_blender(box->capture)));
@@ -157,6 +179,7 @@ BlenderExport make_blender_export(const LoadedScene& s, const BlenderExportPaths
 void write_blender_export(const BlenderExport& e, const BlenderExportPaths& paths) {
   for (const auto& [path, bytes] : e.gltf_copies) write_binary_file(path, bytes);
   write_image(paths.world, e.world);
+  if (e.outside.width > 0) write_image(paths.outside, e.outside);
   write_binary_file(paths.meshes, e.mesh_bytes);
   write_text_file(paths.script, e.script);
 }

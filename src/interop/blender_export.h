@@ -7,6 +7,9 @@
 //                      polygons split, degenerate triangles dropped), in Blender's frame
 //   scene.world.exr    the environment as insitu renders with it (shots merged, clipped light
 //                      recovered), equirectangular in Blender's layout (light/equirect.h)
+// and, where the photo determined the outside that the capture point saw as wall
+// (RoomBox::unseen_outside), scene.outside.exr: the same with those directions given it, the
+// world seen through the openings (the walls still emit scene.world.exr).
 //
 // What the script makes, each as insitu models it:
 //   - the camera (interop/blender_camera.h), the photo as its background and, in the compositor,
@@ -32,19 +35,21 @@
 namespace insitu {
 
 struct BlenderExportPaths {
-  std::string script, meshes, world;
+  std::string script, meshes, world, outside;
   std::string stem;  // scene.py -> scene
   // Where objects[i]'s glTF goes when Blender cannot read the original (Draco or meshopt
   // compression, which Blender 3.4's importer lacks): scene.objects<i>.glb.
   std::string gltf_copy(std::size_t i) const;
 };
-// scene.py -> scene.meshes.bin, scene.world.exr (the extension .py replaced, or appended).
+// scene.py -> scene.meshes.bin, scene.world.exr, scene.outside.exr (the extension .py replaced, or
+// appended).
 BlenderExportPaths blender_export_paths(const std::string& script_path);
 
 struct BlenderExport {
   std::string script;
   std::string mesh_bytes;
   Image world;                                                   // equirectangular, Blender's layout
+  Image outside;                                                 // the same, or empty (none written)
   std::vector<std::pair<std::string, std::string>> gltf_copies;  // path, .glb bytes
 };
 BlenderExport make_blender_export(const LoadedScene& scene, const BlenderExportPaths& paths);

@@ -137,6 +137,14 @@ void RoomLight::set_strategies(const CubeMap& cube, const std::vector<float>* gi
     power_out = side_power(outside_cube, share_of);
     outside_.emplace(outside_cube, *walls_, share_of, /*mis_compensation=*/false);
   }
+  // The texels c saw wholly on a wall, whose radiance through an opening is the unseen outside's
+  // (lookup): their density is the outside strategy's floor whatever their radiance, so it is
+  // given there, a bit a texel, not kept in a cube of its own.
+  if (box_->unseen_outside) {
+    unseen_.resize(texels);
+    unseen_face_ = n;
+    for (std::size_t k = 0; k < texels; ++k) unseen_[k] = outside_share[k] == 0.0f;
+  }
   const double share = power_out + power_wall > 0 ? power_out / (power_out + power_wall) : 0.5;
   const float p_open = float(std::clamp(share, 0.2, 0.8));
   p_wall_ = 1 - p_open;
@@ -144,6 +152,14 @@ void RoomLight::set_strategies(const CubeMap& cube, const std::vector<float>* gi
   for (const RoomOpening& o : box_->openings) opening_cdf_.push_back(opening_area_ += rect_area(o));
   for (float& c : opening_cdf_) c /= opening_area_;
   opening_cdf_.back() = 1.0f;
+}
+
+bool RoomLight::unseen(const Vec3f& dir) const {
+  if (unseen_.empty()) return false;
+  const int n = unseen_face_;
+  const FaceCoord fc = direction_to_face(dir);
+  const int i = nearest_texel_index(fc.s, n), j = nearest_texel_index(fc.t, n);
+  return unseen_[(std::size_t(fc.face) * std::size_t(n) + std::size_t(j)) * std::size_t(n) + std::size_t(i)];
 }
 
 bool RoomLight::inside(const Vec3f& x) const {
@@ -193,8 +209,9 @@ RoomLookup RoomLight::lookup(const Vec3f& dir, const Exit& e) const {
   if (e.openings > 0) {
     if (!outside_) return {env_->radiance(dir), 0.0f};
     const EnvLookup l = outside_->lookup(dir);
-    if (!(cos_x > 0)) return {l.radiance, 0.0f};
-    return {l.radiance, p_dir_ * l.pdf + p_area_ * float(e.openings) * e.t * e.t / (opening_area_ * cos_x)};
+    const Rgb radiance = unseen(dir) ? *box_->unseen_outside : l.radiance;
+    if (!(cos_x > 0)) return {radiance, 0.0f};
+    return {radiance, p_dir_ * l.pdf + p_area_ * float(e.openings) * e.t * e.t / (opening_area_ * cos_x)};
   }
   const EnvSampler& walls = walls_ ? *walls_ : *env_;
   const Vec3f v = e.q - box_->capture;

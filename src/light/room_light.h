@@ -17,8 +17,10 @@
 // an opening carries cube(ω), whatever x is (texels across an opening's edge are split between
 // the wall and the outside: set_strategies) — the sun through a window falls on the patch of the
 // room it reaches, not on every point that sees the window. Where c's own ray along ω met a wall
-// (a direction through the opening that the capture point never saw outside), cube(ω) is still
-// what is used: the wall c saw there, a dim stand-in for an outside nobody photographed. Two
+// (a direction through the opening that the capture point never saw outside: the sky above a
+// window, seen from the floor below it), the light is RoomBox::unseen_outside where that is known
+// (the photo determines it: relight/unseen_outside.h); else cube(ω), the wall c saw there, a dim
+// stand-in for an outside nobody photographed. Two
 // portal strategies draw such directions (after Bitterli et al. 2015, "Portal-masked environment
 // map sampling", without its rectified parametrisation):
 //   directional  ω from the distribution of the texels c saw through the openings, luminance ×
@@ -54,6 +56,8 @@ struct RoomOpening {
 struct RoomBox {
   Vec3f min = Vec3f::Zero(), max = Vec3f::Zero(), capture = Vec3f::Zero();
   std::vector<RoomOpening> openings;
+  // The radiance through the openings along the directions c saw as wall (above); unset: the wall.
+  std::optional<Rgb> unseen_outside;
 };
 
 // The radiance arriving at x along a direction and the density of sample() producing it.
@@ -108,6 +112,7 @@ class RoomLight {
   void set_strategies(const CubeMap& cube, const std::vector<float>* outside_share);
 
   CubeMap side_of(const CubeMap& cube, const std::vector<float>& outside_share, bool outside) const;
+  bool unseen(const Vec3f& dir) const;  // a direction c saw as wall, when the unseen outside is known
   Rgb wall_neighbours(const CubeMap& cube, const std::vector<float>& share, int f, int i, int j) const;
 
   std::optional<RoomBox> box_;
@@ -117,6 +122,8 @@ class RoomLight {
   std::optional<EnvSampler> walls_;
   std::optional<EnvSampler> env_;
   std::optional<EnvSampler> outside_;
+  std::vector<bool> unseen_;  // per texel, with RoomBox::unseen_outside: c saw it wholly on a wall
+  int unseen_face_ = 0;       // its cube's face size
   float p_wall_ = 1, p_dir_ = 0, p_area_ = 0;
   std::vector<float> opening_cdf_;  // by area; opening_cdf_.back() = 1
   float opening_area_ = 0;

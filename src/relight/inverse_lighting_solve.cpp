@@ -259,5 +259,33 @@ Fit solve(const std::vector<FitPixel>& all_pixels, const Columns& columns, const
   return fit;
 }
 
+Albedos initial_albedos(const std::vector<FitPixel>& pixels, const InverseLightingInput& in) {
+  Albedos a;
+  const std::size_t n = in.planes.size() + 6 + 2 * in.references.size();  // and each ball's shadow zone
+  a.log_rho.assign(n, 0.0);
+  a.known.assign(n, false);
+  a.mean.assign(n, std::nullopt);
+  a.reference.assign(n, false);
+  std::vector<std::vector<double>> ratio(n);
+  for (const FitPixel& p : pixels) ratio[std::size_t(p.surface)].push_back(p.log_p - std::log(p.e0) + std::log(kPi));
+  for (std::size_t s = 0; s < n; ++s) {
+    if (ratio[s].empty()) continue;
+    std::nth_element(ratio[s].begin(), ratio[s].begin() + std::ptrdiff_t(ratio[s].size() / 2), ratio[s].end());
+    a.log_rho[s] = ratio[s][ratio[s].size() / 2];
+    std::optional<float> known;
+    if (s < in.planes.size()) known = in.planes[s].albedo;
+    if (s >= in.planes.size() + 6 && s < in.planes.size() + 6 + in.references.size())
+      known = in.references[s - in.planes.size() - 6].albedo, a.reference[s] = true;
+    if (known) {
+      a.known[s] = true;
+      a.log_rho[s] = std::log(std::max(1e-6f, *known));
+    }
+    if (s < in.planes.size() && in.planes[s].mean_albedo) a.mean[s] = std::max(1e-6f, *in.planes[s].mean_albedo);
+    if (s < in.planes.size() + 6 + in.references.size()) ++a.surfaces;  // a ball's shadow zone is its floor
+    a.references += (a.known[s] || a.mean[s]) ? 1 : 0;
+  }
+  return a;
+}
+
 }  // namespace inverse_lighting_detail
 }  // namespace insitu

@@ -27,6 +27,9 @@ struct Albedos {
   int surfaces = 0, references = 0;
 };
 
+// The unknown ρ start at π · median(P/E0) of their surface; known ones at their value.
+Albedos initial_albedos(const std::vector<FitPixel>& pixels, const InverseLightingInput& in);
+
 struct Fit {
   std::vector<double> a;  // per column
   std::vector<double> log_rho;

@@ -111,13 +111,13 @@ void set_pixel_layers(RenderLayers& out, int x, int y, const PixelSums& p) {
   *out.samples.at(x, y) = float(spp);
   if (spp == 0) return;
   out.objects.set_rgb(x, y, p.objects / float(spp));
-  *out.alpha.at(x, y) = float(p.coverage / spp);
+  *out.alpha.at(x, y) = p.coverage / float(spp);
   out.with_objects.set_rgb(x, y, p.with / float(spp));
   out.without_objects.set_rgb(x, y, p.without / float(spp));
   if (p.met > 0) {
     out.normal.set_rgb(x, y, Rgb(p.normal.array() / float(p.met)));
     out.albedo.set_rgb(x, y, p.albedo / float(p.met));
-    *out.depth.at(x, y) = float(p.depth / p.met);
+    *out.depth.at(x, y) = p.depth / float(p.met);
   }
   *out.variance.at(x, y) = float(variance_of_mean(p));
   *out.ratio_variance.at(x, y) = float(ratio_variance(p, spp));

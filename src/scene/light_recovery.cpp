@@ -44,7 +44,7 @@ Plates read_plates(LoadedScene& s) {
 InverseLightingInput fit_input(const LoadedScene& s, const Image& photo_clipped, const Plates& plates) {
   InverseLightingInput in;
   in.radiance = &s.environment;
-  in.clipped = &*s.environment_info.clipped_cube;
+  if (s.environment_info.clipped_cube) in.clipped = &*s.environment_info.clipped_cube;
   in.room = s.room;
   in.camera = &s.camera;
   in.photo_linear = &s.photo_linear;
@@ -117,16 +117,24 @@ nlohmann::json white_balance_report(const LoadedScene& s) {
 }
 
 void recover_clipped_light(LoadedScene& s, const std::atomic<bool>* stop) {
-  if (!s.environment_info.clipped_cube || !s.spec.environment.inverse_lighting) return warn_of_references(s);
+  const bool clipped = s.environment_info.clipped_cube.has_value();
+  const bool openings = s.room && !s.room->openings.empty();
+  if (!s.spec.environment.inverse_lighting || (!clipped && !openings)) return warn_of_references(s);
   const Image photo_clipped = clipped_mask(s.photo);
   const Plates plates = read_plates(s);
   InverseLightingInput input = fit_input(s, photo_clipped, plates);
   input.stop = stop;
-  s.inverse_lighting = recover_clipped_sources(input);
-  if (s.inverse_lighting->any_determined()) s.environment = s.inverse_lighting->apply(s.environment);
+  if (clipped) {
+    s.inverse_lighting = recover_clipped_sources(input);
+    if (s.inverse_lighting->any_determined()) s.environment = s.inverse_lighting->apply(s.environment);
+    if (s.inverse_lighting->status != "fitted" && s.inverse_lighting->status != "none")
+      s.warnings.add(s.spec.environment.where, s.inverse_lighting->message);
+  }
+  if (openings) {
+    s.unseen_outside = fit_unseen_outside(input);  // on the light as completed above
+    s.room->unseen_outside = s.unseen_outside->radiance();
+  }
   warn_of_references(s);
-  if (s.inverse_lighting->status != "fitted" && s.inverse_lighting->status != "none")
-    s.warnings.add(s.spec.environment.where, s.inverse_lighting->message);
 }
 
 std::string light_determined_by(const LoadedScene& s) {
@@ -143,6 +151,14 @@ std::string light_determined_by(const LoadedScene& s) {
 nlohmann::json light_report(const LoadedScene& s) {
   using nlohmann::json;
   json out{{"determined_by", light_determined_by(s)}};
+  if (const auto& u = s.unseen_outside)
+    out["unseen_outside"] = {{"status", u->status},
+                             {"message", u->message},
+                             {"unit", {u->unit[0], u->unit[1], u->unit[2]}},
+                             {"scale", u->scale},
+                             {"scale_sigma", std::isfinite(u->sigma) ? json(u->sigma) : json(nullptr)},
+                             {"light_share", u->light_share},
+                             {"pixels", u->pixels}};
   const auto& il = s.inverse_lighting;
   if (!il) return out;
   json sources = json::array();

@@ -14,8 +14,10 @@ namespace insitu {
 // gain when determined; a gain more than 5 % from 1 in a channel is said.
 void match_white_balance(LoadedScene& s);
 
-// Fits the clipped sources (when a shot clipped and environment.inverse_lighting is on), scales
-// them in s.environment, and warns when the photo does not determine them.
+// With environment.inverse_lighting on: fits the clipped sources (when a shot clipped), scales
+// them in s.environment, and warns when the photo does not determine them; then, in a room box
+// with openings, the light through them that the capture point never saw
+// (relight/unseen_outside.h), set in s.room where the photo determines it.
 void recover_clipped_light(LoadedScene& s, const std::atomic<bool>* stop = nullptr);
 
 // What determined the light: "hdr image", "shots" (nothing clipped), "brackets", "inverse

@@ -232,7 +232,7 @@ void load_room(const SceneSpec& spec, LoadedScene& s, const std::atomic<bool>* s
   if (clamped > 0) s.warnings.add(spec.photo, fmt::format("{} negative or non-finite values clamped to 0", clamped));
   check_references(spec, s.photo.stored.width, s.photo.stored.height);
   if (const auto& box = spec.environment.room_box) {
-    RoomBox room{box->min.cast<float>(), box->max.cast<float>(), box->capture.cast<float>(), {}};
+    RoomBox room{box->min.cast<float>(), box->max.cast<float>(), box->capture.cast<float>(), {}, std::nullopt};
     for (const auto& o : box->openings) room.openings.push_back({o.axis, o.min.cast<float>(), o.max.cast<float>()});
     s.room = room;
   }
@@ -246,7 +246,7 @@ void load_room(const SceneSpec& spec, LoadedScene& s, const std::atomic<bool>* s
 void copy_room(const LoadedScene& from, LoadedScene& s) {
   s.photo = from.photo, s.photo_linear = from.photo_linear, s.camera = from.camera, s.calibration = from.calibration;
   s.environment = from.environment, s.environment_info = from.environment_info, s.room = from.room;
-  s.inverse_lighting = from.inverse_lighting, s.room_cache = from.room_cache, s.white_balance = from.white_balance;
+  s.inverse_lighting = from.inverse_lighting, s.unseen_outside = from.unseen_outside, s.room_cache = from.room_cache, s.white_balance = from.white_balance;
   s.warnings.items.insert(s.warnings.items.end(), from.room_warnings.items.begin(), from.room_warnings.items.end());
 }
 

@@ -17,6 +17,7 @@
 #include "core/output_paths.h"
 #include "relight/inverse_lighting.h"
 #include "relight/photo_white_balance.h"
+#include "relight/unseen_outside.h"
 #include "render/render.h"
 #include "integrators/registry.h"
 #include "scene/scene_file.h"
@@ -36,6 +37,7 @@ struct LoadedScene {
   std::optional<RoomBox> room;                            // environment.room_box, for the renderer
   std::optional<WhiteBalance> white_balance;              // the light's, to the photo (light_recovery.h)
   std::optional<InverseLightingResult> inverse_lighting;  // when shots clipped (light_recovery.h)
+  std::optional<UnseenOutsideFit> unseen_outside;         // in a room box with openings (light_recovery.h)
   std::shared_ptr<RoomCache> room_cache;                  // the room's prepared light and grids (room_cache.h), shared
   std::unique_ptr<EmbreeScene> objects;
   std::unique_ptr<EmbreeScene> catcher_meshes;  // meshes of the local scene
