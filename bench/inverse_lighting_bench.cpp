@@ -31,7 +31,8 @@ using namespace insitu;
 const RoomBox kBox{Vec3f(-2.5f, 0, -3),
                    Vec3f(2.5f, 2.6f, 3),
                    Vec3f(0, 1.2f, 0),
-                   {RoomOpening{0, Vec3f(-2.5f, 0.9f, -2.2f), Vec3f(-2.5f, 2.1f, -0.6f)}}, std::nullopt};
+                   {RoomOpening{0, Vec3f(-2.5f, 0.9f, -2.2f), Vec3f(-2.5f, 2.1f, -0.6f)}},
+                   std::nullopt};
 
 // The room's true radiance along d from the capture point (texels of a face of n), and with the
 // grain: 11 % of the ceiling's texels near the lamp at the clip level.

@@ -15,7 +15,8 @@ namespace {
 const RoomBox kBox{Vec3f(-2.5f, 0, -3),
                    Vec3f(2.5f, 2.6f, 3),
                    Vec3f(-0.2f, 0.9f, -1.2f),
-                   {{0, Vec3f(-2.5f, 0.9f, -2.2f), Vec3f(-2.5f, 2.3f, -0.2f)}}, std::nullopt};
+                   {{0, Vec3f(-2.5f, 0.9f, -2.2f), Vec3f(-2.5f, 2.3f, -0.2f)}},
+                   std::nullopt};
 
 // A room of constant radiance L, window or not: E = π L at every point and normal, up to the noise
 // of 2048 stratified pairs per probe: 0.75 % RMS over 2000 random points (with independent or

@@ -50,7 +50,8 @@ TEST(Path, WhiteFurnaceAtEveryScale) {
         RoomBox{Vec3f(-6, -6, -6) * m,
                 Vec3f(6, 6, 7) * m,
                 Vec3f(1.5f, 0.5f, -2) * m,
-                {{0, Vec3f(-6, -1, -3) * m, Vec3f(-6, 3, 2) * m}, {2, Vec3f(1, -6, 7) * m, Vec3f(3, 0, 7) * m}}, std::nullopt};
+                {{0, Vec3f(-6, -1, -3) * m, Vec3f(-6, 3, 2) * m}, {2, Vec3f(1, -6, 7) * m, Vec3f(3, 0, 7) * m}},
+                std::nullopt};
     const auto path_room = make_integrator("path", in_room, one_bounce);
     const auto irr = make_integrator("irradiance", in);
     const std::vector<Ray> rays = {{Vec3f(0.3f, 0.2f, 5) * float(scale), Vec3f(-0.05f, 0.02f, -1).normalized()},

@@ -12,7 +12,8 @@ namespace {
 const RoomBox kBox{Vec3f(-2.5f, 0, -3),
                    Vec3f(2.5f, 2.6f, 3),
                    Vec3f(-0.2f, 0.9f, -1.2f),
-                   {{0, Vec3f(-2.5f, 0.9f, -2.2f), Vec3f(-2.5f, 2.1f, -0.6f)}}, std::nullopt};
+                   {{0, Vec3f(-2.5f, 0.9f, -2.2f), Vec3f(-2.5f, 2.1f, -0.6f)}},
+                   std::nullopt};
 
 // A closed room of constant radiance L, window or not, gives E = π L everywhere on the floor.
 TEST(PlaneIrradiance, ConstantRoomGivesPiL) {
@@ -60,7 +61,8 @@ TEST(PlaneIrradiance, SunlitPatchStandsOut) {
   const CubeMap cube = test::sun_cube(n, to_sun, 0.1f, 1e4f);
   const FaceCoord sun = direction_to_face(to_sun);
   const int si = int(sun.s * n), sj = int(sun.t * n);
-  const RoomBox box{kBox.min, kBox.max, kBox.capture, {{0, Vec3f(-2.5f, 0.9f, -2.2f), Vec3f(-2.5f, 2.3f, -0.2f)}}, std::nullopt};
+  const RoomBox box{
+      kBox.min, kBox.max, kBox.capture, {{0, Vec3f(-2.5f, 0.9f, -2.2f), Vec3f(-2.5f, 2.3f, -0.2f)}}, std::nullopt};
   const RoomLight room(cube, box);
   const PlaneIrradiance floor(room, box, Vec3f::Zero(), Vec3f(0, 1, 0), 64, 256);
   // The sun's irradiance: its texel's radiance × solid angle × cos θ (the texel's centre direction).

@@ -12,7 +12,8 @@ namespace {
 const RoomBox kRoom{Vec3f(-2.5f, 0, -3),
                     Vec3f(2.5f, 2.6f, 3),
                     Vec3f(-0.2f, 0.9f, -1.2f),
-                    {{0, Vec3f(-2.5f, 0.9f, -2.2f), Vec3f(-2.5f, 2.1f, -0.6f)}}, std::nullopt};
+                    {{0, Vec3f(-2.5f, 0.9f, -2.2f), Vec3f(-2.5f, 2.1f, -0.6f)}},
+                    std::nullopt};
 
 // A grid asked for twice is built once; it is what a grid built on its own gives, bit for bit.
 TEST(RoomCache, BuildsEachGridOnceAndAsItWouldAlone) {

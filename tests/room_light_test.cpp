@@ -32,7 +32,8 @@ std::vector<RoomOpening> window_and_door() {
 struct Room {
   explicit Room(CubeMap c = test::random_cube(4, 11), std::vector<RoomOpening> openings = {})
       : cube(std::move(c)),
-        light(cube, RoomBox{Vec3f(-2.5f, 0, -3), Vec3f(2.5f, 2.6f, 3), Vec3f(-0.2f, 0.9f, -1.2f), openings, std::nullopt}) {}
+        light(cube,
+              RoomBox{Vec3f(-2.5f, 0, -3), Vec3f(2.5f, 2.6f, 3), Vec3f(-0.2f, 0.9f, -1.2f), openings, std::nullopt}) {}
   CubeMap cube;
   EnvSampler env{cube};
   RoomLight light;
@@ -194,7 +195,8 @@ TEST(RoomLight, SunThroughTheWindowFallsOnlyWhereTheWindowLetsItIn) {
 // same: only what the light is there changes, not how it is drawn.
 TEST(RoomLight, TheUnseenOutsideFillsWhatTheCaptureSawAsWall) {
   const CubeMap cube = test::random_cube(16, 4);
-  const RoomBox box{Vec3f(-2.5f, 0, -3), Vec3f(2.5f, 2.6f, 3), Vec3f(-0.2f, 0.9f, -1.2f), window_and_door(), std::nullopt};
+  const RoomBox box{Vec3f(-2.5f, 0, -3), Vec3f(2.5f, 2.6f, 3), Vec3f(-0.2f, 0.9f, -1.2f), window_and_door(),
+                    std::nullopt};
   RoomBox filled = box;
   filled.unseen_outside = Rgb(7, 8, 9);
   const RoomLight stand_in(cube, box), known(cube, filled);

@@ -72,9 +72,10 @@ void judge(const std::vector<FitPixel>& pixels, const inverse_lighting_detail::F
   for (const FitPixel& p : pixels) share += out.scale * p.ek[0] / (p.e0 + out.scale * p.ek[0]);
   out.light_share = pixels.empty() ? 0 : share / double(pixels.size());
   out.status = "fitted";
-  out.message = fmt::format("the light through the windows from where the shots were not taken: x{:.2f} +- {:.2f} "
-                            "of the sky the shots saw, {:.1f} % of the light on the photo's surfaces",
-                            out.scale, out.sigma, 100 * out.light_share);
+  out.message = fmt::format(
+      "the light through the windows from where the shots were not taken: x{:.2f} +- {:.2f} "
+      "of the sky the shots saw, {:.1f} % of the light on the photo's surfaces",
+      out.scale, out.sigma, 100 * out.light_share);
 }
 
 }  // namespace
@@ -110,8 +111,9 @@ UnseenOutsideFit fit_unseen_outside(const InverseLightingInput& given) {
     return out;
   }
   const std::vector<double> start{1.0};
-  judge(pixels, inverse_lighting_detail::solve(pixels, {{0}}, inverse_lighting_detail::initial_albedos(pixels, in),
-                                               in.stop, &start),
+  judge(pixels,
+        inverse_lighting_detail::solve(pixels, {{0}}, inverse_lighting_detail::initial_albedos(pixels, in), in.stop,
+                                       &start),
         out);
   return out;
 }

@@ -29,9 +29,9 @@
 namespace insitu {
 
 struct UnseenOutsideFit {
-  std::string status;  // "none" (no opening, or c saw nothing through one), "fitted", "undetermined"
-  std::string message;  // one sentence for the user
-  Rgb unit = Rgb::Zero();   // u: the median of what c saw outside
+  std::string status;           // "none" (no opening, or c saw nothing through one), "fitted", "undetermined"
+  std::string message;          // one sentence for the user
+  Rgb unit = Rgb::Zero();       // u: the median of what c saw outside
   double scale = 0, sigma = 0;  // f and σ(f) (σ infinite when the photo says nothing)
   int pixels = 0;
   double light_share = 0;  // of the irradiance at the fit's pixels, mean of f·E_u / E (0 unless fitted)

@@ -246,7 +246,8 @@ void load_room(const SceneSpec& spec, LoadedScene& s, const std::atomic<bool>* s
 void copy_room(const LoadedScene& from, LoadedScene& s) {
   s.photo = from.photo, s.photo_linear = from.photo_linear, s.camera = from.camera, s.calibration = from.calibration;
   s.environment = from.environment, s.environment_info = from.environment_info, s.room = from.room;
-  s.inverse_lighting = from.inverse_lighting, s.unseen_outside = from.unseen_outside, s.room_cache = from.room_cache, s.white_balance = from.white_balance;
+  s.inverse_lighting = from.inverse_lighting, s.unseen_outside = from.unseen_outside, s.room_cache = from.room_cache,
+  s.white_balance = from.white_balance;
   s.warnings.items.insert(s.warnings.items.end(), from.room_warnings.items.begin(), from.room_warnings.items.end());
 }
 
