@@ -214,6 +214,11 @@ TEST(RoomLight, TheUnseenOutsideFillsWhatTheCaptureSawAsWall) {
   const Vec3f seen = (Vec3f(-2.5f, 1.45f, -1.4f) - box.capture).normalized(), on_the_way = box.capture + 1.0f * seen;
   EXPECT_TRUE(known.radiance(on_the_way, seen).isApprox(stand_in.radiance(on_the_way, seen), 0.0f));
   EXPECT_EQ(known.pdf(on_the_way, seen), stand_in.pdf(on_the_way, seen));
+  // The same world as one cube (what export-blender puts behind the openings).
+  const CubeMap through = known.seen_through_openings(cube);
+  EXPECT_TRUE(through.lookup_nearest(up).isApprox(Rgb(7, 8, 9), 0.0f));
+  EXPECT_TRUE(through.lookup_nearest(seen).isApprox(cube.lookup_nearest(seen), 0.0f));
+  EXPECT_TRUE(stand_in.seen_through_openings(cube).lookup_nearest(up).isApprox(cube.lookup_nearest(up), 0.0f));
 }
 
 // Outside the box, and without one, the room is the distant cube.

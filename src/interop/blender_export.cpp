@@ -123,16 +123,7 @@ int max_bounces(const LoadedScene& s) {
 // saw as wall given the unseen outside where the photo determined it (light/room_light.h).
 std::optional<CubeMap> outside_world(const LoadedScene& s) {
   if (!s.room || !s.room->unseen_outside) return std::nullopt;
-  CubeMap cube = s.environment;
-  const int n = cube.size();
-  const std::vector<float> shares = RoomLight(CubeMap(1), s.room).opening_shares(n);
-  for (int f = 0; f < 6; ++f)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        if (shares[(std::size_t(f) * std::size_t(n) + std::size_t(j)) * std::size_t(n) + std::size_t(i)] == 0.0f)
-          cube.set_texel(f, i, j, *s.room->unseen_outside);
-  cube.update_borders();
-  return cube;
+  return RoomLight(CubeMap(1), s.room).seen_through_openings(s.environment);
 }
 
 }  // namespace

@@ -154,6 +154,25 @@ void RoomLight::set_strategies(const CubeMap& cube, const std::vector<float>* gi
   opening_cdf_.back() = 1.0f;
 }
 
+void for_each_texel_of_share(const std::vector<float>& shares, int n, float share,
+                             const std::function<void(int, int, int)>& visit) {
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        if (shares[(std::size_t(f) * std::size_t(n) + std::size_t(j)) * std::size_t(n) + std::size_t(i)] == share)
+          visit(f, i, j);
+}
+
+CubeMap RoomLight::seen_through_openings(const CubeMap& cube) const {
+  CubeMap out = cube;
+  if (!box_ || !box_->unseen_outside) return out;
+  const Rgb fill = *box_->unseen_outside;
+  for_each_texel_of_share(opening_shares(cube.size()), cube.size(), 0.0f,
+                          [&](int f, int i, int j) { out.set_texel(f, i, j, fill); });
+  out.update_borders();
+  return out;
+}
+
 bool RoomLight::unseen(const Vec3f& dir) const {
   if (unseen_.empty()) return false;
   const int n = unseen_face_;

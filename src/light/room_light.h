@@ -40,6 +40,7 @@
 //
 // A point outside the box, and every point without a box, sees the cube as distant light.
 #pragma once
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -73,6 +74,11 @@ struct RoomSample {
   Rgb radiance = Rgb::Zero();
 };
 
+// Visits (face, i, j) of each texel of a cube of n a face whose share (opening_shares(n)) is
+// `share`: 0 for the texels c saw wholly on a wall, 1 for those it saw wholly through an opening.
+void for_each_texel_of_share(const std::vector<float>& shares, int n, float share,
+                             const std::function<void(int, int, int)>& visit);
+
 class RoomLight {
  public:
   // Without a box every call is the distant cube's. `outside_share`: opening_shares(cube.size())
@@ -95,6 +101,9 @@ class RoomLight {
   // The share of each texel (face, i, j) of a cube of n a face, indexed (face·n + j)·n + i, whose
   // directions from the capture point leave the box through an opening (empty without openings).
   std::vector<float> opening_shares(int n) const;
+  // The cube as seen through the openings from anywhere in the room: the texels c saw wholly on a
+  // wall hold RoomBox::unseen_outside where it is known (what lookup() gives through an opening).
+  CubeMap seen_through_openings(const CubeMap& cube) const;
 
  private:
   struct Exit {

@@ -19,13 +19,10 @@ using inverse_lighting_detail::FitPixel;
 
 // u: the luminance-median texel of those c saw wholly through an opening (zero when there is none).
 Rgb median_seen_outside(const CubeMap& cube, const std::vector<float>& shares) {
-  const int n = cube.size();
   std::vector<std::pair<float, Rgb>> seen;
-  for (int f = 0; f < 6; ++f)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        if (shares[(std::size_t(f) * std::size_t(n) + std::size_t(j)) * std::size_t(n) + std::size_t(i)] == 1.0f)
-          seen.emplace_back(luminance(cube.texel(f, i, j)), cube.texel(f, i, j));
+  for_each_texel_of_share(shares, cube.size(), 1.0f, [&](int f, int i, int j) {
+    seen.emplace_back(luminance(cube.texel(f, i, j)), cube.texel(f, i, j));
+  });
   if (seen.empty()) return Rgb::Zero();
   const auto mid = seen.begin() + std::ptrdiff_t(seen.size() / 2);
   std::nth_element(seen.begin(), mid, seen.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
