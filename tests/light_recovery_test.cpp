@@ -167,9 +167,25 @@ TEST(LightRecovery, AReferenceOutsideThePhotoIsRefusedAndOneNotNeededIsWarnedOf)
   hdr["references"] = {{{"polygon_px", {{10, 20}, {30, 20}, {30, 31}}}, {"albedo", 0.18}}};
   const CliRun ok = run_insitu(fx.dir, "render " + fx.write(hdr) + " -o " + fx.dir.file("out.exr") + " --layers none");
   ASSERT_EQ(ok.exit_code, 0) << ok.err;
-  EXPECT_NE(ok.err.find("$.references: nothing clipped in the environment: the references are not needed"),
+  EXPECT_NE(ok.err.find("$.references[0]: nothing clipped in the environment and no opening in the room box: the "
+                        "reference is not needed"),
             std::string::npos)
       << ok.err;
+  // With an opening, a sheet helps fit the light through it (unseen_outside.h): no warning; a ball
+  // does not take part there, and is warned of.
+  hdr["environment"] = {{"image", "env.exr"}};
+  hdr["environment"]["room_box"] = {{"min", {-2, 0, -2}},
+                                    {"max", {2, 2.5, 2}},
+                                    {"capture", {0.5, 1, -0.5}},
+                                    {"openings", {{{"min", {-2, 0.8, -1}}, {"max", {-2, 2, 1}}}}}};
+  hdr["references"].push_back({{"sphere", {{"center", {0, 0.3, 0}}, {"radius", 0.2}}}, {"albedo", 0.5}});
+  const CliRun open =
+      run_insitu(fx.dir, "render " + fx.write(hdr) + " -o " + fx.dir.file("open.exr") + " --layers none");
+  ASSERT_EQ(open.exit_code, 0) << open.err;
+  EXPECT_EQ(open.err.find("$.references[0]"), std::string::npos) << open.err;
+  EXPECT_NE(open.err.find("$.references[1]: nothing clipped in the environment: a reference ball is not needed"),
+            std::string::npos)
+      << open.err;
 }
 
 // A reference plate (the reference photographed apart, so the photo stays clean) is read as the

@@ -67,13 +67,22 @@ InverseLightingInput fit_input(const LoadedScene& s, const Image& photo_clipped,
 
 // A reference that could not serve says why: inverse lighting did not run, or none of its pixels
 // was usable (clipped in the photo: a white sheet needs an exposure that keeps it below white).
+// A reference has an effect only where a fit runs: on clipped light (every reference), or on the
+// light through the room box's openings that the shots never saw (sheets only: unseen_outside.h).
 void warn_of_references(LoadedScene& s) {
   if (s.spec.references.empty()) return;
-  if (!s.environment_info.clipped_cube || !s.spec.environment.inverse_lighting) {
-    s.warnings.add(s.spec.path + ":$.references",
-                   s.spec.environment.inverse_lighting
-                       ? "nothing clipped in the environment: the references are not needed"
-                       : "environment.inverse_lighting is false: the references are not used");
+  const bool openings = s.room && !s.room->openings.empty();
+  if (!s.spec.environment.inverse_lighting) {
+    s.warnings.add(s.spec.path + ":$.references", "environment.inverse_lighting is false: the references are not used");
+    return;
+  }
+  if (!s.environment_info.clipped_cube) {
+    for (const ReferenceSpec& r : s.spec.references)
+      if (!openings || r.ball)
+        s.warnings.add(r.where, openings ? "nothing clipped in the environment: a reference ball is not needed (only "
+                                           "sheets help fit the light through the room box's openings)"
+                                         : "nothing clipped in the environment and no opening in the room box: the "
+                                           "reference is not needed");
     return;
   }
   const auto& uses = s.inverse_lighting->references;
@@ -133,6 +142,7 @@ void recover_clipped_light(LoadedScene& s, const std::atomic<bool>* stop) {
   if (openings) {
     s.unseen_outside = fit_unseen_outside(input);  // on the light as completed above
     s.room->unseen_outside = s.unseen_outside->radiance();
+    if (s.unseen_outside->status == "undetermined") s.warnings.add(s.spec.environment.where, s.unseen_outside->message);
   }
   warn_of_references(s);
 }
