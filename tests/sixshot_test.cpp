@@ -258,6 +258,39 @@ TEST(SixShot, FillIsSmoothAndBounded) {
       }
 }
 
+// Narrow shots (70°, 4:3: the main camera) every pixel of which clipped: the texels a shot saw are
+// clipped, those none saw are filled in radiance but not clipped (their fill is no lower bound of
+// anything: inverse lighting must not scale them).
+TEST(SixShot, TexelsNoShotSawAreFilledButNotClipped) {
+  ShotSet set, clipped;
+  set.set_hfov(70);
+  clipped.set_hfov(70);
+  for (int s = 0; s < 6; ++s) {
+    set.shots[std::size_t(s)] = Image(40, 30, 3, 1.0f);
+    clipped.shots[std::size_t(s)] = Image(40, 30, 3, 1.0f);
+    set.names[std::size_t(s)] = clipped.names[std::size_t(s)] = face_name(s);
+  }
+  const int n = 32;
+  CubeMap clip_cube;
+  AssemblyInfo info;
+  const CubeMap cube = assemble_cube(set, n, &info, &clipped, &clip_cube);
+  ASSERT_LT(info.coverage[kPosX], 0.6);
+  int seen = 0, unseen = 0;
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        ASSERT_NEAR(cube.texel(f, i, j)[0], 1.0f, 1e-5f);  // the fill of a constant
+        const float c = clip_cube.texel(f, i, j)[0];
+        ASSERT_TRUE(c == 0.0f || c == 1.0f) << c;
+        (c == 1.0f ? seen : unseen) += 1;
+      }
+  // The face's centre is seen, its corner is not.
+  EXPECT_EQ(clip_cube.texel(kPosX, n / 2, n / 2)[0], 1.0f);
+  EXPECT_EQ(clip_cube.texel(kPosX, 0, 0)[0], 0.0f);
+  EXPECT_NEAR(double(seen) / (6.0 * n * n), info.coverage[kPosX], 0.02);
+  EXPECT_GT(unseen, 0);
+}
+
 TEST(SixShot, AShotThatCoversNothingIsAnErrorNamingIt) {
   ShotSet set;
   for (int f = 0; f < 6; ++f) {

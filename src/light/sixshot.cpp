@@ -192,8 +192,7 @@ CubeMap assemble_cube(const ShotSet& set, int n, AssemblyInfo* info, const ShotS
   clip.update_borders();
   if (holes) {
     weight.update_borders();
-    fill_uncovered(cube, weight);
-    if (clipped) fill_uncovered(clip, weight);
+    fill_uncovered(cube, weight);  // the clip mask is not filled: assemble_cube's comment
   }
   if (clipped_cube) *clipped_cube = std::move(clip);
   if (info) *info = local;
