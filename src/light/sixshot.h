@@ -67,9 +67,7 @@ Image shrunk_to_face(const Image& shot, double hfov_deg, int n);
 // same layout: a clipped pixel yields to a neighbour's that is not, and `clipped_cube` receives the
 // masks blended as the radiance is. A texel no shot covers is not clipped (0): its fill is no
 // measurement, neither a value nor a lower bound, and inverse lighting scales only light a shot saw
-// clip (with the main camera's 70° shots the fill had spread a clipped window over wall nobody saw,
-// and the fit scaled it: docs/validation.md, "Handheld shots"). Throws InputError naming a shot
-// that covers none of the cube.
+// clip. Throws InputError naming a shot that covers none of the cube.
 CubeMap assemble_cube(const ShotSet& set, int face_size, AssemblyInfo* info = nullptr, const ShotSet* clipped = nullptr,
                       CubeMap* clipped_cube = nullptr);
 
