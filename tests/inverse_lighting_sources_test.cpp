@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/colour.h"
+#include "relight/concentrated_light.h"
 #include "relight/inverse_lighting_sources.h"
 
 namespace insitu {
@@ -132,6 +133,38 @@ TEST(InverseLightingSources, AFinerFitIsKeptOnlyWhereItExplainsThePhotoAsWell) {
   InverseLightingResult lost = fine;
   lost.sources[0].determined = false;
   EXPECT_FALSE(inverse_lighting_detail::keep_finer_fit(coarse, lost));
+}
+
+// A point's cost (concentrated_light.h) is the fit's Cauchy loss with each surface's albedo
+// solved: on noise-free pixels of two surfaces of different albedos, P = ρ_s/π (E_base + a E_t),
+// it is 0 at the true a whatever the albedos, and grows on either side of it.
+TEST(ConcentratedLight, APointsCostIsZeroAtTheTrueScaleWhateverTheAlbedos) {
+  constexpr double kTrueA = 299;
+  std::vector<FitPixel> px;
+  std::vector<double> base, column;
+  for (int i = 0; i < 200; ++i) {
+    FitPixel p;
+    p.surface = i % 2;
+    const double rho = p.surface == 0 ? 0.3 : 0.8;
+    base.push_back(1.0 + 0.01 * i);
+    column.push_back(i >= 50 && i < 120 ? 0.002 : 0.0);  // the sun's patch
+    p.log_p = std::log(rho / kPi * (base.back() + kTrueA * column.back()));
+    px.push_back(p);
+  }
+  using inverse_lighting_detail::point_cost;
+  EXPECT_NEAR(point_cost(px, base, column, kTrueA, 2), 0.0, 1e-9);
+  double previous = 0;
+  for (const double f : {1.1, 1.5, 3.0, 10.0}) {
+    const double above = point_cost(px, base, column, f * kTrueA, 2);
+    const double below = point_cost(px, base, column, kTrueA / f, 2);
+    EXPECT_GT(above, previous) << f;
+    EXPECT_GT(below, previous) << f;
+    previous = std::min(above, below);
+  }
+  // A pixel the model gives no light is off by far more than any scale: its log residual is 10.
+  std::vector<double> dark = base;
+  dark[0] = 0;
+  EXPECT_GT(point_cost(px, dark, column, kTrueA, 2), std::log1p(90.0 * 90.0));
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 
 #include "core/colour.h"
 #include "core/stop.h"
+#include "relight/concentrated_light.h"
 #include "relight/fit_resolution.h"
 #include "relight/inverse_lighting_pixels.h"
 #include "relight/inverse_lighting_solve.h"
@@ -29,7 +30,7 @@ using inverse_lighting_detail::fit_sources;
 using inverse_lighting_detail::FitPixel;
 using inverse_lighting_detail::gather_pixels;
 using inverse_lighting_detail::initial_albedos;
-using inverse_lighting_detail::keep_finer_fit;
+using inverse_lighting_detail::refine_concentrated_parts;
 using inverse_lighting_detail::solve;
 
 // A channel's fit of the determined sources' colour: pixels whose E is E0_c + Σ_k m_k A_k,c, with
@@ -173,78 +174,6 @@ std::vector<PartFit> make_parts(const std::vector<ClippedSource>& sources, const
     for (ClippedSource& part : split_into_parts(sources[k], radiance, block))
       parts.push_back({std::move(part), int(k)});
   return parts;
-}
-
-// Coarse to fine: a part the fit puts at kConcentrated × its source's scale or more holds a light
-// much brighter than the rest of its source (the sun in a window). Spread evenly over the part,
-// its energy lands where the face's grid happened to fall: the closed room's error with JPEG
-// shots was 8.4, 10.8, 15.7 or 21.7 % as the grid was shifted by 0, 2, 4 or 6 texels, the sun
-// sharing its part with 2, 15, 21 or 47 texels (docs/validation.md, "Where the part grid falls").
-// Such parts are cut into their texels, each estimated and fitted on its own, and the sources are
-// fitted again from the coarse fit's scales (from the lower bound the 75 unknowns' robust fit
-// stalled with the lamp at ×2.9 of its ×48): the photo's sunlit patch places the sun. Over eight
-// offsets of the grid: 8.1–9.1 % at six, 11.0 and 12.7 % at two (a wrong part of the coarse fit,
-// 14° from the sun, kept some light).
-// kConcentrated is the coarse fit's reading of "far brighter than its source": the closed room's
-// sky parts lie within ×1.1 of the window's scale and its sun's part at ×4.6 to ×180 as the grid
-// moves; 2 also cut the noise of the lamp's and sky's parts (11.3 % at one offset) and 6 missed the
-// sun at another (17.9 %). Only where no reference of known albedo is in the fit: a ball's shadow
-// zone is estimated for the coarse parts only (shade_by_balls), and the referenced fit (its convex
-// start, its pinned parts) was not measured with fine parts; under AddressSanitizer the studio's
-// demo with a drawn sheet took past its 600 s wait with them.
-constexpr double kConcentrated = 3.0;
-constexpr std::size_t kMaxFineParts = 64;
-
-// The parts to cut (ascending) and their texels as parts, each at its part's scale: the most added
-// light first, at most kMaxFineParts texels in all (each is an unknown of the dense solve and a
-// RoomLight of the cube's size).
-std::pair<std::vector<int>, std::vector<PartFit>> concentrated_parts(const InverseLightingResult& res,
-                                                                     const CubeMap& radiance) {
-  std::vector<std::pair<double, int>> candidates;
-  for (std::size_t j = 0; j < res.parts.size(); ++j) {
-    const PartFit& p = res.parts[j];
-    const SourceFit& s = res.sources[std::size_t(p.source)];
-    if (s.determined && p.texels.texels.size() >= 2 && p.scale >= kConcentrated * s.scale)
-      candidates.push_back({(p.scale - 1) * p.texels.power, int(j)});
-  }
-  std::sort(candidates.begin(), candidates.end(), std::greater<>());
-  std::vector<int> replaced;
-  std::vector<PartFit> finer;
-  for (const auto& [added, j] : candidates) {
-    const PartFit& p = res.parts[std::size_t(j)];
-    if (finer.size() + p.texels.texels.size() > kMaxFineParts) continue;
-    replaced.push_back(j);
-    for (ClippedSource& t : split_into_parts(p.texels, radiance, 1)) finer.push_back({std::move(t), p.source, p.scale});
-  }
-  std::sort(replaced.begin(), replaced.end());
-  return {replaced, finer};
-}
-
-// Returns whether the fine fit was kept (keep_finer_fit); where it is not, the coarse fit stands.
-// `shares`: the box's opening shares at the cube's size (RoomLight::opening_shares), computed once.
-bool refine_concentrated_parts(std::vector<FitPixel>& pixels, const Albedos& albedos, const InverseLightingInput& in,
-                               const std::vector<float>& shares, InverseLightingResult& res) {
-  if (std::any_of(pixels.begin(), pixels.end(),
-                  [&](const FitPixel& p) { return p.shadow_ball >= 0 || albedos.reference[std::size_t(p.surface)]; }))
-    return false;
-  auto cut = concentrated_parts(res, *in.radiance);  // not a structured binding: the lambda below takes it
-  const std::vector<int>& replaced = cut.first;
-  std::vector<PartFit>& finer = cut.second;
-  if (replaced.empty()) return false;
-  const std::vector<FitPixel> coarse_pixels = pixels;
-  const InverseLightingResult coarse = res;
-  const inverse_lighting_detail::PartLights lights{finer.size(), [&](std::size_t k) {
-                                                     return std::make_unique<RoomLight>(
-                                                         source_only(*in.radiance, finer[k].texels), in.room, &shares);
-                                                   }};
-  inverse_lighting_detail::replace_part_estimates(pixels, replaced, lights, in, res.parts.size());
-  for (auto r = replaced.rbegin(); r != replaced.rend(); ++r) res.parts.erase(res.parts.begin() + *r);
-  for (PartFit& p : finer) res.parts.push_back(std::move(p));
-  fit_sources(pixels, albedos, res, in.stop, true);
-  if (keep_finer_fit(coarse, res)) return true;
-  pixels = coarse_pixels;
-  res = coarse;
-  return false;
 }
 
 // The fit on the cubes as given (recover_clipped_sources shrinks them first).

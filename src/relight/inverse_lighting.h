@@ -42,10 +42,11 @@
 // keeping free those it does (the sun's, by its patch), and only if that is all or none of them
 // is fitted whole (inverse_lighting_sources.h).
 // Coarse to fine: a part fitted far brighter than its source (the sun in a window's sky) is then
-// cut into its texels and the sources fitted again, so that the photo, not the grid, places it;
-// a fine fit that explains the photo worse than the coarse one (its residual 1.1× or more) has
-// run off and is not kept (refine_concentrated_parts; docs/validation.md, "Where the part grid
-// falls", "Rooms the fit was not tuned on").
+// cut into its texels, and the source's concentrated light put on the one texel whose point
+// explains the photo best, the rest of the cut texels one part; the sources are fitted again, so
+// that the photo, not the grid, places it. A fine fit that explains the photo worse than the
+// coarse one (its residual 1.1× or more) has run off and is not kept (concentrated_light.h;
+// docs/validation.md, "Where the part grid falls", "A concentrated light as a point").
 //
 // Size. The fit sees the cube at most kFitFaceSize texels a face (fit_resolution.h: shrunk, and
 // the result mapped back so each part adds the same power to the full cube's clipped texels), and
