@@ -167,5 +167,38 @@ TEST(ConcentratedLight, APointsCostIsZeroAtTheTrueScaleWhateverTheAlbedos) {
   EXPECT_GT(point_cost(px, dark, column, kTrueA, 2), std::log1p(90.0 * 90.0));
 }
 
+// best_point on three cut texels of one source, each lighting its own patch of a floor (and one
+// none of the photo), coarse-fitted at ×51 together: the photo, P = ρ/π (E_base + 1000 E_1),
+// shows the light of the second alone. It is the point, at its own scale (1000, not the 50 × 3
+// the coarse fit spread). Where the photo shows no added light, no point adds any, not even the
+// texel whose light reaches no pixel, whose cost is flat in a.
+TEST(ConcentratedLight, ThePointIsTheTexelThePhotoShowsAtItsOwnScale) {
+  InverseLightingResult res;
+  for (int t = 0; t < 3; ++t) {
+    PartFit part;
+    part.texels.power = 1e-4;
+    part.scale = 51;
+    res.parts.push_back(part);
+  }
+  const auto column = [](int t, int i) { return t < 2 && i / 100 == t ? 0.002 : 0.0; };  // texel 2: none
+  for (const double truth : {1000.0, 0.0}) {
+    std::vector<FitPixel> px;
+    for (int i = 0; i < 200; ++i) {
+      FitPixel p;
+      p.e0 = 1.0 + 0.002 * i;
+      for (int t = 0; t < 3; ++t) p.ek.push_back(column(t, i)), p.e0 += column(t, i);
+      p.log_p = std::log(0.5 / kPi * (p.e0 + truth * column(1, i)));
+      px.push_back(p);
+    }
+    const auto [point, a] = inverse_lighting_detail::best_point(px, res, {0, 1, 2}, 1);
+    if (truth > 0) {
+      EXPECT_EQ(point, 1u);
+      EXPECT_NEAR(a, truth, 1e-3 * truth);
+    } else {
+      EXPECT_EQ(a, 0.0) << "texel " << point;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace insitu

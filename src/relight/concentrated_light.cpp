@@ -90,7 +90,8 @@ std::pair<double, double> fit_point_scale(const std::vector<FitPixel>& pixels, c
   return {std::exp(log_a), cost(log_a)};
 }
 
-// The group's texel whose point explains the photo best, and its added scale.
+}  // namespace
+
 std::pair<std::size_t, double> best_point(const std::vector<FitPixel>& pixels, const InverseLightingResult& res,
                                           const std::vector<std::size_t>& group, int surfaces) {
   double added = 0;
@@ -107,8 +108,14 @@ std::pair<std::size_t, double> best_point(const std::vector<FitPixel>& pixels, c
   std::size_t best = 0;
   for (std::size_t g = 1; g < group.size(); ++g)
     if (fits[g].second < fits[best].second) best = g;
+  // No better than no added light at all (its light reaches no pixel, or the photo has no room
+  // for more): the point adds none, and the refit starts it from the lower bound.
+  const double cost_without = point_cost(pixels, base, std::vector<double>(pixels.size(), 0.0), 0.0, surfaces);
+  if (!(fits[best].second < cost_without)) return {group[best], 0.0};
   return {group[best], fits[best].first};
 }
+
+namespace {
 
 // Each source's cut texels (res.parts from `first_fine` on) gathered into two parts: the best
 // point at 1 + a, and the rest as one part at the lower bound. A column of the rest is the sum of

@@ -23,6 +23,14 @@ inline constexpr std::size_t kMaxFineParts = 128;
 double point_cost(const std::vector<FitPixel>& pixels, const std::vector<double>& base,
                   const std::vector<double>& column, double a, int surfaces);
 
+// Among the parts `group` of res.parts (one source's cut texels, at their coarse scales), the one
+// whose point explains the photo best, and its added scale a (the point's scale is 1 + a): each
+// texel's a minimises point_cost over [a₀/100, 10 a₀], a₀ putting the group's whole added power
+// (Σ (s − 1) power) on it, by golden-section search in log a. a is 0 where no point explains the
+// photo better than none.
+std::pair<std::size_t, double> best_point(const std::vector<FitPixel>& pixels, const InverseLightingResult& res,
+                                          const std::vector<std::size_t>& group, int surfaces);
+
 // Cuts the concentrated parts, gathers each source's cut texels into a point and the rest, and
 // fits the sources again from there. Returns whether that fit was kept (keep_finer_fit); where it
 // is not, `pixels` and `res` are the coarse fit's. `shares`: the box's opening shares at the
