@@ -73,7 +73,7 @@ Eigen::MatrixXd normal_matrix(ceres::Problem& problem, const std::vector<double*
 // How the log residuals are weighed: the Cauchy loss's scale, and a factor per surface on it
 // (empty: 1 each); and the weight λ of the smoothing within a source (0: none).
 struct Weights {
-  double cauchy = 0.1;
+  double cauchy = kCauchyScale;
   std::vector<double> surface;
   double smoothing = 0;
 };
@@ -184,7 +184,7 @@ Fit solve_pass(const std::vector<FitPixel>& pixels, const Columns& columns, cons
 Weights reference_weights(const std::vector<FitPixel>& pixels, const Fit& fit, const Albedos& albedos) {
   std::vector<std::vector<double>> r(albedos.log_rho.size());
   for (std::size_t i = 0; i < pixels.size(); ++i) r[std::size_t(pixels[i].surface)].push_back(fit.residuals[i]);
-  Weights w{0.1, std::vector<double>(r.size(), 1.0)};
+  Weights w{kCauchyScale, std::vector<double>(r.size(), 1.0)};
   for (std::size_t s = 0; s < r.size(); ++s)
     if (albedos.reference[s] && r[s].size() >= 8)
       w.surface[s] = std::pow(fit.sigma_r / std::max(0.01, robust_sigma(r[s])), 2);
@@ -246,12 +246,13 @@ Fit solve(const std::vector<FitPixel>& all_pixels, const Columns& columns, const
                    [&](const FitPixel& p) { return albedos.reference[std::size_t(p.surface)]; })) {
     Fit start;
     if (a_start) start.a = *a_start, start.log_rho = albedos.log_rho;
-    return solve_pass(all_pixels, columns, albedos, {0.1, {}}, a_start ? &start : nullptr, stop);
+    return solve_pass(all_pixels, columns, albedos, {kCauchyScale, {}}, a_start ? &start : nullptr, stop);
   }
   const std::vector<FitPixel> pixels = informative(all_pixels, albedos);
   const Fit convex = convex_start(pixels, columns, albedos, stop);
   const Fit coarse = solve_pass(pixels, columns, albedos, {1.0, {}, kReferenceSmoothing}, &convex, stop, column_source);
-  const Fit first = solve_pass(pixels, columns, albedos, {0.1, {}, kReferenceSmoothing}, &coarse, stop, column_source);
+  const Fit first =
+      solve_pass(pixels, columns, albedos, {kCauchyScale, {}, kReferenceSmoothing}, &coarse, stop, column_source);
   Weights w = reference_weights(pixels, first, albedos);
   w.smoothing = kReferenceSmoothing;
   Fit fit = solve_pass(pixels, columns, albedos, w, &first, stop, column_source);

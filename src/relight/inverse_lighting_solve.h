@@ -13,6 +13,10 @@
 namespace insitu {
 namespace inverse_lighting_detail {
 
+// The Cauchy loss's scale on the log residuals: 10 % off is where a pixel starts to count less
+// (texture, furniture left in the room, a window frame: inverse_lighting.h).
+inline constexpr double kCauchyScale = 0.1;
+
 // The unknowns' columns: each a set of parts that share one a (a free source's part alone, a
 // source's parts fitted whole, or the most efficient tied source's parts: make_columns).
 // coef(p, c) = Σ_{j ∈ c} E_j(p).
