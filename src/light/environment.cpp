@@ -226,6 +226,7 @@ CubeMap assemble(const EnvironmentSpec& spec, const LinearShots& shots, Environm
     throw e.with_context(spec.where);
   }
   info.coverage = assembly.coverage;
+  info.covered = std::move(assembly.covered);
   for (int f = 0; f < 6; ++f)
     if (assembly.coverage[std::size_t(f)] < 1.0)
       warnings.add(spec.shots[std::size_t(f)].files.front(),

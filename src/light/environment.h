@@ -13,6 +13,7 @@
 #pragma once
 #include <array>
 #include <optional>
+#include <vector>
 
 #include "light/cubemap.h"
 #include "core/error.h"
@@ -26,8 +27,9 @@
 namespace insitu {
 
 struct EnvironmentInfo {
-  std::size_t clamped_values = 0;                             // negative or non-finite inputs set to 0
-  std::array<double, 6> coverage = {1, 1, 1, 1, 1, 1};        // per face, from six shots
+  std::size_t clamped_values = 0;                       // negative or non-finite inputs set to 0
+  std::array<double, 6> coverage = {1, 1, 1, 1, 1, 1};  // per face, from six shots
+  std::vector<bool> covered;  // per texel where a face is covered less than fully (AssemblyInfo)
   std::array<double, 6> clipped = {0, 0, 0, 0, 0, 0};         // fraction of clipped pixels per shot
   std::array<double, 6> hfov_deg = {90, 90, 90, 90, 90, 90};  // per shot, as used (after turning)
   std::optional<ResponseCurve> response;                      // recovered from brackets

@@ -191,6 +191,12 @@ CubeMap assemble_cube(const ShotSet& set, int n, AssemblyInfo* info, const ShotS
   cube.update_borders();
   clip.update_borders();
   if (holes) {
+    local.covered.resize(std::size_t(6) * std::size_t(n) * std::size_t(n));
+    for (int f = 0; f < 6; ++f)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+          local.covered[(std::size_t(f) * std::size_t(n) + std::size_t(j)) * std::size_t(n) + std::size_t(i)] =
+              weight.texel(f, i, j)[0] > 0;
     weight.update_borders();
     fill_uncovered(cube, weight);  // the clip mask is not filled: assemble_cube's comment
   }

@@ -18,6 +18,7 @@
 #pragma once
 #include <array>
 #include <string>
+#include <vector>
 
 #include "light/cubemap.h"
 #include "core/image.h"
@@ -47,6 +48,9 @@ ShotBasis aimed_basis(const ShotSet& set, int s);
 
 struct AssemblyInfo {
   std::array<double, 6> coverage = {1, 1, 1, 1, 1, 1};  // fraction of each face's texels a shot covers
+  // Where a face is covered less than fully: per texel, indexed (face·n + j)·n + i, whether a shot
+  // covered it (else empty).
+  std::vector<bool> covered;
 };
 
 // Fills the texels whose weight is 0 smoothly from the others, seamlessly across faces: a

@@ -115,6 +115,24 @@ void match_white_balance(LoadedScene& s) {
                                         wb.gain[0], wb.gain[1], wb.gain[2]));
 }
 
+void fill_uncovered_from_photo(LoadedScene& s) {
+  const EnvironmentInfo& info = s.environment_info;
+  if (info.covered.empty() || !s.room) return;
+  const auto& clipped = info.clipped_cube;
+  s.photo_fill = fill_from_photo(s.environment, info.covered, clipped ? &*clipped : nullptr, *s.room, s.camera,
+                                 s.photo_linear, clipped_mask(s.photo));
+}
+
+nlohmann::json photo_fill_report(const LoadedScene& s) {
+  if (!s.photo_fill) return nullptr;
+  const PhotoFill& f = *s.photo_fill;
+  return {{"uncovered_texels", f.uncovered},
+          {"from_photo", f.from_photo},
+          {"level", f.level},
+          {"level_pixels", f.level_pixels},
+          {"reason", f.reason.empty() ? nlohmann::json(nullptr) : nlohmann::json(f.reason)}};
+}
+
 nlohmann::json white_balance_report(const LoadedScene& s) {
   if (!s.white_balance) return nullptr;
   const WhiteBalance& wb = *s.white_balance;

@@ -14,6 +14,11 @@ namespace insitu {
 // gain when determined; a gain more than 5 % from 1 in a channel is said.
 void match_white_balance(LoadedScene& s);
 
+// With six shots that left directions uncovered and a room box: those the photo sees on the box's
+// walls taken from it, the rest filled again from their neighbours (relight/photo_fill.h), in
+// s.environment; s.photo_fill says how many and at what level.
+void fill_uncovered_from_photo(LoadedScene& s);
+
 // With environment.inverse_lighting on: fits the clipped sources (when a shot clipped), scales
 // them in s.environment, and warns when the photo does not determine them; then, in a room box
 // with openings, the light through them that the capture point never saw
@@ -29,5 +34,9 @@ nlohmann::json light_report(const LoadedScene& s);
 
 // The report's "white_balance" object: the gain, its σ, the pixels compared; null when off.
 nlohmann::json white_balance_report(const LoadedScene& s);
+
+// The report's "photo_fill" object: the uncovered texels, those from the photo, the level and its
+// pixels, or why none; null when every direction was covered or there is no room box.
+nlohmann::json photo_fill_report(const LoadedScene& s);
 
 }  // namespace insitu

@@ -238,6 +238,7 @@ void load_room(const SceneSpec& spec, LoadedScene& s, const std::atomic<bool>* s
   }
   throw_if_stopped(stop);
   match_white_balance(s);
+  fill_uncovered_from_photo(s);
   recover_clipped_light(s, stop);
   s.room_cache = std::make_shared<RoomCache>(s.environment, s.room);
 }
@@ -247,7 +248,7 @@ void copy_room(const LoadedScene& from, LoadedScene& s) {
   s.photo = from.photo, s.photo_linear = from.photo_linear, s.camera = from.camera, s.calibration = from.calibration;
   s.environment = from.environment, s.environment_info = from.environment_info, s.room = from.room;
   s.inverse_lighting = from.inverse_lighting, s.unseen_outside = from.unseen_outside, s.room_cache = from.room_cache,
-  s.white_balance = from.white_balance;
+  s.white_balance = from.white_balance, s.photo_fill = from.photo_fill;
   s.warnings.items.insert(s.warnings.items.end(), from.room_warnings.items.begin(), from.room_warnings.items.end());
 }
 
@@ -479,6 +480,7 @@ nlohmann::json render_report(const LoadedScene& s, const RenderResult& r, const 
                                           {"yaw_deg", s.spec.environment.yaw_deg}}
                                    : json(nullptr)},
         {"white_balance", white_balance_report(s)},
+        {"photo_fill", photo_fill_report(s)},
         {"light", light_report(s)}}},
       {"render",
        {{"integrator", s.spec.render.integrator},

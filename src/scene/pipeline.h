@@ -16,6 +16,7 @@
 #include "core/image.h"
 #include "core/output_paths.h"
 #include "relight/inverse_lighting.h"
+#include "relight/photo_fill.h"
 #include "relight/photo_white_balance.h"
 #include "relight/unseen_outside.h"
 #include "render/render.h"
@@ -36,6 +37,7 @@ struct LoadedScene {
   EnvironmentInfo environment_info;
   std::optional<RoomBox> room;                            // environment.room_box, for the renderer
   std::optional<WhiteBalance> white_balance;              // the light's, to the photo (light_recovery.h)
+  std::optional<PhotoFill> photo_fill;                    // the uncovered directions (light_recovery.h)
   std::optional<InverseLightingResult> inverse_lighting;  // when shots clipped (light_recovery.h)
   std::optional<UnseenOutsideFit> unseen_outside;         // in a room box with openings (light_recovery.h)
   std::shared_ptr<RoomCache> room_cache;                  // the room's prepared light and grids (room_cache.h), shared
