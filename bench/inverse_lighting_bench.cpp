@@ -23,6 +23,7 @@
 #include "core/image.h"
 #include "light/plane_irradiance.h"
 #include "relight/inverse_lighting.h"
+#include "relight/photo_fill.h"
 #include "relight/unseen_outside.h"
 
 namespace {
@@ -146,5 +147,32 @@ void BM_UnseenOutside(benchmark::State& state) {
   state.SetLabel(r.status);
 }
 BENCHMARK(BM_UnseenOutside)->Arg(1024)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+
+void BM_PhotoFill(benchmark::State& state) {
+  const Still still(int(state.range(0)));
+  const int n = still.shots.radiance.size();
+  const double half_w = std::tan(deg_to_rad(35.0)), half_h = 0.75 * half_w;
+  std::vector<bool> covered(std::size_t(6) * std::size_t(n) * std::size_t(n));
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        covered[(std::size_t(f) * std::size_t(n) + std::size_t(j)) * std::size_t(n) + std::size_t(i)] =
+            std::abs(2 * (i + 0.5) / n - 1) < half_w && std::abs(2 * (j + 0.5) / n - 1) < half_h;
+  PhotoFill r;
+  double peak_mb = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    CubeMap radiance = still.shots.radiance;
+    state.ResumeTiming();
+    const bench::PeakMemory memory;
+    r = fill_from_photo(radiance, covered, &still.shots.clipped, kBox, still.camera, still.photo, still.photo_clipped);
+    peak_mb = std::max(peak_mb, memory.peak_mb());
+  }
+  state.counters["peak_mb"] = peak_mb;
+  state.counters["uncovered"] = double(r.uncovered);
+  state.counters["from_photo"] = double(r.from_photo);
+  state.counters["level"] = r.level;
+}
+BENCHMARK(BM_PhotoFill)->Arg(256)->Arg(1024)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
 
 }  // namespace

@@ -207,27 +207,34 @@ CubeMap assemble_cube(const ShotSet& set, int n, AssemblyInfo* info, const ShotS
 
 namespace {
 
+// visit(face, j) for each row of a cube of n a face, the rows in parallel: each texel of the fill's
+// passes depends only on the cube before the pass, so the order does not change a bit.
+template <class Visit>
+void for_each_row(int n, const Visit& visit) {
+  tbb::parallel_for(0, 6 * n, [&](int row) { visit(row / n, row % n); });
+}
+
 // A cube half the size: each texel the weighted mean of its 2×2 children (odd sizes: the last
 // child row/column counts once more); weights summed.
 void pull(const CubeMap& v, const CubeMap& w, CubeMap& v2, CubeMap& w2) {
   const int n = v.size(), m = (n + 1) / 2;
   v2 = CubeMap(m);
   w2 = CubeMap(m);
-  for (int f = 0; f < 6; ++f)
-    for (int j = 0; j < m; ++j)
-      for (int i = 0; i < m; ++i) {
-        Rgb sum = Rgb::Zero();
-        float wsum = 0;
-        for (int b = 0; b < 2; ++b)
-          for (int a = 0; a < 2; ++a) {
-            const int ci = std::min(2 * i + a, n - 1), cj = std::min(2 * j + b, n - 1);
-            const float wt = w.texel(f, ci, cj)[0];
-            sum += wt * v.texel(f, ci, cj);
-            wsum += wt;
-          }
-        v2.set_texel(f, i, j, wsum > 0 ? Rgb(sum / wsum) : Rgb::Zero());
-        w2.set_texel(f, i, j, Rgb::Constant(std::min(1.0f, wsum)));
-      }
+  for_each_row(m, [&](int f, int j) {
+    for (int i = 0; i < m; ++i) {
+      Rgb sum = Rgb::Zero();
+      float wsum = 0;
+      for (int b = 0; b < 2; ++b)
+        for (int a = 0; a < 2; ++a) {
+          const int ci = std::min(2 * i + a, n - 1), cj = std::min(2 * j + b, n - 1);
+          const float wt = w.texel(f, ci, cj)[0];
+          sum += wt * v.texel(f, ci, cj);
+          wsum += wt;
+        }
+      v2.set_texel(f, i, j, wsum > 0 ? Rgb(sum / wsum) : Rgb::Zero());
+      w2.set_texel(f, i, j, Rgb::Constant(std::min(1.0f, wsum)));
+    }
+  });
   v2.update_borders();
   w2.update_borders();
 }
@@ -238,15 +245,15 @@ void relax(CubeMap& v, const CubeMap& w, int iterations) {
   const int n = v.size();
   for (int it = 0; it < iterations; ++it) {
     CubeMap next = v;
-    for (int f = 0; f < 6; ++f)
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-          if (w.texel(f, i, j)[0] >= 1.0f) continue;
-          const Rgb mean =
-              0.25f * (v.texel(f, i - 1, j) + v.texel(f, i + 1, j) + v.texel(f, i, j - 1) + v.texel(f, i, j + 1));
-          const float known = w.texel(f, i, j)[0];
-          next.set_texel(f, i, j, known * v.texel(f, i, j) + (1 - known) * mean);
-        }
+    for_each_row(n, [&](int f, int j) {
+      for (int i = 0; i < n; ++i) {
+        if (w.texel(f, i, j)[0] >= 1.0f) continue;
+        const Rgb mean =
+            0.25f * (v.texel(f, i - 1, j) + v.texel(f, i + 1, j) + v.texel(f, i, j - 1) + v.texel(f, i, j + 1));
+        const float known = w.texel(f, i, j)[0];
+        next.set_texel(f, i, j, known * v.texel(f, i, j) + (1 - known) * mean);
+      }
+    });
     next.update_borders();
     v = std::move(next);
   }
@@ -277,14 +284,14 @@ void fill_uncovered(CubeMap& cube, const CubeMap& weight) {
     const CubeMap& w = weights[std::size_t(l)];
     const CubeMap& coarse = values[std::size_t(l) + 1];
     const int n = v.size();
-    for (int f = 0; f < 6; ++f)
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-          const float known = w.texel(f, i, j)[0];
-          if (known >= 1.0f) continue;
-          const Rgb up = coarse.lookup(texel_direction(f, i, j, n));
-          v.set_texel(f, i, j, known * v.texel(f, i, j) + (1 - known) * up);
-        }
+    for_each_row(n, [&](int f, int j) {
+      for (int i = 0; i < n; ++i) {
+        const float known = w.texel(f, i, j)[0];
+        if (known >= 1.0f) continue;
+        const Rgb up = coarse.lookup(texel_direction(f, i, j, n));
+        v.set_texel(f, i, j, known * v.texel(f, i, j) + (1 - known) * up);
+      }
+    });
     v.update_borders();
     relax(v, w, 4);
   }

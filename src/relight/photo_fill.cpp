@@ -14,8 +14,8 @@ namespace insitu {
 
 namespace {
 
-constexpr int kFootprintPoints = 3;  // per side of a texel
-constexpr int kLevelPixels = 4000;   // photo pixels on a grid, at most, for the level
+constexpr int kMaxFootprintPoints = 4;  // per side of a texel
+constexpr int kLevelPixels = 4000;      // photo pixels on a grid, at most, for the level
 
 std::size_t texel_index(int face, int i, int j, int n) {
   return (std::size_t(face) * std::size_t(n) + std::size_t(j)) * std::size_t(n) + std::size_t(i);
@@ -93,22 +93,41 @@ std::vector<double> level_offsets(const CubeMap& radiance, const std::vector<boo
   return offsets;
 }
 
-// The photo's mean over an uncovered texel's footprint (kFootprintPoints² points), if it sees all
+// The number of points per side of a texel's footprint: one per two photo pixels (a bilinear
+// sample spans two), from 1 to kMaxFootprintPoints; 0 where the texel's centre is not seen. The
+// footprint's side in pixels is twice the larger offset between the projections of its centre
+// and of its corner.
+int footprint_points(int face, int i, int j, int n, const RoomLight& room, const RoomBox& box, const Camera& camera) {
+  const auto centre = wall_point(room, box.capture, texel_direction(face, i, j, n));
+  const auto corner =
+      wall_point(room, box.capture, face_to_direction(face, float(i) / float(n), float(j) / float(n)).normalized());
+  if (!centre || !corner) return 0;
+  double depth_centre = 0, depth_corner = 0;
+  const Vec2d uv_centre = camera.project(centre->cast<double>(), &depth_centre);
+  const Vec2d uv_corner = camera.project(corner->cast<double>(), &depth_corner);
+  if (!(depth_centre > 0) || !(depth_corner > 0)) return 0;
+  const double side_px = 2 * (uv_centre - uv_corner).cwiseAbs().maxCoeff();
+  return std::clamp(int(std::ceil(side_px / 2)), 1, kMaxFootprintPoints);
+}
+
+// The photo's mean over an uncovered texel's footprint (footprint_points² points), if it sees all
 // of them on a wall.
 std::optional<Rgb> texel_from_photo(int face, int i, int j, int n, const RoomLight& room, const RoomBox& box,
                                     const Camera& camera, const Image& photo, const std::vector<std::uint8_t>& usable) {
+  const int k = footprint_points(face, i, j, n, room, box, camera);
+  if (k == 0) return std::nullopt;
   Rgb sum = Rgb::Zero();
-  for (int b = 0; b < kFootprintPoints; ++b)
-    for (int a = 0; a < kFootprintPoints; ++a) {
-      const float s = (float(i) + (float(a) + 0.5f) / kFootprintPoints) / float(n);
-      const float t = (float(j) + (float(b) + 0.5f) / kFootprintPoints) / float(n);
+  for (int b = 0; b < k; ++b)
+    for (int a = 0; a < k; ++a) {
+      const float s = (float(i) + (float(a) + 0.5f) / float(k)) / float(n);
+      const float t = (float(j) + (float(b) + 0.5f) / float(k)) / float(n);
       const auto q = wall_point(room, box.capture, face_to_direction(face, s, t).normalized());
       if (!q) return std::nullopt;
       const auto p = photo_at(camera, photo, usable, *q);
       if (!p) return std::nullopt;
       sum += *p;
     }
-  return Rgb(sum / float(kFootprintPoints * kFootprintPoints));
+  return Rgb(sum / float(k * k));
 }
 
 }  // namespace

@@ -13,9 +13,10 @@
 // The photo sees the same room. A Lambertian wall has one radiance whatever it is seen from, so
 // the wall point q of the room box that the capture point c saw along an uncovered direction
 // ω = (q − c)/|q − c| shows in the photo the radiance c would have seen. Per uncovered texel: q
-// at 3 × 3 points of its footprint, each projected into the photo and sampled bilinearly; the
-// texel takes their mean where all of them fall in the frame, on unclipped pixels, on a wall (not
-// through an opening, whose outside the photo sees from elsewhere). The photo's values are
+// at k × k points of its footprint, one per two photo pixels across it (k from 1 to 4), each
+// projected into the photo and sampled bilinearly; the texel takes their mean where all of them
+// fall in the frame, on unclipped pixels, on a wall (not through an opening, whose outside the
+// photo sees from elsewhere). The photo's values are
 // brought to the shots' level by the median of Y(light)/Y(photo) over the photo pixels whose wall
 // point the shots did see (unclipped in both): an exposure from EXIF or an estimate is not exact,
 // and the texels must match the shots' beside them. Without kPhotoFillMinPixels such pixels the
