@@ -27,6 +27,23 @@ TEST(Image, SanitizeClampsAndCounts) {
   EXPECT_EQ(img.data, (std::vector<float>{1.0f, 0.0f, 0.0f, 0.0f, 1e-6f, 1e5f}));
 }
 
+// A bilinear interpolation reproduces a function linear in x and y exactly between pixel centres,
+// and holds the far edge's value there (its neighbour beyond the edge is itself).
+TEST(Image, BilinearRgbIsExactOnALinearRamp) {
+  Image img(4, 3, 3);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 4; ++x) img.set_rgb(x, y, Rgb(float(x), float(2 * y), float(x + y)));
+  for (const auto& [x, y] : {std::pair{0.0, 0.0}, {0.25, 1.5}, {2.75, 0.5}, {1.5, 1.75}}) {
+    const Rgb c = bilinear_rgb(img, x, y);
+    EXPECT_NEAR(c[0], x, 1e-6);
+    EXPECT_NEAR(c[1], 2 * y, 1e-6);
+    EXPECT_NEAR(c[2], x + y, 1e-6);
+  }
+  const Rgb corner = bilinear_rgb(img, 3.0, 2.0);
+  EXPECT_FLOAT_EQ(corner[0], 3.0f);
+  EXPECT_FLOAT_EQ(corner[1], 4.0f);
+}
+
 TEST(Image, ExrKeepsHighDynamicRange) {
   test::TempDir dir;
   Image img(2, 1, 3);

@@ -311,6 +311,14 @@ ImageFile read_image_file_quietly(const std::string& path, PixelGrid grid, Alpha
 
 }  // namespace
 
+Rgb bilinear_rgb(const Image& img, double x, double y) {
+  const int x0 = std::min(int(x), img.width - 1), y0 = std::min(int(y), img.height - 1);
+  const int x1 = std::min(x0 + 1, img.width - 1), y1 = std::min(y0 + 1, img.height - 1);
+  const float wx = float(x - x0), wy = float(y - y0);
+  return (1 - wy) * ((1 - wx) * img.rgb(x0, y0) + wx * img.rgb(x1, y0)) +
+         wy * ((1 - wx) * img.rgb(x0, y1) + wx * img.rgb(x1, y1));
+}
+
 std::optional<double> Exposure::relative() const {
   if (!time_s) return std::nullopt;
   const double n = f_number.value_or(1.0);

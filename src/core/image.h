@@ -36,6 +36,10 @@ struct Image {
   }
 };
 
+// The bilinear interpolation of img's RGB at (x, y) in pixel indices (pixel (i, j)'s centre at
+// x = i, y = j), for 0 ≤ x ≤ width − 1 and 0 ≤ y ≤ height − 1; the far edge's neighbour is itself.
+Rgb bilinear_rgb(const Image& img, double x, double y);
+
 // 8-bit pixels as a file stores them (value k means k/255): a texture's, a quarter of the memory
 // of floats. Row-major, row 0 at the top, channels interleaved.
 struct ByteImage {

@@ -35,6 +35,11 @@ struct FaceCoord {
 // the last texel. The one nearest-texel rule (CubeMap::lookup_nearest, the environment sampler).
 inline int nearest_texel_index(float s, int n) { return std::clamp(int(std::floor(s * float(n))), 0, n - 1); }
 
+// A texel's index in a per-texel array over the six faces of n² texels: (face·n + j)·n + i.
+inline std::size_t texel_index(int face, int i, int j, int n) {
+  return (std::size_t(face) * std::size_t(n) + std::size_t(j)) * std::size_t(n) + std::size_t(i);
+}
+
 // Direction (any length, non-zero) -> face and (s, t) by the table above.
 FaceCoord direction_to_face(const Vec3f& dir);
 // (s, t) of `dir` on the plane of a given face (outside [0,1] when dir is not on that face).

@@ -92,10 +92,7 @@ Image centred_pinhole_view(const Image& photo, const Camera& camera) {
       const double u = camera.fx * x + camera.cx - 0.5, v = camera.fy * y + camera.cy - 0.5;
       const int u0 = int(std::floor(u)), v0 = int(std::floor(v));
       if (u0 < 0 || v0 < 0 || u0 + 1 >= photo.width || v0 + 1 >= photo.height) continue;
-      const float wu = float(u - u0), wv = float(v - v0);
-      out.set_rgb(i, j,
-                  (1 - wv) * ((1 - wu) * photo.rgb(u0, v0) + wu * photo.rgb(u0 + 1, v0)) +
-                      wv * ((1 - wu) * photo.rgb(u0, v0 + 1) + wu * photo.rgb(u0 + 1, v0 + 1)));
+      out.set_rgb(i, j, bilinear_rgb(photo, u, v));
     }
   });
   return out;

@@ -159,8 +159,7 @@ void for_each_texel_of_share(const std::vector<float>& shares, int n, float shar
   for (int f = 0; f < 6; ++f)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
-        if (shares[(std::size_t(f) * std::size_t(n) + std::size_t(j)) * std::size_t(n) + std::size_t(i)] == share)
-          visit(f, i, j);
+        if (shares[texel_index(f, i, j, n)] == share) visit(f, i, j);
 }
 
 CubeMap RoomLight::seen_through_openings(const CubeMap& cube) const {
@@ -178,7 +177,7 @@ bool RoomLight::unseen(const Vec3f& dir) const {
   const int n = unseen_face_;
   const FaceCoord fc = direction_to_face(dir);
   const int i = nearest_texel_index(fc.s, n), j = nearest_texel_index(fc.t, n);
-  return unseen_[(std::size_t(fc.face) * std::size_t(n) + std::size_t(j)) * std::size_t(n) + std::size_t(i)];
+  return unseen_[texel_index(fc.face, i, j, n)];
 }
 
 bool RoomLight::inside(const Vec3f& x) const {

@@ -100,14 +100,6 @@ PreparedShot prepare_shot(const ShotSet& set, const ShotSet* clipped, int s, int
   return p;
 }
 
-Rgb bilinear(const Image& img, double x, double y) {
-  const int x0 = std::min(int(x), img.width - 1), y0 = std::min(int(y), img.height - 1);
-  const int x1 = std::min(x0 + 1, img.width - 1), y1 = std::min(y0 + 1, img.height - 1);
-  const float wx = float(x - x0), wy = float(y - y0);
-  return (1 - wy) * ((1 - wx) * img.rgb(x0, y0) + wx * img.rgb(x1, y0)) +
-         wy * ((1 - wx) * img.rgb(x0, y1) + wx * img.rgb(x1, y1));
-}
-
 // What one shot says about a direction: its radiance, its clipped degree and its blending weight.
 struct ShotSample {
   Rgb radiance, clipped;
@@ -130,8 +122,8 @@ std::optional<ShotSample> sample_shot(const PreparedShot& p, const Vec3d& d) {
   if (!(z > 0) || px < -tol || px > w + tol || py < -tol || py > h + tol) return std::nullopt;
   const double x = std::clamp(px - 0.5, 0.0, w - 1.0), y = std::clamp(py - 0.5, 0.0, h - 1.0);
   ShotSample s;
-  s.radiance = bilinear(image, x, y);
-  s.clipped = p.clipped && p.clipped->get().width > 0 ? bilinear(p.clipped->get(), x, y) : Rgb::Zero();
+  s.radiance = bilinear_rgb(image, x, y);
+  s.clipped = p.clipped && p.clipped->get().width > 0 ? bilinear_rgb(p.clipped->get(), x, y) : Rgb::Zero();
   const double u = std::clamp(px / w, 0.0, 1.0), v = std::clamp(py / h, 0.0, 1.0);
   s.weight = std::max(1e-12, std::min(u, 1 - u) * std::min(v, 1 - v)) * (1 - 0.999 * double(s.clipped.maxCoeff()));
   return s;
@@ -194,9 +186,7 @@ CubeMap assemble_cube(const ShotSet& set, int n, AssemblyInfo* info, const ShotS
     local.covered.resize(std::size_t(6) * std::size_t(n) * std::size_t(n));
     for (int f = 0; f < 6; ++f)
       for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i)
-          local.covered[(std::size_t(f) * std::size_t(n) + std::size_t(j)) * std::size_t(n) + std::size_t(i)] =
-              weight.texel(f, i, j)[0] > 0;
+        for (int i = 0; i < n; ++i) local.covered[texel_index(f, i, j, n)] = weight.texel(f, i, j)[0] > 0;
     weight.update_borders();
     fill_uncovered(cube, weight);  // the clip mask is not filled: assemble_cube's comment
   }

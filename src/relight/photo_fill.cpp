@@ -17,10 +17,6 @@ namespace {
 constexpr int kMaxFootprintPoints = 4;  // per side of a texel
 constexpr int kLevelPixels = 4000;      // photo pixels on a grid, at most, for the level
 
-std::size_t texel_index(int face, int i, int j, int n) {
-  return (std::size_t(face) * std::size_t(n) + std::size_t(j)) * std::size_t(n) + std::size_t(i);
-}
-
 // Where the room's wall along `dir` from `origin` is: its point, unless the ray leaves through an
 // opening (or not at all).
 std::optional<Vec3f> wall_point(const RoomLight& room, const Vec3f& origin, const Vec3f& dir) {
@@ -61,13 +57,11 @@ std::optional<Rgb> photo_at(const Camera& camera, const Image& photo, const std:
   const int x1 = std::min(x0 + 1, photo.width - 1), y1 = std::min(y0 + 1, photo.height - 1);
   for (const auto& [px, py] : {std::pair{x0, y0}, {x1, y0}, {x0, y1}, {x1, y1}})
     if (!usable[std::size_t(py) * std::size_t(photo.width) + std::size_t(px)]) return std::nullopt;
-  const float wx = float(x - x0), wy = float(y - y0);
-  return (1 - wy) * ((1 - wx) * photo.rgb(x0, y0) + wx * photo.rgb(x1, y0)) +
-         wy * ((1 - wx) * photo.rgb(x0, y1) + wx * photo.rgb(x1, y1));
+  return bilinear_rgb(photo, x, y);
 }
 
-// The median of log Y(light) − log Y(photo) over a grid of photo pixels whose wall point a shot
-// covered, unclipped in both.
+// The offsets log Y(light) − log Y(photo), whose median is the level, over a grid of photo
+// pixels whose wall point a shot covered, unclipped in both.
 std::vector<double> level_offsets(const CubeMap& radiance, const std::vector<bool>& covered, const CubeMap* clipped,
                                   const RoomLight& room, const RoomBox& box, const Camera& camera, const Image& photo,
                                   const std::vector<std::uint8_t>& usable) {
