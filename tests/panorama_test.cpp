@@ -10,6 +10,7 @@
 #include "core/colour.h"
 #include "core/error.h"
 #include "core/image.h"
+#include "light/environment.h"
 #include "light/equirect.h"
 #include "light/panorama.h"
 #include "light/texel_geometry.h"
@@ -117,6 +118,75 @@ TEST(Panorama, CoverageIsTheBandsSolidAngle) {
   double whole = 0;
   cube_from_panorama(Image(256, 128, 3, 1.0f), whole_panorama(256, 128), 0.0, 16, &whole);
   EXPECT_NEAR(whole, 1.0, 1e-9);
+}
+
+// The band between polar angles 45° and 135° over all azimuths: a texel whose centre lies within
+// it by more than half a texel's diagonal (at most 4.5° at a 16 face) is covered, one outside it
+// by as much is not; the covered texels' solid angle is the band's, to within a texel ring; a whole
+// panorama leaves the mask empty, as the assembly does for shots that cover every face.
+TEST(Panorama, TheTexelsTheCropDidNotSeeAreUncovered) {
+  constexpr int n = 16;
+  std::vector<bool> covered;
+  cube_from_panorama(Image(256, 64, 3, 1.0f), PanoramaPlacement{256, 128, 0, 32}, 0.0, n, nullptr, 2, &covered);
+  ASSERT_EQ(covered.size(), std::size_t(6 * n * n));
+  const std::vector<double> omega = face_solid_angles(n);
+  double covered_sr = 0;
+  int checked_in = 0, checked_out = 0;
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const double elevation_deg = rad_to_deg(std::asin(double(texel_direction(f, i, j, n).normalized().y())));
+        const bool in = covered[std::size_t((f * n + j) * n + i)];
+        covered_sr += in ? omega[std::size_t(j * n + i)] : 0.0;
+        if (std::abs(elevation_deg) < 40.5) {
+          EXPECT_TRUE(in) << f << " " << i << " " << j;
+          ++checked_in;
+        }
+        if (std::abs(elevation_deg) > 49.5) {
+          EXPECT_FALSE(in) << f << " " << i << " " << j;
+          ++checked_out;
+        }
+      }
+  EXPECT_GT(checked_in, 400);
+  EXPECT_GT(checked_out, 250);
+  EXPECT_NEAR(covered_sr / (4 * kPi), std::cos(kPi / 4), 0.06);
+  cube_from_panorama(Image(256, 128, 3, 1.0f), whole_panorama(256, 128), 0.0, n, nullptr, 2, &covered);
+  EXPECT_TRUE(covered.empty());
+}
+
+// A partial JPEG whose top row is white (clipped) and the rest grey, read as the room's light: the
+// band's edge is clipped where the crop saw it, and the texels it did not see (the stretched white
+// above the band) are not clipped, as a shot's uncovered texels are not (sixshot.h).
+TEST(Panorama, WhatTheCropDidNotSeeIsNotClipped) {
+  test::TempDir dir;
+  Image band(256, 64, 3, 0.2f);
+  for (int x = 0; x < band.width; ++x) band.set_rgb(x, 0, Rgb::Ones());
+  write_jpeg_with_xmp(dir.file("band.jpg"), band, gpano(256, 128, 256, 64, 0, 32));
+  EnvironmentSpec spec;
+  spec.image = dir.file("band.jpg");
+  spec.exposure = EnvironmentSpec::Exposure::kFactor;
+  spec.exposure_factor = 1;
+  spec.face_size = 16;
+  Warnings warnings;
+  EnvironmentInfo info;
+  const CubeMap cube = load_environment(spec, warnings, &info);
+  ASSERT_TRUE(info.clipped_cube.has_value());
+  ASSERT_EQ(info.covered.size(), std::size_t(6 * 16 * 16));
+  int clipped_seen = 0, uncovered = 0;
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < 16; ++j)
+      for (int i = 0; i < 16; ++i) {
+        const float clip = info.clipped_cube->texel(f, i, j).maxCoeff();
+        if (info.covered[texel_index(f, i, j, 16)]) {
+          clipped_seen += clip > 0;
+          continue;
+        }
+        ++uncovered;
+        EXPECT_EQ(clip, 0.0f) << f << " " << i << " " << j;
+      }
+  EXPECT_GT(clipped_seen, 0);
+  EXPECT_GT(uncovered, 200);
+  EXPECT_GT(cube.lookup_nearest(Vec3f(0, 1, 0)).minCoeff(), 0.9f);  // the white edge, stretched
 }
 
 // Texels whose directions the crop saw (a texel inside it, away from its edge) carry what the

@@ -273,7 +273,7 @@ std::optional<PanoramaPlacement> image_placement(const EnvironmentSpec& spec, co
 // A texel per pixel at the equator: a quarter of the full panorama's width, at most 1024 for an
 // 8-bit panorama as for shots (sixshot.h natural_face_size).
 CubeMap image_cube(const EnvironmentSpec& spec, const Image& img, const std::optional<PanoramaPlacement>& placement,
-                   bool display_referred, double* coverage) {
+                   bool display_referred, double* coverage, std::vector<bool>* covered = nullptr) {
   if (!placement) {
     if (spec.face_size > 0 && spec.face_size != img.width)
       throw InputError(spec.where, fmt::format("{}: a cube strip has face size {}, face_size asks for {}", spec.image,
@@ -284,7 +284,18 @@ CubeMap image_cube(const EnvironmentSpec& spec, const Image& img, const std::opt
   int n = std::max(1, int(std::lround(placement->full_width / 4)));
   if (display_referred) n = std::min(n, 1024);
   if (spec.face_size > 0) n = spec.face_size;
-  return cube_from_panorama(img, *placement, spec.yaw_deg, n, coverage);
+  return cube_from_panorama(img, *placement, spec.yaw_deg, n, coverage, 2, covered);
+}
+
+// The clip mask of the directions the panorama did not see is 0, as a shot's is where no shot
+// covered (sixshot.h): its nearest edge, stretched there, is no measurement of clipped light.
+void unclip_uncovered(CubeMap& clipped, const std::vector<bool>& covered) {
+  const int n = clipped.size();
+  for (int f = 0; f < 6; ++f)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        if (!covered[texel_index(f, i, j, n)]) clipped.set_texel(f, i, j, Rgb::Zero());
+  clipped.update_borders();
 }
 
 // An 8-bit panorama into the photo's unit as a single shot: value × k_photo / k_pano by EXIF
@@ -330,13 +341,15 @@ CubeMap load_image_environment(const EnvironmentSpec& spec, Warnings& warnings, 
   }
   Image img = linearize(file, &info.clamped_values);
   file.stored = Image();
-  CubeMap cube = image_cube(spec, img, placement, info.panorama, &info.panorama_coverage);
+  CubeMap cube = image_cube(spec, img, placement, info.panorama, &info.panorama_coverage, &info.covered);
   img = Image();
+  if (info.clipped_cube && !info.covered.empty()) unclip_uncovered(*info.clipped_cube, info.covered);
   if (info.clamped_values > 0)
     warnings.add(spec.image, fmt::format("{} negative or non-finite values clamped to 0", info.clamped_values));
   if (info.panorama && info.panorama_coverage < 0.999)
     warnings.add(spec.image, fmt::format("the panorama saw {:.1f}% of the sphere; the rest is its nearest edge, "
-                                         "stretched",
+                                         "stretched (with a room box, the photo's view of the walls where it sees "
+                                         "them: the report's environment.photo_fill)",
                                          100 * info.panorama_coverage));
   if (spec.exposure == EnvironmentSpec::Exposure::kFactor) {
     info.exposure_factor = spec.exposure_factor;

@@ -29,7 +29,9 @@ namespace insitu {
 struct EnvironmentInfo {
   std::size_t clamped_values = 0;                       // negative or non-finite inputs set to 0
   std::array<double, 6> coverage = {1, 1, 1, 1, 1, 1};  // per face, from six shots
-  std::vector<bool> covered;  // per texel where a face is covered less than fully (AssemblyInfo)
+  // Per texel, where a face is covered less than fully: whether a shot (AssemblyInfo) or the
+  // panorama (cube_from_panorama) saw it; else empty.
+  std::vector<bool> covered;
   std::array<double, 6> clipped = {0, 0, 0, 0, 0, 0};         // fraction of clipped pixels per shot
   std::array<double, 6> hfov_deg = {90, 90, 90, 90, 90, 90};  // per shot, as used (after turning)
   std::optional<ResponseCurve> response;                      // recovered from brackets

@@ -121,8 +121,9 @@ std::optional<PanoramaPlacement> read_gpano(const std::string& path, int width, 
 }
 
 CubeMap cube_from_panorama(const Image& img, const PanoramaPlacement& p, double yaw_deg, int n, double* coverage,
-                           int ss) {
+                           int ss, std::vector<bool>* covered) {
   CubeMap cube(n);
+  std::vector<char> seen_texel(std::size_t(6) * std::size_t(n) * std::size_t(n), 0);
   const float c = float(std::cos(-deg_to_rad(yaw_deg))), s = float(std::sin(-deg_to_rad(yaw_deg)));
   const bool wrap_x = std::abs(p.full_width - img.width) < 0.5;
   const std::vector<double> omega = face_solid_angles(n);
@@ -142,6 +143,7 @@ CubeMap cube_from_panorama(const Image& img, const PanoramaPlacement& p, double 
           seen += q.seen;
         }
       cube.set_texel(f, i, j, sum / float(ss * ss));
+      seen_texel[texel_index(f, i, j, n)] = seen > 0;
       seen_sr[std::size_t(row)] += omega[std::size_t(j * n + i)] * seen / (ss * ss);
     }
   });
@@ -150,6 +152,11 @@ CubeMap cube_from_panorama(const Image& img, const PanoramaPlacement& p, double 
     double total = 0;
     for (double w : seen_sr) total += w;
     *coverage = total / (4 * kPi);
+  }
+  if (covered) {
+    covered->clear();
+    if (std::find(seen_texel.begin(), seen_texel.end(), 0) != seen_texel.end())
+      covered->assign(seen_texel.begin(), seen_texel.end());
   }
   return cube;
 }

@@ -15,6 +15,7 @@
 #pragma once
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 #include "light/cubemap.h"
@@ -39,8 +40,10 @@ std::optional<PanoramaPlacement> read_gpano(const std::string& path, int width, 
 PanoramaPlacement whole_panorama(int width, int height);
 
 // The cube of `face_size` seen through the panorama, averaging ss × ss bilinear samples per
-// texel; `coverage` (optional): the fraction of the sphere's solid angle the image saw.
+// texel; `coverage` (optional): the fraction of the sphere's solid angle the image saw;
+// `covered` (optional): per texel, indexed (face·n + j)·n + i, whether the image saw any of its
+// samples, as AssemblyInfo::covered is for shots (left empty where it saw every texel).
 CubeMap cube_from_panorama(const Image& img, const PanoramaPlacement& placement, double yaw_deg, int face_size,
-                           double* coverage = nullptr, int ss = 2);
+                           double* coverage = nullptr, int ss = 2, std::vector<bool>* covered = nullptr);
 
 }  // namespace insitu

@@ -1,4 +1,4 @@
-// The directions no shot covered, taken from the photo where it sees the room there.
+// The directions no shot (or panorama) covered, taken from the photo where it sees the room there.
 //
 // Shots from a phone's main camera (about 70° across, 4:3) leave most of each cube face
 // uncovered, and the assembly fills those texels smoothly from their neighbours
@@ -22,6 +22,9 @@
 // and the texels must match the shots' beside them. Without kPhotoFillMinPixels such pixels the
 // level is unknown and the photo fills nothing. The other uncovered texels are then filled again
 // from their neighbours, the photo's among them.
+//
+// A partial panorama (a phone's sweep, 360° × about 90°) leaves the ceiling and the floor unseen
+// and stretches its edges there (light/panorama.h); its unseen texels are filled the same way.
 //
 // Only with a room box (without one a photo pixel's direction from c is unknown) and with the
 // photo's camera inside it (then every wall point in the frame is in its view: the box is convex).

@@ -14,9 +14,9 @@ namespace insitu {
 // gain when determined; a gain more than 5 % from 1 in a channel is said.
 void match_white_balance(LoadedScene& s);
 
-// With six shots that left directions uncovered and a room box: those the photo sees on the box's
-// walls taken from it, the rest filled again from their neighbours (relight/photo_fill.h), in
-// s.environment; s.photo_fill says how many and at what level.
+// With six shots or a partial panorama that left directions uncovered and a room box: those the
+// photo sees on the box's walls taken from it, the rest filled again from their neighbours
+// (relight/photo_fill.h), in s.environment; s.photo_fill says how many and at what level.
 void fill_uncovered_from_photo(LoadedScene& s);
 
 // With environment.inverse_lighting on: fits the clipped sources (when a shot clipped), scales
