@@ -154,6 +154,16 @@ TEST(Panorama, TheTexelsTheCropDidNotSeeAreUncovered) {
   EXPECT_TRUE(covered.empty());
 }
 
+// A band of a panorama, read at its own level into a cube of 16 a face.
+EnvironmentSpec band_spec(const std::string& path) {
+  EnvironmentSpec spec;
+  spec.image = path;
+  spec.exposure = EnvironmentSpec::Exposure::kFactor;
+  spec.exposure_factor = 1;
+  spec.face_size = 16;
+  return spec;
+}
+
 // A partial JPEG whose top row is white (clipped) and the rest grey, read as the room's light: the
 // band's edge is clipped where the crop saw it, and the texels it did not see (the stretched white
 // above the band) are not clipped, as a shot's uncovered texels are not (sixshot.h).
@@ -162,11 +172,7 @@ TEST(Panorama, WhatTheCropDidNotSeeIsNotClipped) {
   Image band(256, 64, 3, 0.2f);
   for (int x = 0; x < band.width; ++x) band.set_rgb(x, 0, Rgb::Ones());
   write_jpeg_with_xmp(dir.file("band.jpg"), band, gpano(256, 128, 256, 64, 0, 32));
-  EnvironmentSpec spec;
-  spec.image = dir.file("band.jpg");
-  spec.exposure = EnvironmentSpec::Exposure::kFactor;
-  spec.exposure_factor = 1;
-  spec.face_size = 16;
+  const EnvironmentSpec spec = band_spec(dir.file("band.jpg"));
   Warnings warnings;
   EnvironmentInfo info;
   const CubeMap cube = load_environment(spec, warnings, &info);
@@ -187,6 +193,25 @@ TEST(Panorama, WhatTheCropDidNotSeeIsNotClipped) {
   EXPECT_GT(clipped_seen, 0);
   EXPECT_GT(uncovered, 200);
   EXPECT_GT(cube.lookup_nearest(Vec3f(0, 1, 0)).minCoeff(), 0.9f);  // the white edge, stretched
+}
+
+// The warning of a partial panorama says what it saw and which lights it cannot hold: a band of
+// rows 32 … 96 of a full 128 spans elevations 90° − 180° · 96/128 = −45° to 90° − 180° · 32/128 = 45°.
+TEST(Panorama, APartialPanoramasWarningSaysWhatItDidNotSee) {
+  EXPECT_EQ(describe_view(PanoramaPlacement{256, 128, 0, 32}, 256, 64),
+            "elevations -45° to 45°, 360° around: a light above 45° (a ceiling lamp) or below -45° is not in it");
+  // Without the bottom 45° (a tripod), 180° of azimuth: rows 0 … 96 of 128, 128 of 256 columns.
+  EXPECT_EQ(describe_view(PanoramaPlacement{256, 128, 64, 0}, 128, 96),
+            "elevations -45° to 90°, 180° around: a light below -45° or outside its 180° of azimuth is not in it");
+  EXPECT_EQ(describe_view(whole_panorama(256, 128), 256, 128), "elevations -90° to 90°, 360° around");
+  test::TempDir dir;
+  write_jpeg_with_xmp(dir.file("band.jpg"), Image(256, 64, 3, 0.2f), gpano(256, 128, 256, 64, 0, 32));
+  const EnvironmentSpec spec = band_spec(dir.file("band.jpg"));
+  Warnings warnings;
+  load_environment(spec, warnings);
+  ASSERT_EQ(warnings.items.size(), 1u);
+  EXPECT_NE(warnings.items[0].find("saw 70."), std::string::npos) << warnings.items[0];
+  EXPECT_NE(warnings.items[0].find("a light above 45° (a ceiling lamp)"), std::string::npos) << warnings.items[0];
 }
 
 // Texels whose directions the crop saw (a texel inside it, away from its edge) carry what the

@@ -339,6 +339,7 @@ CubeMap load_image_environment(const EnvironmentSpec& spec, Warnings& warnings, 
       warnings.add(spec.image, fmt::format("{:.1f}% of pixels clipped: radiance there is only a lower bound",
                                            100 * info.panorama_clipped));
   }
+  const int width = file.stored.width, height = file.stored.height;
   Image img = linearize(file, &info.clamped_values);
   file.stored = Image();
   CubeMap cube = image_cube(spec, img, placement, info.panorama, &info.panorama_coverage, &info.covered);
@@ -346,11 +347,11 @@ CubeMap load_image_environment(const EnvironmentSpec& spec, Warnings& warnings, 
   if (info.clipped_cube && !info.covered.empty()) unclip_uncovered(*info.clipped_cube, info.covered);
   if (info.clamped_values > 0)
     warnings.add(spec.image, fmt::format("{} negative or non-finite values clamped to 0", info.clamped_values));
-  if (info.panorama && info.panorama_coverage < 0.999)
-    warnings.add(spec.image, fmt::format("the panorama saw {:.1f}% of the sphere; the rest is its nearest edge, "
-                                         "stretched (with a room box, the photo's view of the walls where it sees "
-                                         "them: the report's environment.photo_fill)",
-                                         100 * info.panorama_coverage));
+  if (info.panorama && placement && info.panorama_coverage < 0.999)
+    warnings.add(spec.image, fmt::format("the panorama saw {:.1f}% of the sphere ({}); the rest is its nearest "
+                                         "edge, stretched (with a room box, the photo's view of the walls where it "
+                                         "sees them: the report's environment.photo_fill)",
+                                         100 * info.panorama_coverage, describe_view(*placement, width, height)));
   if (spec.exposure == EnvironmentSpec::Exposure::kFactor) {
     info.exposure_factor = spec.exposure_factor;
     info.exposure_source = "factor";

@@ -107,6 +107,21 @@ Rgb bilinear_wrapped(const Image& img, float x, float y, bool wrap_x) {
 
 PanoramaPlacement whole_panorama(int width, int height) { return {double(width), double(height), 0, 0}; }
 
+std::string describe_view(const PanoramaPlacement& placement, int width, int height) {
+  const double high_deg = 90 - 180 * placement.top / placement.full_height;
+  const double low_deg = 90 - 180 * (placement.top + height) / placement.full_height;
+  const double around_deg = std::min(360.0, 360 * width / placement.full_width);
+  std::string out = fmt::format("elevations {:.0f}° to {:.0f}°, {:.0f}° around", low_deg, high_deg, around_deg);
+  std::vector<std::string> missed;
+  if (high_deg < 89.5) missed.push_back(fmt::format("above {:.0f}° (a ceiling lamp)", high_deg));
+  if (low_deg > -89.5) missed.push_back(fmt::format("below {:.0f}°", low_deg));
+  if (around_deg < 359.5) missed.push_back(fmt::format("outside its {:.0f}° of azimuth", around_deg));
+  if (missed.empty()) return out;
+  out += ": a light " + missed.front();
+  for (std::size_t k = 1; k < missed.size(); ++k) out += (k + 1 == missed.size() ? " or " : ", ") + missed[k];
+  return out + " is not in it";
+}
+
 std::optional<PanoramaPlacement> read_gpano(const std::string& path, int width, int height) {
   init_exiv2();
   try {

@@ -30,6 +30,12 @@ struct PanoramaPlacement {
   }
 };
 
+// What an image of `width` × `height` so placed saw, for a warning: its elevations and how far
+// around, with the lights it cannot hold ("elevations -45° to 45°, 360° around: a light above 45°
+// (a ceiling lamp) or below -45° is not in it"). Row y of the full panorama is at elevation
+// 90° − 180° y / full_height (light/equirect.h: v = acos(d.y)/π).
+std::string describe_view(const PanoramaPlacement& placement, int width, int height);
+
 // The placement from the file's GPano XMP metadata (read with Exiv2), for an image of
 // `width` × `height`; nullopt when the file has none. Metadata that cannot describe an
 // equirectangular panorama holding this image (another projection, a full size that is not 2:1,
