@@ -932,5 +932,43 @@ TEST(InverseLighting, AGrainyPhotoPutsTheSunOnItsTexel) {
   EXPECT_NEAR(fit.window_added, fit.window_true, 0.15 * fit.window_true);
 }
 
+// A sun spread over the texels around its own, as a lens and the cube's resampling spread a sun
+// smaller than a texel: half its power on its texel, 8 % on each of the four beside it and 4.5 % on
+// each corner, on a face of 64 (coarse parts of 4 × 4). The point takes the sun's texel; its
+// ring, the eight around it, free, takes what spilled into them. With a point and the rest alone
+// (kRingPitches 0), the rest, one scale for the ring's texels and the sky's, kept 0.84 of their added power.
+TEST(InverseLighting, ASunSpreadOverItsNeighboursKeepsItsPower) {
+  constexpr int face = 64;
+  Fixture fx;
+  const std::array<int, 3> sun = sun_in_a_window(fx, face);
+  ASSERT_TRUE(sun[1] >= 1 && sun[1] + 1 < face && sun[2] >= 1 && sun[2] + 1 < face);
+  const double power = luminance(fx.truth.texel(sun[0], sun[1], sun[2])) * texel_solid_angle(sun[1], sun[2], face);
+  const auto kernel = [](int di, int dj) { return di == 0 && dj == 0 ? 0.5 : di == 0 || dj == 0 ? 0.08 : 0.045; };
+  for (int di = -1; di <= 1; ++di)
+    for (int dj = -1; dj <= 1; ++dj) {
+      const int i = sun[1] + di, j = sun[2] + dj;
+      fx.truth.set_texel(sun[0], i, j, Rgb::Constant(float(kernel(di, dj) * power / texel_solid_angle(i, j, face))));
+    }
+  fx.truth.update_borders();
+  std::tie(fx.clipped, fx.mask) = clip(fx.truth, 0.5f);
+  see_room(fx);
+  const InverseLightingResult r = recover_clipped_sources(fx.in);
+  ASSERT_EQ(r.sources.size(), 1u);
+  ASSERT_TRUE(r.sources[0].determined) << r.message;
+  const CubeMap fitted = r.apply(fx.clipped);
+  double added = 0, truth = 0;  // over the sun's 3 × 3 texels
+  for (int i = sun[1] - 1; i <= sun[1] + 1; ++i)
+    for (int j = sun[2] - 1; j <= sun[2] + 1; ++j) {
+      const double d_omega = texel_solid_angle(i, j, face), clip_level = luminance(fx.clipped.texel(sun[0], i, j));
+      added += (luminance(fitted.texel(sun[0], i, j)) - clip_level) * d_omega;
+      truth += (luminance(fx.truth.texel(sun[0], i, j)) - clip_level) * d_omega;
+    }
+  const double window_true = cube_power(fx.truth) - cube_power(fx.clipped);
+  std::printf("the sun's 3 x 3 texels: added %.4g of a true %.4g; window added %.4g of a true %.4g\n", added, truth,
+              r.sources[0].added_power, window_true);
+  EXPECT_NEAR(added, truth, 0.1 * truth);
+  EXPECT_NEAR(r.sources[0].added_power, window_true, 0.1 * window_true);
+}
+
 }  // namespace
 }  // namespace insitu

@@ -1,6 +1,7 @@
 // Inverse lighting's coarse-to-fine step (relight/inverse_lighting.h): a part the coarse fit puts
 // far brighter than the rest of its source holds a concentrated light (the sun in a window's sky, a
-// lamp's bulb), which is placed at the one fit texel that explains the photo best.
+// lamp's bulb), which is placed at the one fit texel that explains the photo best, with a ring of
+// the texels around it free to take what of it spilled into them.
 #pragma once
 #include <vector>
 
@@ -15,6 +16,9 @@ namespace insitu::inverse_lighting_detail {
 // irradiance estimate (a RoomLight of the cube's size) at every pixel.
 inline constexpr double kConcentrated = 3.0;
 inline constexpr std::size_t kMaxFineParts = 128;
+// A point's ring: the cut texels whose direction lies within kRingPitches texel pitches (the angle
+// of a face-centre texel, (π/2)/n) of the point's: the eight around it (concentrated_light.cpp).
+inline constexpr double kRingPitches = 1.5;
 
 // The log-residual cost of a point of added scale `a` on the texel whose irradiance at each pixel
 // is `column`, over `base` (every other part at its scale): Σ log(1 + ((r − r̄_s)/0.1)²), r the
@@ -31,7 +35,7 @@ double point_cost(const std::vector<FitPixel>& pixels, const std::vector<double>
 std::pair<std::size_t, double> best_point(const std::vector<FitPixel>& pixels, const InverseLightingResult& res,
                                           const std::vector<std::size_t>& group, int surfaces);
 
-// Cuts the concentrated parts, gathers each source's cut texels into a point and the rest, and
+// Cuts the concentrated parts, gathers each source's cut texels into a point, its ring and the rest, and
 // fits the sources again from there. Returns whether that fit was kept (keep_finer_fit); where it
 // is not, `pixels` and `res` are the coarse fit's. `shares`: the box's opening shares at the
 // cube's size (RoomLight::opening_shares).
