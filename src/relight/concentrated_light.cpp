@@ -145,10 +145,10 @@ std::pair<std::vector<std::size_t>, std::vector<std::size_t>> ring_and_rest(cons
 // texels around its own, and the shots' optics and the cube's resampling spread it further. In the
 // large dark room the HDR shots put the sun's texel at ×77 500 of the clip level and the other 99
 // cut texels at ×332 together, most of it next to the sun; with only a point and the rest, the rest
-// (one scale for all of them) took ×22, and the window's added power came out 0.76 of the truth. With the ring (11
-// texels, ×2685 fitted against ×2978 in the HDR shots) the room's JPEG error went from 18.3 to
-// 14.7 % and its objects from 0.852 to 0.897; a ring of 3 pitches (45 texels) was worse, 20.9 %
-// (docs/validation.md, "A concentrated light as a point").
+// (one scale for all of them) took ×22, and the window's added power came out 0.76 of the truth.
+// With the ring (11 texels, ×2685 fitted against ×2978 in the HDR shots) the room's JPEG error
+// went from 18.0 to 14.3 % at 256 spp and its objects from 0.852 to 0.898; a ring of 3 pitches
+// (45 texels) was worse (docs/validation.md, "The point's ring").
 void gather_into_points(std::vector<FitPixel>& pixels, InverseLightingResult& res, std::size_t first_fine,
                         const CubeMap& radiance, int surfaces) {
   std::map<int, std::vector<std::size_t>> groups;
