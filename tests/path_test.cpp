@@ -180,6 +180,31 @@ TEST(Path, WallsOfTheRoomBoxCatchShadows) {
   EXPECT_GT(across[0], 0.97 * across[1]);
 }
 
+// The scene below: a constant sky, a real floor and ceiling of albedo 0.8, 2 m apart, and the
+// half-transparent black layer between them.
+struct LayerBetweenPlanes {
+  test::TempDir dir;
+  CubeMap env = test::constant_cube(8, Rgb::Constant(1.0f));
+  std::unique_ptr<EmbreeScene> layer;
+  RenderInputs in;
+  LayerBetweenPlanes() {
+    dir.write("layer.mtl", "newmtl black\nKd 0 0 0\nd 0.5\n");
+    Warnings w;
+    std::vector<Mesh> meshes;
+    meshes.push_back(load_obj(dir.write("layer.obj",
+                                        "mtllib layer.mtl\nusemtl black\n"
+                                        "v -1000 1 -1000\nv 1000 1 -1000\nv 1000 1 1000\nv -1000 1 1000\n"
+                                        "f 1 2 3 4\n"),
+                              w));
+    layer = std::make_unique<EmbreeScene>(std::move(meshes));
+    CatcherPlane ceiling = floor_plane(0.8f);
+    ceiling.point = Vec3f(0, 2, 0), ceiling.normal = Vec3f(0, -1, 0);
+    in.objects = layer.get();
+    in.environment = &env;
+    in.planes = {floor_plane(0.8f), ceiling};
+  }
+};
+
 // The objects' change followed between real surfaces (photo_bounces, catcher_bounces). Between a real floor and
 // a real ceiling 2 m above it, both infinite planes of albedo ρ = 0.8 in a constant sky L = 1, hangs
 // a black layer at 1 m that stops half the rays through it (MTL `d 0.5`: stochastic opacity,
@@ -190,23 +215,8 @@ TEST(Path, WallsOfTheRoomBoxCatchShadows) {
 // since a cosine sample crosses the layer with probability τ and then sees the ceiling's photo plus
 // its change: Δ_1 = −0.4, Δ_2 = −0.56, Δ_3 = −0.624, and Δ_∞ = ρ (τ − 1) / (1 − ρ τ) = −2/3.
 TEST(Path, CatcherBouncesFollowTheObjectsChangeBetweenRealSurfaces) {
-  test::TempDir dir;
-  const CubeMap env = test::constant_cube(8, Rgb::Constant(1.0f));
-  dir.write("layer.mtl", "newmtl black\nKd 0 0 0\nd 0.5\n");
-  Warnings w;
-  std::vector<Mesh> meshes;
-  meshes.push_back(load_obj(dir.write("layer.obj",
-                                      "mtllib layer.mtl\nusemtl black\n"
-                                      "v -1000 1 -1000\nv 1000 1 -1000\nv 1000 1 1000\nv -1000 1 1000\n"
-                                      "f 1 2 3 4\n"),
-                            w));
-  const EmbreeScene layer(std::move(meshes));
-  CatcherPlane ceiling = floor_plane(0.8f);
-  ceiling.point = Vec3f(0, 2, 0), ceiling.normal = Vec3f(0, -1, 0);
-  RenderInputs in;
-  in.objects = &layer;
-  in.environment = &env;
-  in.planes = {floor_plane(0.8f), ceiling};
+  LayerBetweenPlanes scene;
+  RenderInputs& in = scene.in;
   const double rho = 0.8, tau = 0.5;
   double delta = 0;
   for (int k = 1; k <= 4; ++k) {
@@ -227,6 +237,37 @@ TEST(Path, CatcherBouncesFollowTheObjectsChangeBetweenRealSurfaces) {
     const double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
     EXPECT_NEAR(without, rho, 1e-5) << bounces << " bounces";
     EXPECT_NEAR(mean, expected, 4 * se + 1e-4) << bounces << " bounces";
+  }
+}
+
+// The change grid serves the photo's pixels every bounce of the objects' change. The same layer
+// between floor and ceiling, in a room box 40 m across and 2 m high: with the grid (each node the
+// mean of 64 estimates over catcher_bounces = 1000 real surfaces) the floor's change is Δ_∞ =
+// −2/3 whatever photo_bounces is; without it, over photo_bounces = 1, Δ_1 = −0.4. The box's walls
+// take the floor's cosine samples below 5.7° of elevation (1 % of them), where the symmetry above
+// does not hold: at most 0.01 · ρ τ · 2/3 ≈ 0.003. A node's estimate spreads by about 1, so each
+// of 64 is off by about 1/8 and the ~30 nodes that the pixel's samples read (0.6 m apart, the
+// ceiling 2 m above) by 0.02 together, times ρ τ = 0.4: 0.009. Tolerance: 4 standard errors of
+// the pixel's mean plus 0.012.
+TEST(Path, TheChangeGridFollowsTheObjectsChangeOverEveryBounce) {
+  LayerBetweenPlanes scene;
+  RenderInputs& in = scene.in;
+  in.room = RoomBox{Vec3f(-20, 0, -20), Vec3f(20, 2, 20), Vec3f(0, 1, 0), {}, std::nullopt};
+  const double rho = 0.8, tau = 0.5;
+  for (const int grid_samples : {64, 0}) {
+    const double expected = grid_samples > 0 ? rho * (tau - 1) / (1 - rho * tau) : rho * (tau - 1);
+    const auto path =
+        make_integrator("path", in, {{"max_depth", 1000}, {"catcher_bounces", 1000}, {"change_grid", grid_samples}});
+    double sum = 0, sum2 = 0;
+    const int n = 20000;
+    for (int i = 0; i < n; ++i) {
+      Sampler s(13, std::uint64_t(grid_samples), std::uint64_t(i));
+      const CameraSample cs = path->sample({Vec3f(0.1f, 0.5f, 0.2f), Vec3f(0, -1, 0)}, s);
+      const double d = double(cs.with_objects[0]) - double(cs.without_objects[0]);
+      sum += d, sum2 += d * d;
+    }
+    const double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
+    EXPECT_NEAR(mean, expected, 4 * se + 0.012) << "change_grid " << grid_samples;
   }
 }
 

@@ -44,12 +44,16 @@ std::string error_of(const std::string& name, const json& render) {
 TEST(Registry, DefaultsAreFilledIn) {
   EXPECT_EQ(resolve("realtime", json::object()).params, json::object());
   EXPECT_EQ(resolve("irradiance", json::object()).params, (json{{"irradiance", "exact"}}));
-  EXPECT_EQ(resolve("path", json::object()).params,
-            (json{{"max_depth", 5}, {"catcher_bounces", 5}, {"photo_bounces", 1}, {"toward_objects", 0.5}}));
+  EXPECT_EQ(resolve("path", json::object()).params, (json{{"max_depth", 5},
+                                                          {"catcher_bounces", 5},
+                                                          {"photo_bounces", 1},
+                                                          {"toward_objects", 0.5},
+                                                          {"change_grid", 64}}));
 }
 
 TEST(Registry, FlatOrInTheIntegratorsOwnObject) {
-  const json path_3 = {{"max_depth", 3}, {"catcher_bounces", 5}, {"photo_bounces", 1}, {"toward_objects", 0.5}};
+  const json path_3 = {
+      {"max_depth", 3}, {"catcher_bounces", 5}, {"photo_bounces", 1}, {"toward_objects", 0.5}, {"change_grid", 64}};
   EXPECT_EQ(resolve("path", {{"max_depth", 3}}).params, path_3);
   EXPECT_EQ(resolve("path", {{"path", {{"max_depth", 3}}}}).params, path_3);
   // DESIGN.md's render.irradiance is the irradiance integrator's flat parameter; its object is too.
@@ -62,8 +66,8 @@ TEST(Registry, ErrorsNameTheKey) {
   EXPECT_EQ(error_of("path", {{"max_depth", 3}, {"path", {{"max_depth", 4}}}}),
             "scene.json:$.render.max_depth: given twice: here and in render.path (give it once)");
   EXPECT_EQ(error_of("path", {{"path", {{"max_dept", 4}}}}),
-            "scene.json:$.render.path.max_dept: unknown key (the path integrator reads: catcher_bounces, max_depth, "
-            "photo_bounces, toward_objects)");
+            "scene.json:$.render.path.max_dept: unknown key (the path integrator reads: catcher_bounces, change_grid, "
+            "max_depth, photo_bounces, toward_objects)");
   EXPECT_NE(error_of("path", {{"max_dept", 4}}).find("scene.json:$.render.max_dept: unknown key (expected one of: "),
             std::string::npos);
   // "irradiance" is a key twice over, once in each role (issue 46: the list named it twice, as if

@@ -56,12 +56,17 @@
 // y as at x, recursively (a path of real bounces; Russian roulette by ρ after the first); `without`
 // takes the photo at y as before. One bounce is Debevec's one-bounce catcher. The objects' own
 // paths follow the change over catcher_bounces real surfaces (default 5, all that max_depth's
-// default allows): the light the objects receive from walls they darken. The photo's pixels follow
-// it over photo_bounces (default 1): further bounces darken the whole room a little (in a small
-// white room by several per cent), but each pixel finds the objects through them only now and
-// then, which at preview spp is speckle all over the photo and costs 2.2–2.7× the render; they are
-// there for finals that need them (docs/validation.md, "Light between the real surfaces"). Where
-// no object interferes Δ is 0 bit for bit, and so is what it adds.
+// default allows): the light the objects receive from walls they darken. The photo's pixels take
+// it from the change grid: in a room box, Δ(y) is estimated once, before the render, at the nodes
+// of a grid over each real surface (each node the mean of change_grid estimates over
+// catcher_bounces surfaces, as an object's path takes them), and a pixel's cosine sample that
+// meets a real surface y adds ρ(x) Δ(y) read from it. The objects darken the whole room (in a
+// small white room by 8 %), which a pixel's own paths find only now and then: speckle all over the
+// photo at preview spp, and 2.2–2.7× the render. The grid is smooth and costs a fraction of a
+// second; it blurs Δ over a cell (1/64 of the room on a plane, 1/32 on a face), which only the
+// second bounce sees (docs/validation.md, "The change grid"). Without a room box, or with
+// change_grid 0, the pixels follow it over photo_bounces of their own paths (default 1). Where no
+// object interferes Δ is 0 bit for bit, and so is what it adds.
 //
 // Toward the objects. A real surface's reflection sample is cosine-weighted or, with probability
 // toward_objects (less where the objects fill its sky), drawn in the cones of the objects'
@@ -75,7 +80,8 @@
 //   catcher_bounces  real surfaces an object's path follows the objects' change over, 1 … 1000
 //              (default 5), within max_depth.
 //   photo_bounces  the same for the photo's pixels (a camera ray that meets a real surface),
-//              1 … 1000 (default 1).
+//              1 … 1000 (default 1), where the change grid does not serve them.
+//   change_grid  estimates of Δ at each node of the change grid, 0 … 4096 (default 64; 0: off).
 //   toward_objects  the share of a real surface's reflection samples drawn toward the objects,
 //              0 … 0.9 (default 0.5; 0: the cosine alone).
 // With environment.room_box the room is an emitting box (room_light.h): its faces carry the cube's
@@ -104,6 +110,7 @@
 #include "render/object_cones.h"
 #include "render/shading_normal.h"
 #include "light/env_sampling.h"
+#include "light/plane_grid.h"
 #include "light/plane_irradiance.h"
 #include "light/room_light.h"
 
@@ -115,7 +122,8 @@ constexpr int kSheerLayers = 16;  // the sheer surfaces a camera ray crosses, at
 
 class PathIntegrator final : public Integrator {
  public:
-  PathIntegrator(const RenderInputs& in, int max_depth, int catcher_bounces, int photo_bounces, float toward_objects)
+  PathIntegrator(const RenderInputs& in, int max_depth, int catcher_bounces, int photo_bounces, float toward_objects,
+                 int change_grid)
       : in_(in),
         objects_(in.objects),
         cones_(in.objects->meshes()),
@@ -138,6 +146,7 @@ class PathIntegrator final : public Integrator {
       normal[axis] = face % 2 == 0 ? -1.0f : 1.0f;
       wall_irradiance_[std::size_t(face)] = cache_->plane(point, normal, 32, in.stop);
     }
+    if (change_grid > 0 && !objects_->meshes().empty()) build_change_grids(change_grid, in.stop);
   }
 
   static std::shared_ptr<const RoomLight> room_light(RoomCache& cache, const std::atomic<bool>* stop) {
@@ -223,6 +232,7 @@ class PathIntegrator final : public Integrator {
     bool albedo_from_photo = true;
     Rgb albedo = Rgb::Zero(), irradiance = Rgb::Zero();
     bool wall = false;  // a face of the room box: also the room's emitter
+    int surface = -1;   // its change grid: a plane's index, the box's faces after them; -1: none
   };
   // A wall of the room box (not an opening) that a ray from inside the box leaves through, before
   // t_max: the real walls catch the objects' shadows and light like the floor.
@@ -238,6 +248,7 @@ class PathIntegrator final : public Integrator {
     n[axis] = max_side ? -1.0f : 1.0f;
     const PlaneIrradiance& grid = *wall_irradiance_[std::size_t(2 * axis + (max_side ? 0 : 1))];
     *c = {true, t, x, n, true, Rgb::Zero(), grid.at(x), true};
+    c->surface = int(in_.planes.size()) + 2 * axis + (max_side ? 0 : 1);
     return true;
   }
 
@@ -250,6 +261,7 @@ class PathIntegrator final : public Integrator {
       const Vec3f x = ray.origin + t * ray.dir;
       const PlaneIrradiance* grid = plane_irradiance_.empty() ? nullptr : plane_irradiance_[std::size_t(k)].get();
       c = {true, t, x, p.normal, p.albedo_from_photo, p.albedo, grid ? grid->at(x) : p.irradiance};
+      c.surface = k;
       t_max = t;
     }
     if (in_.catcher_meshes && !in_.catcher_meshes->empty()) {
@@ -422,7 +434,7 @@ class PathIntegrator final : public Integrator {
     Rgb with() const { return without + change; }
   };
   CatcherEstimate estimate_catcher(const CatcherHit& c, const Vec3f& dir, Sampler& sampler, int depth, int bounces,
-                                   bool base = true) const {
+                                   bool base = true, bool from_grid = false) const {
     CatcherEstimate e;
     e.rho_over_pi = albedo_over_pi(c, dir);
     const Vec3f& n = c.n;
@@ -461,7 +473,9 @@ class PathIntegrator final : public Integrator {
       if (object_first)
         e.change += kPiF * e.rho_over_pi * trace_from({origin, wi}, hit, sampler, depth + 1) * scale - behind;
     }
-    if (!object_first && bounces > 1 && depth + 1 < max_depth_)
+    if (!object_first && from_grid)
+      e.change += scale * kPiF * e.rho_over_pi * grid_change({origin, wi}, hit);
+    else if (!object_first && bounces > 1 && depth + 1 < max_depth_)
       e.change += scale * change_beyond(e.rho_over_pi, origin, wi, hit, sampler, depth, bounces, base);
     return e;
   }
@@ -482,8 +496,69 @@ class PathIntegrator final : public Integrator {
     return kPiF * rho_over_pi * d.change / q;
   }
 
+  // Δ(y) from the change grid at the real surface y the ray meets before `hit`; 0 where it meets none.
+  Rgb grid_change(const Ray& ray, const Hit& hit) const {
+    const CatcherHit y = find_catcher(ray, hit.valid() ? hit.t : kInfinity, /*walls=*/true);
+    if (!y.valid || y.surface < 0 || change_[std::size_t(y.surface)].nodes() == 0) return Rgb::Zero();
+    return change_[std::size_t(y.surface)].at(y.x);
+  }
+
+  // The change grid: Δ(y) at the nodes of a grid over each real surface (the planes' 64 cells to
+  // the box, the faces' 32), each the mean of `samples` estimates over catcher_bounces real
+  // surfaces, as an object's path takes it.
+  void build_change_grids(int samples, const std::atomic<bool>* stop) {
+    change_.resize(in_.planes.size() + 6);
+    for (std::size_t s = 0; s < change_.size(); ++s) {
+      CatcherHit c;
+      if (!change_surface(s, &c, &change_[s])) continue;
+      change_[s].fill([&](const Vec3f& x, std::uint64_t key) { return change_at(c, s, x, key, samples); }, stop);
+    }
+  }
+
+  // Surface s of the change grid (a plane, or a face of the box after them) as a catcher hit
+  // without its point, and its grid; false for a face that a plane lies on (the floor's).
+  bool change_surface(std::size_t s, CatcherHit* c, PlaneGrid* grid) const {
+    const std::size_t planes = in_.planes.size();
+    Vec3f point = Vec3f::Zero(), normal = Vec3f::Zero();
+    c->valid = true;
+    if (s < planes) {
+      const CatcherPlane& p = in_.planes[s];
+      point = p.point, normal = p.normal, c->albedo_from_photo = p.albedo_from_photo, c->albedo = p.albedo;
+    } else {
+      const int face = int(s - planes), axis = face / 2;
+      point = face % 2 == 0 ? in_.room->max : in_.room->min;
+      normal[axis] = face % 2 == 0 ? -1.0f : 1.0f;
+      c->wall = true;
+      for (const CatcherPlane& p : in_.planes)
+        if (p.normal.dot(normal) > 0.999f && std::abs((p.point - point).dot(normal)) < 1e-3f) return false;
+    }
+    c->n = normal.normalized();
+    *grid = PlaneGrid(*in_.room, point, normal, s < planes ? 64 : 32);
+    return true;
+  }
+
+  // Δ at point x of surface s: the mean of `samples` estimates, as at a real surface an object's
+  // ray meets straight on.
+  Rgb change_at(CatcherHit c, std::size_t s, const Vec3f& x, std::uint64_t key, int samples) const {
+    const std::size_t planes = in_.planes.size();
+    c.x = x;
+    if (s >= planes)
+      c.irradiance = wall_irradiance_[s - planes]->at(x);
+    else if (!plane_irradiance_.empty() && plane_irradiance_[s])
+      c.irradiance = plane_irradiance_[s]->at(x);
+    else
+      c.irradiance = in_.planes[s].irradiance;
+    Rgb sum = Rgb::Zero();
+    for (int k = 0; k < samples; ++k) {
+      Sampler sampler(0xC4A96E6D1Dull, (std::uint64_t(s) << 40) + key, std::uint64_t(k));
+      sum += estimate_catcher(c, -c.n, sampler, 0, catcher_bounces_, /*base=*/false).change;
+    }
+    return sum / float(samples);
+  }
+
   void catcher(const Ray& camera_ray, const CatcherHit& c, Sampler& sampler, CameraSample& out) const {
-    const CatcherEstimate e = estimate_catcher(c, camera_ray.dir, sampler, 0, photo_bounces_);
+    const CatcherEstimate e =
+        estimate_catcher(c, camera_ray.dir, sampler, 0, photo_bounces_, /*base=*/true, !change_.empty());
     out.with_objects = e.with();
     out.without_objects = e.without;
     out.normal = c.n;
@@ -502,25 +577,30 @@ class PathIntegrator final : public Integrator {
   float toward_objects_;                                                   // s_0 of object_cones.h's ReflectedSampling
   std::vector<std::shared_ptr<const PlaneIrradiance>> plane_irradiance_;   // by plane, with a room box
   std::array<std::shared_ptr<const PlaneIrradiance>, 6> wall_irradiance_;  // by face of the room box
+  std::vector<PlaneGrid> change_;  // Δ by CatcherHit::surface, with change_grid; empty: photo_bounces' paths
 };
 
 json read_path_params(IntegratorParams& params) {
   int max_depth = 5, catcher_bounces = 5, photo_bounces = 1;
   double toward_objects = 0.5;
+  int change_grid = 64;
   if (auto v = params.find("max_depth")) max_depth = int(v->integer(1, 1000));
   if (auto v = params.find("catcher_bounces")) catcher_bounces = int(v->integer(1, 1000));
   if (auto v = params.find("photo_bounces")) photo_bounces = int(v->integer(1, 1000));
   if (auto v = params.find("toward_objects")) toward_objects = v->number(0, 0.9);
+  if (auto v = params.find("change_grid")) change_grid = int(v->integer(0, 4096));
   return {{"max_depth", max_depth},
           {"catcher_bounces", catcher_bounces},
           {"photo_bounces", photo_bounces},
-          {"toward_objects", toward_objects}};
+          {"toward_objects", toward_objects},
+          {"change_grid", change_grid}};
 }
 
 std::unique_ptr<Integrator> make_path_integrator(const RenderInputs& inputs, const json& params) {
   return std::make_unique<PathIntegrator>(
       inputs, params.at("max_depth").get<int>(), params.at("catcher_bounces").get<int>(),
-      params.at("photo_bounces").get<int>(), params.at("toward_objects").get<float>());
+      params.at("photo_bounces").get<int>(), params.at("toward_objects").get<float>(),
+      params.at("change_grid").get<int>());
 }
 
 }  // namespace

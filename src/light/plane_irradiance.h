@@ -17,6 +17,7 @@
 #include <atomic>
 #include <vector>
 
+#include "light/plane_grid.h"
 #include "light/room_light.h"
 
 namespace insitu {
@@ -26,15 +27,12 @@ class PlaneIrradiance {
   // `stop` (core/stop.h) is looked at before each row of nodes.
   PlaneIrradiance(const RoomLight& room, const RoomBox& box, const Vec3f& point, const Vec3f& normal, int cells = 64,
                   int samples = 256, const std::atomic<bool>* stop = nullptr);
-  Rgb at(const Vec3f& x) const;  // bilinear; clamped to the grid
+  Rgb at(const Vec3f& x) const { return grid_.at(x); }  // bilinear; clamped to the grid
   // The estimator at one point, for the grid and the tests.
   static Rgb estimate(const RoomLight& room, const Vec3f& x, const Vec3f& normal, int samples, std::uint64_t key);
 
  private:
-  Vec3f origin_, u_, v_, normal_;  // x = origin + s·u + t·v, s and t in cells
-  float cell_ = 1;
-  int nu_ = 0, nv_ = 0;  // nodes along u and v
-  std::vector<Rgb> nodes_;
+  PlaneGrid grid_;
 };
 
 }  // namespace insitu
