@@ -252,6 +252,23 @@ Comparison compare_with_cycles(ExportFixture& fx, int spp, bool mirror_world = f
 // on the floor's darkened pixels, a mean over some 500 pixels) agrees within 0.02. The negative control: the same world
 // mirrored fails both.
 //
+// The exported scene's Cycles gets insitu's limits: every bounce at the path's depth, and the
+// cut-outs crossed as insitu crosses them, without end (Cycles's default 8 would end a path behind
+// the 8th sheer layer). A limit set by a name Cycles lacks would not reach it: this reads them back.
+TEST(BlenderExport, CyclesGetsInsitusBounceLimits) {
+  if (!have_blender()) GTEST_SKIP() << "blender is not installed (apt-get install blender)";
+  ExportFixture fx;
+  const std::string script = fx.dir.file("ball.py"), log = fx.dir.file("blender.log");
+  ASSERT_EQ(test::run_insitu(fx.dir, "export-blender " + fx.write() + " -o " + script).exit_code, 0);
+  const std::string read_back =
+      "import bpy; c = bpy.data.scenes['insitu'].cycles; print('LIMITS', c.max_bounces, c.diffuse_bounces, "
+      "c.glossy_bounces, c.transmission_bounces, c.transparent_max_bounces)";
+  const std::string cmd =
+      fmt::format("blender -b --factory-startup --python {} --python-expr \"{}\" > {} 2>&1", script, read_back, log);
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << test::slurp(log);
+  EXPECT_NE(test::slurp(log).find("LIMITS 5 5 5 5 1024\n"), std::string::npos) << test::slurp(log);
+}
+
 // "glTF principled": the ball as a glTF sphere of a half-metallic, moderately rough material, which
 // Blender's own glTF importer turns into its Principled BSDF: insitu's principled model
 // (render/bsdf.h) against Cycles's, lobe by lobe, under the same bound. "MTL principled": the ball

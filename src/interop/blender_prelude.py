@@ -44,13 +44,30 @@ def cycles_common(scene, samples, seed):
     scene.view_settings.view_transform = "Standard"
 
 
+# insitu's cut-outs never end a path: a shadow ray is attenuated by every one it crosses, and a
+# traced ray passes through them stochastically without counting a bounce (src/render/cutouts.h).
+# Cycles ends a path after transparent_max_bounces of them (default 8); 1024 is its largest.
+CUTOUT_CROSSINGS = 1024
+
+
+def set_bounces(scene, bounces):
+    """Every kind of bounce capped at `bounces`, as insitu's max_depth caps a path, and the cut-outs
+    as insitu crosses them. Each setting by its own name: Cycles's settings take a name they lack
+    as a new Python attribute without a word (a misspelt "transparent_bounces" once left the
+    default 8 in place), so a name Cycles lacks fails here."""
+    limits = {"max_bounces": bounces, "diffuse_bounces": bounces, "glossy_bounces": bounces,
+              "transmission_bounces": bounces, "transparent_max_bounces": CUTOUT_CROSSINGS}
+    for name, value in limits.items():
+        if name not in scene.cycles.bl_rna.properties:
+            raise AttributeError("Cycles has no setting " + name)
+        setattr(scene.cycles, name, value)
+
+
 def render_settings(scene, samples, max_bounces, seed):
     """The export's render: cycles_common, the scene's bounces, caustics, linear output shown through
     the plain sRGB curve, a transparent film for the shadow catchers."""
     cycles_common(scene, samples, seed)
-    scene.cycles.max_bounces = max_bounces
-    for kind in ("diffuse", "glossy", "transmission", "transparent"):
-        setattr(scene.cycles, kind + "_bounces", max_bounces)
+    set_bounces(scene, max_bounces)
     scene.cycles.caustics_reflective = True
     scene.cycles.caustics_refractive = True
     scene.render.film_transparent = True

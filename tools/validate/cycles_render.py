@@ -47,7 +47,7 @@ from mathutils import Matrix, Vector
 # The Cycles settings shared with insitu's Blender export (src/interop/blender_prelude.py).
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
                                 "src", "interop"))
-from blender_prelude import cycles_common, gltf_object  # noqa: E402
+from blender_prelude import cycles_common, gltf_object, set_bounces  # noqa: E402
 
 argv = sys.argv[sys.argv.index("--") + 1:]
 desc_path, out_dir = os.path.abspath(argv[0]), os.path.abspath(argv[1])
@@ -74,10 +74,7 @@ FULL_BOUNCES = 32
 
 def setup_render(scene, samples, width, height, seed):
     cycles_common(scene, samples, seed)  # the settings insitu's Blender export uses too
-    # Every kind of bounce capped alike: as insitu's max_depth caps a path, or at FULL_BOUNCES.
-    bounces = desc.get("max_depth", FULL_BOUNCES)
-    for name in ("max_bounces", "diffuse_bounces", "glossy_bounces", "transmission_bounces", "transparent_max_bounces"):
-        setattr(scene.cycles, name, bounces)
+    set_bounces(scene, desc.get("max_depth", FULL_BOUNCES))  # as insitu's max_depth caps a path
     scene.render.resolution_x, scene.render.resolution_y = width, height
     scene.render.resolution_percentage = 100
     scene.render.image_settings.file_format = "OPEN_EXR"
