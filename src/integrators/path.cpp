@@ -140,11 +140,8 @@ class PathIntegrator final : public Integrator {
       plane_irradiance_.push_back(p.albedo_from_photo ? cache_->plane(p.point, p.normal, 64, in.stop) : nullptr);
     // The box's faces catch too (by face: +x, −x, +y, −y, +z, −z; normals into the room).
     for (int face = 0; face < 6; ++face) {
-      const int axis = face / 2;
-      Vec3f point = in_.room->min, normal = Vec3f::Zero();
-      if (face % 2 == 0) point[axis] = in_.room->max[axis];
-      normal[axis] = face % 2 == 0 ? -1.0f : 1.0f;
-      wall_irradiance_[std::size_t(face)] = cache_->plane(point, normal, 32, in.stop);
+      const FacePlane f = face_plane(*in_.room, face);
+      wall_irradiance_[std::size_t(face)] = cache_->plane(f.point, f.normal, 32, in.stop);
     }
     if (change_grid > 0 && !objects_->meshes().empty()) build_change_grids(change_grid, in.stop);
   }
@@ -241,14 +238,14 @@ class PathIntegrator final : public Integrator {
     int axis = 0;
     if (!in_.room || !room_.inside(ray.origin) || !room_.exit(ray.origin, ray.dir, &t, &axis) || !(t < t_max))
       return false;
-    const bool max_side = ray.dir[axis] > 0;
-    Vec3f x = ray.origin + t * ray.dir, n = Vec3f::Zero();
-    x[axis] = max_side ? in_.room->max[axis] : in_.room->min[axis];
+    const int face = box_face(axis, ray.dir[axis] > 0);
+    const FacePlane f = face_plane(*in_.room, face);
+    Vec3f x = ray.origin + t * ray.dir;
+    x[axis] = f.point[axis];
     if (room_.openings_at(x, axis) > 0) return false;
-    n[axis] = max_side ? -1.0f : 1.0f;
-    const PlaneIrradiance& grid = *wall_irradiance_[std::size_t(2 * axis + (max_side ? 0 : 1))];
-    *c = {true, t, x, n, true, Rgb::Zero(), grid.at(x), true};
-    c->surface = int(in_.planes.size()) + 2 * axis + (max_side ? 0 : 1);
+    const PlaneIrradiance& grid = *wall_irradiance_[std::size_t(face)];
+    *c = {true, t, x, f.normal, true, Rgb::Zero(), grid.at(x), true};
+    c->surface = int(in_.planes.size()) + face;
     return true;
   }
 
@@ -525,9 +522,8 @@ class PathIntegrator final : public Integrator {
       const CatcherPlane& p = in_.planes[s];
       point = p.point, normal = p.normal, c->albedo_from_photo = p.albedo_from_photo, c->albedo = p.albedo;
     } else {
-      const int face = int(s - planes), axis = face / 2;
-      point = face % 2 == 0 ? in_.room->max : in_.room->min;
-      normal[axis] = face % 2 == 0 ? -1.0f : 1.0f;
+      const FacePlane f = face_plane(*in_.room, int(s - planes));
+      point = f.point, normal = f.normal;
       c->wall = true;
       for (const CatcherPlane& p : in_.planes)
         if (p.normal.dot(normal) > 0.999f && std::abs((p.point - point).dot(normal)) < 1e-3f) return false;

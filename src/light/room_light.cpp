@@ -25,6 +25,16 @@ float rect_area(const RoomOpening& o) {
 
 }  // namespace
 
+FacePlane face_plane(const RoomBox& box, int face) {
+  const int axis = face / 2;
+  const bool max_side = face % 2 == 0;
+  FacePlane f;
+  f.point = box.min;
+  if (max_side) f.point[axis] = box.max[axis];
+  f.normal[axis] = max_side ? -1.0f : 1.0f;
+  return f;
+}
+
 RoomLight::RoomLight(const CubeMap& cube, std::optional<RoomBox> box, const std::vector<float>* outside_share)
     : box_(std::move(box)) {
   if (box_ && !box_->openings.empty())

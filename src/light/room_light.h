@@ -61,6 +61,15 @@ struct RoomBox {
   std::optional<Rgb> unseen_outside;
 };
 
+// The box's faces, numbered as a cube's: +x, −x, +y, −y, +z, −z (face 2 axis on the max side).
+inline int box_face(int axis, bool max_side) { return 2 * axis + (max_side ? 0 : 1); }
+
+// Face `face`'s plane: a point on it (the min corner moved onto it) and its unit normal into the room.
+struct FacePlane {
+  Vec3f point = Vec3f::Zero(), normal = Vec3f::Zero();
+};
+FacePlane face_plane(const RoomBox& box, int face);
+
 // The radiance arriving at x along a direction and the density of sample() producing it.
 struct RoomLookup {
   Rgb radiance = Rgb::Zero();
