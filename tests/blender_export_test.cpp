@@ -241,17 +241,6 @@ Comparison compare_with_cycles(ExportFixture& fx, int spp, bool mirror_world = f
   return c;
 }
 
-// Cycles on the exported scene against insitu's path integrator, both at 256 spp, with a distant
-// environment and with a room box (a window in one wall). The objects' L1 difference is bounded by
-// 2 √((f_i² + f_c²) / 2) + 2 %, f_i and f_c the L1 differences of two renders of each renderer
-// (seeds 1, 2): noise alone gives k·√(σ_c² + σ_i²) between them, and f = k·√2·σ for each, so the
-// root is what noise alone gives and 2 its margin; the 2 % is for what the export approximates (the
-// BSDF as Cycles's nodes, the catchers' mean albedo: 1.5 % beyond the noise with the distant world).
-// (The bound was 2 f_i + 1 % while insitu's samples were independent: its noise floor stood in for
-// Cycles's, and its slack hid that the export's own difference is nearer 2 % than 1 %.) The shadow (composite / photo
-// on the floor's darkened pixels, a mean over some 500 pixels) agrees within 0.02. The negative control: the same world
-// mirrored fails both.
-//
 // The exported scene's Cycles gets insitu's limits: every bounce at the path's depth, and the
 // cut-outs crossed as insitu crosses them, without end (Cycles's default 8 would end a path behind
 // the 8th sheer layer). A limit set by a name Cycles lacks would not reach it: this reads them back.
@@ -269,6 +258,17 @@ TEST(BlenderExport, CyclesGetsInsitusBounceLimits) {
   EXPECT_NE(test::slurp(log).find("LIMITS 5 5 5 5 1024\n"), std::string::npos) << test::slurp(log);
 }
 
+// Cycles on the exported scene against insitu's path integrator, both at 256 spp, with a distant
+// environment and with a room box (a window in one wall). The objects' L1 difference is bounded by
+// 2 √((f_i² + f_c²) / 2) + 2 %, f_i and f_c the L1 differences of two renders of each renderer
+// (seeds 1, 2): noise alone gives k·√(σ_c² + σ_i²) between them, and f = k·√2·σ for each, so the
+// root is what noise alone gives and 2 its margin; the 2 % is for what the export approximates (the
+// BSDF as Cycles's nodes, the catchers' mean albedo: 1.5 % beyond the noise with the distant world).
+// (The bound was 2 f_i + 1 % while insitu's samples were independent: its noise floor stood in for
+// Cycles's, and its slack hid that the export's own difference is nearer 2 % than 1 %.) The shadow (composite / photo
+// on the floor's darkened pixels, a mean over some 500 pixels) agrees within 0.02. The negative control: the same world
+// mirrored fails both.
+//
 // "glTF principled": the ball as a glTF sphere of a half-metallic, moderately rough material, which
 // Blender's own glTF importer turns into its Principled BSDF: insitu's principled model
 // (render/bsdf.h) against Cycles's, lobe by lobe, under the same bound. "MTL principled": the ball
