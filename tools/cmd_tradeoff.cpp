@@ -132,6 +132,122 @@ void write_outputs(const TradeoffArgs& a, const std::vector<Row>& rows, const Re
     std::printf("| %s | %d | %.3f | %.4f | %.4f |\n", r.label().c_str(), r.spp, r.seconds, r.rel_rmse, r.rest_rmse);
 }
 
+// One tradeoff: the scene loaded once (the runs differ only in their render settings), the
+// reference render and the regions it sets, and the rows measured against it.
+class Tradeoff {
+ public:
+  Tradeoff(const TradeoffArgs& a, LoadedScene scene)
+      : a_(a),
+        scene_(std::move(scene)),
+        reference_name_(reference_integrator().name),
+        legacy_name_(legacy_integrator().name) {}
+
+  // The reference integrator at --reference-spp with another seed, and the regions it sets: the
+  // pixels it changes visibly, and the rest of the photo.
+  void render_reference() {
+    std::fprintf(stderr, "tradeoff: reference, %s at %d spp...\n", reference_name_.c_str(), a_.reference_spp);
+    run(reference_name_, IrradianceMode::kExact, a_.reference_spp, std::uint64_t(a_.seed) + 1000, &reference_);
+    mask_ = changed_mask(scene_.photo_linear, reference_.composite_linear, reference_.layers);
+    rest_ = mask_;
+    for (float& v : rest_.data) v = v != 0.0f ? 0.0f : 1.0f;
+  }
+
+  // Every integrator of the registry: a Monte Carlo one over the ladder, the others at 1 spp (a
+  // legacy frame) and 16 (anti-aliased), in each irradiance mode when it reads one. The A/B
+  // picture sets the legacy path against the best path-traced render.
+  void measure_registry() {
+    for (const IntegratorEntry& e : integrator_registry()) {
+      const std::string name = e.name;
+      Warnings ignored;
+      const bool reads_mode =
+          resolve_integrator(name, {json::object(), "", "$.render"}, ignored).params.contains("irradiance");
+      for (const auto& [mode, mode_name] : kIrradianceModes) {
+        if (!reads_mode && mode != IrradianceMode::kExact) continue;
+        if (mode == IrradianceMode::kVolume && !scene_.spec.environment.room_box) continue;  // it needs one
+        const std::string label = reads_mode ? name + "/" + mode_name : name;
+        if (!e.uses.monte_carlo) {
+          for (int spp : {1, 16})
+            measure(label, name, mode, spp, name == legacy_name_ && spp == 16 ? &legacy_result_ : nullptr);
+          continue;
+        }
+        for (int spp : a_.ladder) measure(label, name, mode, spp, name == reference_name_ ? &best_reference_ : nullptr);
+      }
+    }
+  }
+
+  // The reference integrator's own variants over the ladder.
+  void measure_reference_variants() {
+    Warnings ignored;
+    const json params = resolve_integrator(reference_name_, scene_.spec.render.block, ignored).params;
+    // Debevec's one-bounce catcher (path.cpp, catcher_bounces), where the scene has real surfaces
+    // for the objects' change to travel between: faster, and biased where the walls are bright.
+    if ((scene_.room || scene_.spec.local_scene.size() > 1) && params.value("catcher_bounces", 1) > 1)
+      for (int spp : a_.ladder) measure_reference("/1 catcher bounce", spp, {{"catcher_bounces", 1}});
+    // The real surfaces' reflection by the cosine alone: where the objects' change far from them is
+    // a few lucky hits (path.cpp, "Toward the objects").
+    if ((scene_.room || !scene_.spec.local_scene.empty()) && params.value("toward_objects", 0.0) > 0)
+      for (int spp : a_.ladder) measure_reference("/cosine only", spp, {{"toward_objects", 0}});
+    // The composite denoised (output/denoise.h): the time includes the denoiser's.
+    for (int spp : a_.ladder) measure_reference(" denoised", spp, json::object(), 0, true);
+    const int cap = *std::max_element(a_.ladder.begin(), a_.ladder.end());
+    for (double target : a_.noise_targets) measure_reference(" adaptive", cap, json::object(), target);
+  }
+
+  void write() const {
+    write_outputs(a_, rows_, legacy_result_, best_reference_);
+    std::printf("wrote tradeoff.csv, tradeoff.png and ab.png to %s (reference: %s, %d spp, %ld pixels changed)\n",
+                a_.out.c_str(), reference_name_.c_str(), a_.reference_spp,
+                long(std::count(mask_.data.begin(), mask_.data.end(), 1.0f)));
+  }
+
+ private:
+  // One render with these settings; its seconds: precomputation, render and denoiser.
+  double run(const std::string& integrator, IrradianceMode mode, int spp, std::uint64_t seed, RenderResult* result,
+             double noise_target = 0, const json& params = json::object(), bool denoise = false) {
+    scene_.spec.render.integrator = integrator;
+    scene_.spec.denoise = denoise;
+    JsonBlock render = scene_.spec.render.block;
+    render.value["irradiance"] = irradiance_mode_name(mode);
+    for (const auto& [key, value] : params.items()) render.value[key] = value;
+    Warnings printed_once;  // the scene's warnings were printed after loading
+    scene_.integrator = resolve_integrator(integrator, render, printed_once);
+    scene_.spec.render.spp = spp;
+    scene_.spec.render.seed = seed;
+    scene_.spec.render.noise_target = noise_target;
+    *result = render_scene(scene_);
+    return result->prepare_seconds + result->layers.seconds + result->denoise_seconds;
+  }
+
+  // A row: one render against the reference, over the changed region and the rest of the photo.
+  void measure(const std::string& name, const std::string& integrator, IrradianceMode mode, int spp, RenderResult* keep,
+               double noise_target = 0, const json& params = json::object(), bool denoise = false) {
+    RenderResult r;
+    const double seconds = run(integrator, mode, spp, std::uint64_t(a_.seed), &r, noise_target, params, denoise);
+    const CompareResult c = compare_images(r.composite_linear, reference_.composite_linear, &mask_);
+    const CompareResult c_rest = compare_images(r.composite_linear, reference_.composite_linear, &rest_);
+    if (noise_target > 0) spp = int(std::lround(mean_spp(r.layers)));
+    rows_.push_back({name, spp, seconds, c.masked->relative_rmse, c_rest.masked->relative_rmse, noise_target,
+                     find_integrator(integrator)->uses.monte_carlo});
+    std::fprintf(stderr, "tradeoff: %-20s %5d spp %8.3f s  rel. RMSE %.4f, rest %.4f\n", rows_.back().label().c_str(),
+                 spp, seconds, c.masked->relative_rmse, c_rest.masked->relative_rmse);
+    if (keep) *keep = std::move(r);
+  }
+
+  // A row of the reference integrator, named after it with `suffix`, in the exact irradiance.
+  void measure_reference(const std::string& suffix, int spp, const json& params, double noise_target = 0,
+                         bool denoise = false) {
+    measure(reference_name_ + suffix, reference_name_, IrradianceMode::kExact, spp, nullptr, noise_target, params,
+            denoise);
+  }
+
+  const TradeoffArgs& a_;
+  LoadedScene scene_;
+  const std::string reference_name_, legacy_name_;
+  RenderResult reference_, legacy_result_, best_reference_;
+  Image mask_, rest_;  // the pixels the reference changes visibly, and the rest of the photo
+  std::vector<Row> rows_;
+};
+
 int run_tradeoff(const TradeoffArgs& a) {
   SceneSpec spec = parse_scene_file(a.scene);
   spec.output = {};
@@ -139,93 +255,13 @@ int run_tradeoff(const TradeoffArgs& a) {
   for (const char* name : {"tradeoff.csv", "tradeoff.png", "ab.png"})
     outputs.push_back({(std::filesystem::path(a.out) / name).string(), "an output"});
   check_outputs(scene_input_files(spec), outputs);
-  // Loaded once: the runs differ only in their render settings.
   LoadedScene scene = load_scene(spec);
   print_warnings(scene.warnings);
-  auto run = [&](const std::string& integrator, IrradianceMode mode, int spp, std::uint64_t seed, RenderResult* result,
-                 double noise_target = 0, const json& params = json::object(), bool denoise = false) {
-    scene.spec.render.integrator = integrator;
-    scene.spec.denoise = denoise;
-    JsonBlock render = scene.spec.render.block;
-    render.value["irradiance"] = irradiance_mode_name(mode);
-    for (const auto& [key, value] : params.items()) render.value[key] = value;
-    Warnings printed_once;  // the scene's warnings were printed after loading
-    scene.integrator = resolve_integrator(integrator, render, printed_once);
-    scene.spec.render.spp = spp;
-    scene.spec.render.seed = seed;
-    scene.spec.render.noise_target = noise_target;
-    *result = render_scene(scene);
-    return result->prepare_seconds + result->layers.seconds + result->denoise_seconds;
-  };
-  const std::string reference_name = reference_integrator().name, legacy_name = legacy_integrator().name;
-  std::fprintf(stderr, "tradeoff: reference, %s at %d spp...\n", reference_name.c_str(), a.reference_spp);
-  RenderResult reference;
-  run(reference_name, IrradianceMode::kExact, a.reference_spp, std::uint64_t(a.seed) + 1000, &reference);
-  const Image mask = changed_mask(scene.photo_linear, reference.composite_linear, reference.layers);
-  Image rest = mask;
-  for (float& v : rest.data) v = v != 0.0f ? 0.0f : 1.0f;
-  std::vector<Row> rows;
-  RenderResult legacy_result, best_reference;
-  auto measure = [&](const std::string& name, const std::string& integrator, IrradianceMode mode, int spp,
-                     RenderResult* keep, double noise_target = 0, const json& params = json::object(),
-                     bool denoise = false) {
-    RenderResult r;
-    const double seconds = run(integrator, mode, spp, std::uint64_t(a.seed), &r, noise_target, params, denoise);
-    const CompareResult c = compare_images(r.composite_linear, reference.composite_linear, &mask);
-    const CompareResult c_rest = compare_images(r.composite_linear, reference.composite_linear, &rest);
-    if (noise_target > 0) spp = int(std::lround(mean_spp(r.layers)));
-    rows.push_back({name, spp, seconds, c.masked->relative_rmse, c_rest.masked->relative_rmse, noise_target,
-                    find_integrator(integrator)->uses.monte_carlo});
-    std::fprintf(stderr, "tradeoff: %-20s %5d spp %8.3f s  rel. RMSE %.4f, rest %.4f\n", rows.back().label().c_str(),
-                 spp, seconds, c.masked->relative_rmse, c_rest.masked->relative_rmse);
-    if (keep) *keep = std::move(r);
-  };
-  // Every integrator of the registry: a Monte Carlo one over the ladder, the others at 1 spp (a
-  // legacy frame) and 16 (anti-aliased), in each irradiance mode when it reads one. The A/B picture sets the
-  // legacy path against the best path-traced render.
-  for (const IntegratorEntry& e : integrator_registry()) {
-    const std::string name = e.name;
-    Warnings ignored;
-    const bool reads_mode =
-        resolve_integrator(name, {json::object(), "", "$.render"}, ignored).params.contains("irradiance");
-    for (const auto& [mode, mode_name] : kIrradianceModes) {
-      if (!reads_mode && mode != IrradianceMode::kExact) continue;
-      if (mode == IrradianceMode::kVolume && !scene.spec.environment.room_box) continue;  // it needs one
-      const std::string label = reads_mode ? name + "/" + mode_name : name;
-      if (!e.uses.monte_carlo) {
-        for (int spp : {1, 16})
-          measure(label, name, mode, spp, name == legacy_name && spp == 16 ? &legacy_result : nullptr);
-        continue;
-      }
-      for (int spp : a.ladder) measure(label, name, mode, spp, name == reference_name ? &best_reference : nullptr);
-    }
-  }
-  // The reference with Debevec's one-bounce catcher (path.cpp, catcher_bounces), where the scene has
-  // real surfaces for the objects' change to travel between: faster, and biased where the walls
-  // are bright.
-  Warnings ignored;
-  const json reference_params = resolve_integrator(reference_name, scene.spec.render.block, ignored).params;
-  if ((scene.room || scene.spec.local_scene.size() > 1) && reference_params.value("catcher_bounces", 1) > 1)
-    for (int spp : a.ladder)
-      measure(reference_name + "/1 catcher bounce", reference_name, IrradianceMode::kExact, spp, nullptr, 0,
-              {{"catcher_bounces", 1}});
-  // Its real surfaces' reflection by the cosine alone: where the objects' change far from them is a
-  // few lucky hits (path.cpp, "Toward the objects").
-  if ((scene.room || !scene.spec.local_scene.empty()) && reference_params.value("toward_objects", 0.0) > 0)
-    for (int spp : a.ladder)
-      measure(reference_name + "/cosine only", reference_name, IrradianceMode::kExact, spp, nullptr, 0,
-              {{"toward_objects", 0}});
-  // Its composite denoised (output/denoise.h): the time includes the denoiser's.
-  for (int spp : a.ladder)
-    measure(reference_name + " denoised", reference_name, IrradianceMode::kExact, spp, nullptr, 0, json::object(),
-            true);
-  const int cap = *std::max_element(a.ladder.begin(), a.ladder.end());
-  for (double target : a.noise_targets)
-    measure(reference_name + " adaptive", reference_name, IrradianceMode::kExact, cap, nullptr, target);
-  write_outputs(a, rows, legacy_result, best_reference);
-  std::printf("wrote tradeoff.csv, tradeoff.png and ab.png to %s (reference: %s, %d spp, %ld pixels changed)\n",
-              a.out.c_str(), reference_name.c_str(), a.reference_spp,
-              long(std::count(mask.data.begin(), mask.data.end(), 1.0f)));
+  Tradeoff tradeoff(a, std::move(scene));
+  tradeoff.render_reference();
+  tradeoff.measure_registry();
+  tradeoff.measure_reference_variants();
+  tradeoff.write();
   return 0;
 }
 
