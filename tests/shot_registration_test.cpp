@@ -155,6 +155,50 @@ TEST(ShotGains, AShotsExposureAndWhiteBalanceAreMatchedToItsNeighbours) {
   EXPECT_LT(mean_relative_error(assemble_cube(set, n), clean), 0.05 * before);
 }
 
+// A plain room lit from above: radiance e^(3 sin(elevation)), no features. Six shots exposed alike,
+// +X pitched up 3° by the hand and kept at its nominal aim (nothing to register it by). Its
+// overlaps compare rays 3° apart along a gradient of 3 per radian, so every pair says it is
+// brighter than it is (by up to e^(3 · 3°) = 1.17 near the horizon): taken as an exposure, its gain
+// comes out 0.90.
+// aimed_pairs leaves its pairs out (it keeps 1), and still matches a shot whose aim is known (−Z
+// exposed 1.25×: the median's and the registered group's).
+TEST(ShotGains, AShotAtItsNominalAimIsNotComparedWithItsNeighbours) {
+  Image world(512, 256, 3);
+  for (int y = 0; y < world.height; ++y) {
+    const double elevation = kPi * (0.5 - (y + 0.5) / world.height);
+    for (int x = 0; x < world.width; ++x) world.set_rgb(x, y, Rgb::Constant(float(std::exp(3 * std::sin(elevation)))));
+  }
+  std::array<Mat3d, 6> aims;
+  aims.fill(Mat3d::Identity());
+  aims[kPosX] = test::rotation(deg_to_rad(3.0) * shot_basis(kPosX, kNegZ).right);
+  ShotSet set = test::handheld_shots(world, aims, 110, 160, 120);
+  for (int y = 0; y < set.shots[kNegZ].height; ++y)
+    for (int x = 0; x < set.shots[kNegZ].width; ++x) set.shots[kNegZ].set_rgb(x, y, set.shots[kNegZ].rgb(x, y) * 1.25f);
+  // Compared with every neighbour, +X's misaim is taken for its exposure.
+  const ShotGains all = overlap_gains(set);
+  EXPECT_LT(all.gain[kPosX][1], 0.95f);
+  // Registered together, the other five; +X not registered.
+  Registration r;
+  for (int s = 0; s < 6; ++s) r.shots[std::size_t(s)].registered = s != kPosX, r.group[std::size_t(s)] = s == kPosX;
+  const ShotPairs pairs = aimed_pairs(r, nullptr, nullptr);
+  for (int s = 0; s < 6; ++s) EXPECT_FALSE(pairs[kPosX][std::size_t(s)]) << face_name(s);
+  EXPECT_TRUE(pairs[kNegZ][kPosY]);
+  const ShotGains aimed = overlap_gains(set, nullptr, pairs);
+  EXPECT_EQ(aimed.pairs[kPosX], 0);
+  EXPECT_EQ(aimed.gain[kPosX][1], 1.0f);
+  EXPECT_NEAR(aimed.gain[kNegZ][1] * 1.25f, 1.0f, 0.01f);
+  for (int s : {kNegX, kPosY, kNegY, kPosZ}) EXPECT_NEAR(aimed.gain[std::size_t(s)][1], 1.0f, 0.01f) << face_name(s);
+  // Aimed absolutely: by the room box's lines (not where they only levelled it), or by the photo.
+  LineAnchor lines;
+  lines.anchored[kPosX] = lines.anchored[kPosZ] = true;
+  EXPECT_TRUE(aimed_pairs(r, &lines, nullptr)[kPosX][kPosZ]);
+  lines.axes = LineAxes::vertical;
+  EXPECT_FALSE(aimed_pairs(r, &lines, nullptr)[kPosX][kPosZ]);
+  PhotoAnchor photo;
+  photo.anchored[kPosX] = photo.anchored[kNegZ] = true;
+  EXPECT_TRUE(aimed_pairs(r, nullptr, &photo)[kPosX][kNegZ]);
+}
+
 // The matches' verification: 40 rays turned by a known rotation among 400 random pairs (noise,
 // repeated texture). RANSAC with the rotation model keeps the 40 and only them, and the rotation
 // refitted on them is the true one.

@@ -452,7 +452,11 @@ CubeMap load_shot_environment(const EnvironmentSpec& spec, Warnings& warnings, E
   const bool per_shot_exif = apply_exif_exposure(spec, photo, shots, info);
   if (spec.register_shots == EnvironmentSpec::Register::kAuto)
     register_aims(spec, shots, info, warnings, photo, camera);
-  const ShotGains gains = overlap_gains(shots.set, &shots.clipped);
+  const ShotPairs comparable = info.registration
+                                   ? aimed_pairs(*info.registration, info.line_anchor ? &*info.line_anchor : nullptr,
+                                                 info.photo_anchor ? &*info.photo_anchor : nullptr)
+                                   : every_pair();  // "register": "none": the aims as given
+  const ShotGains gains = overlap_gains(shots.set, &shots.clipped, comparable);
   apply_gains(shots.set, gains);
   info.shot_gain = gains.gain;
   CubeMap cube = assemble(spec, shots, info, warnings);

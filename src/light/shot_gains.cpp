@@ -63,12 +63,34 @@ std::optional<PairOffset> pair_offset(const ShotSet& set, const ShotSet* clipped
 
 }  // namespace
 
-ShotGains overlap_gains(const ShotSet& set, const ShotSet* clipped) {
+ShotPairs every_pair() {
+  ShotPairs all;
+  for (auto& row : all) row.fill(true);
+  return all;
+}
+
+ShotPairs aimed_pairs(const Registration& registration, const LineAnchor* lines, const PhotoAnchor* photo) {
+  std::array<bool, 6> absolute{};
+  for (std::size_t f = 0; f < 6; ++f)
+    absolute[f] = (lines && lines->axes == LineAxes::room && lines->anchored[f] && !lines->off_box[f]) ||
+                  (photo && photo->anchored[f]);
+  ShotPairs pairs{};
+  for (std::size_t a = 0; a < 6; ++a)
+    for (std::size_t b = 0; b < 6; ++b) {
+      const ShotAim &sa = registration.shots[a], &sb = registration.shots[b];
+      const bool together = sa.registered && sb.registered && registration.group[a] == registration.group[b];
+      pairs[a][b] = together || (absolute[a] && absolute[b]);
+    }
+  return pairs;
+}
+
+ShotGains overlap_gains(const ShotSet& set, const ShotSet* clipped, const ShotPairs& comparable) {
   ShotGains out;
   std::vector<PairOffset> pairs;
   for (int a = 0; a < 6; ++a)
     for (int b = a + 1; b < 6; ++b)
-      if (auto p = pair_offset(set, clipped, a, b)) pairs.push_back(*p);
+      if (comparable[std::size_t(a)][std::size_t(b)])
+        if (auto p = pair_offset(set, clipped, a, b)) pairs.push_back(*p);
   if (pairs.empty()) return out;
   // Normal equations of the least squares above, per channel: (JᵀJ) x = Jᵀr, x = log g.
   const double w_pair = 1 / (0.01 * 0.01), w_prior = 1;
