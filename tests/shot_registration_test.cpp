@@ -222,8 +222,8 @@ TEST(ShotRegistration, RotationRansacFindsTheTurnedRaysAmongNoise) {
 }
 
 // Through the scene file: "register" defaults to "auto", whose aims the environment reports (a
-// plain shot named in warnings); "none" keeps the nominal aims; anything else, or "register" beside
-// an HDR image, is an error at its place.
+// plain shot named in warnings, with what that leaves unmatched); "none" keeps the nominal aims; anything else, or
+// "register" beside an HDR image, is an error at its place.
 TEST(ShotRegistration, TheSceneFileTurnsItOnAndOff) {
   test::TempDir dir;
   ShotSet set = handheld_shots(feature_world(7), misaims(11), 110, 800, 600);
@@ -251,6 +251,11 @@ TEST(ShotRegistration, TheSceneFileTurnsItOnAndOff) {
   ASSERT_EQ(w.items.size(), 2u) << w.items.back();
   EXPECT_NE(w.items[0].find("shots up: too few vertical lines to level them"), std::string::npos) << w.items[0];
   EXPECT_EQ(w.items[1].rfind(dir.file("shot2.exr") + ": not registered: no features", 0), 0u) << w.items[1];
+  // Left at its nominal aim, it is compared with no neighbour (shot_gains.h), and the message says
+  // so: its exposure stays as shot.
+  EXPECT_NE(w.items[1].find("its nominal direction is used, and its exposure and white balance are not matched"),
+            std::string::npos)
+      << w.items[1];
   ASSERT_TRUE(info.line_anchor);
   EXPECT_TRUE(info.line_anchor->anchored[kPosX]);
 

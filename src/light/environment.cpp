@@ -435,13 +435,31 @@ void register_aims(const EnvironmentSpec& spec, LinearShots& shots, EnvironmentI
   anchor_to_the_lines(spec, shots, r, info, warnings);
   if (!spec.room_box && photo && camera) anchor_to_the_photo(spec, shots, r, *photo, *camera, info, warnings);
   shots.set.aim = shots.clipped.aim = r.aim;
-  for (int f = 0; f < 6; ++f) {
-    const ShotAim& a = r.shots[std::size_t(f)];
-    if (r.overlap && !a.registered)
-      warnings.add(spec.shots[std::size_t(f)].files.front(),
-                   "not registered: " + a.reason + "; its nominal direction is used");
-  }
   info.registration = std::move(r);
+}
+
+// Each shot that overlaps a neighbour yet matched none: why, what aimed it instead, and whether
+// its exposure and white balance were matched (shot_gains.h: only between shots whose aims are
+// known, so not for a shot left at its nominal direction or only levelled).
+void warn_of_unregistered(const EnvironmentSpec& spec, const EnvironmentInfo& info, const ShotGains& gains,
+                          Warnings& warnings) {
+  const Registration& r = *info.registration;
+  for (std::size_t f = 0; f < 6; ++f) {
+    const ShotAim& a = r.shots[f];
+    if (!r.overlap || a.registered) continue;
+    const LineAnchor* lines = info.line_anchor ? &*info.line_anchor : nullptr;
+    const bool by_lines = lines && lines->anchored[f];
+    std::string aim = "its nominal direction is used";
+    if (by_lines && lines->axes == LineAxes::room && !lines->off_box[f])
+      aim = "it is aimed by the room box's lines instead";
+    else if (info.photo_anchor && info.photo_anchor->anchored[f])
+      aim = "it is aimed by the photo instead";
+    else if (by_lines)
+      aim = "it is levelled by its plumb lines, its yaw nominal";
+    const std::string matched =
+        gains.pairs[f] > 0 ? "" : ", and its exposure and white balance are not matched to its neighbours'";
+    warnings.add(spec.shots[f].files.front(), "not registered: " + a.reason + "; " + aim + matched);
+  }
 }
 
 CubeMap load_shot_environment(const EnvironmentSpec& spec, Warnings& warnings, EnvironmentInfo& info,
@@ -459,6 +477,7 @@ CubeMap load_shot_environment(const EnvironmentSpec& spec, Warnings& warnings, E
   const ShotGains gains = overlap_gains(shots.set, &shots.clipped, comparable);
   apply_gains(shots.set, gains);
   info.shot_gain = gains.gain;
+  if (info.registration) warn_of_unregistered(spec, info, gains, warnings);
   CubeMap cube = assemble(spec, shots, info, warnings);
   if (spec.exposure == EnvironmentSpec::Exposure::kFactor)
     return scaled(cube, Rgb::Constant(float(spec.exposure_factor)));
