@@ -49,6 +49,25 @@ void RenderJob::publish(const std::string& name, Slot slot) {
   slots_[name] = std::move(slot);
 }
 
+// The render's last image, denoised or not as asked whatever the scene file says for the saved
+// one. `shown`: the image of the last pass, published from these same samples (the last pass
+// publishes its image as every pass does), taken as it is: made again, it would be the same
+// image for a second denoiser's time.
+RenderJob::Slot RenderJob::final_image(const LoadedScene& scene, const RenderResult& last, bool denoise,
+                                       const Slot* shown) {
+  Slot slot;
+  if (shown) {
+    slot.linear = shown->linear, slot.encoded = shown->encoded;
+  } else if (last.denoise_asked != denoises(scene, denoise)) {
+    RenderResult redone = finish_render(scene, last.layers, 0, denoise);
+    slot.linear = std::move(redone.composite_linear), slot.encoded = std::move(redone.composite_encoded);
+  } else {
+    slot.linear = last.composite_linear, slot.encoded = last.composite_encoded;
+  }
+  slot.clipped_photo = clipped_photo_weight(last.layers, scene.photo);
+  return slot;
+}
+
 // The worker: load, preview the light, render pass by pass. Bad input ends it with the library's
 // message (`error`); nothing escapes the thread.
 void RenderJob::run(const std::string& integrator, int spp, bool denoise) {
@@ -71,6 +90,7 @@ void RenderJob::run(const std::string& integrator, int spp, bool denoise) {
     RenderState state;
     const RenderControl control{&stop_, &state, 0, -1, true};  // a stop takes effect at once
     int passes = 0, shown = 0;                                 // images published, and the samples of the last
+    Slot shown_slot;                                           // the last one published
     const auto progress = [&](const RenderProgress& p) {
       {
         const std::lock_guard<std::mutex> lock(mutex_);
@@ -81,25 +101,23 @@ void RenderJob::run(const std::string& integrator, int spp, bool denoise) {
       shown = p.spp_done;
       // Between passes: the threads are idle and the state holds the samples so far.
       RenderResult r = finish_render(scene, layers_from_state(state), 0, denoise);
-      publish(name, {std::move(r.composite_linear), std::move(r.composite_encoded),
-                     clipped_photo_weight(r.layers, scene.photo), p.spp_done, spec.render.spp, ++passes, p.noise,
-                     seconds(), false});
+      shown_slot = {std::move(r.composite_linear),
+                    std::move(r.composite_encoded),
+                    clipped_photo_weight(r.layers, scene.photo),
+                    p.spp_done,
+                    spec.render.spp,
+                    ++passes,
+                    p.noise,
+                    seconds(),
+                    false};
+      publish(name, shown_slot);
     };
     const RenderResult last = render_scene(scene, progress, control);
-    // The image shown denoised or not as asked, whatever the scene file says for the saved one.
-    RenderResult redone;
-    const bool redo = last.denoise_asked != denoises(scene, denoise);
-    if (redo) redone = finish_render(scene, last.layers, 0, denoise);
-    const RenderResult& shown_last = redo ? redone : last;
-    Slot final_slot{shown_last.composite_linear,
-                    shown_last.composite_encoded,
-                    clipped_photo_weight(last.layers, scene.photo),
-                    last.layers.spp_done,
-                    spec.render.spp,
-                    passes,
-                    last.layers.mean_relative_noise,
-                    seconds(),
-                    !last.layers.interrupted};
+    Slot final_slot =
+        final_image(scene, last, denoise, passes > 0 && shown == last.layers.spp_done ? &shown_slot : nullptr);
+    final_slot.spp_done = last.layers.spp_done, final_slot.spp = spec.render.spp, final_slot.passes = passes;
+    final_slot.noise = last.layers.mean_relative_noise, final_slot.seconds = seconds();
+    final_slot.done = !last.layers.interrupted;
     if (passes > 0 || !last.layers.interrupted) publish(name, std::move(final_slot));  // stopped before a pass: nothing
     auto finished = last.layers.interrupted || !integrator.empty()
                         ? nullptr

@@ -34,6 +34,7 @@
 namespace insitu {
 
 struct LoadedScene;
+struct RenderResult;
 
 // Whether the image after a pass that reached `spp_done` of `spp` samples is published, the last
 // one published being at `shown` samples (0: none yet).
@@ -83,6 +84,7 @@ class RenderJob {
   void run(const std::string& integrator, int spp, bool denoise);
   void stop_worker();  // with control_ held
   void publish(const std::string& name, Slot slot);
+  static Slot final_image(const LoadedScene& scene, const RenderResult& last, bool denoise, const Slot* shown);
 
   std::string scene_path_;
   std::mutex control_;  // serializes start() and stop() (two tabs may press at once)
