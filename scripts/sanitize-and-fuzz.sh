@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The sanitizer and fuzz legs of CI (issue 10). One clang build with AddressSanitizer and
 # UndefinedBehaviorSanitizer (-DINSITU_SANITIZE=ON) and libFuzzer coverage (-DINSITU_FUZZ=ON):
-#   1. the test suite under the sanitizers, but twelve statistical tests (named below, with why)
+#   1. the test suite under the sanitizers, but fourteen costly tests (named below, with why)
 #      (leaks checked; tests/sanitizer/lsan.supp names the third-party leaks that are suppressed,
 #      and why);
 #   2. each fuzz target (tests/fuzz/) for FUZZ_SECONDS (default 60) on a copy of its seed corpus,
@@ -39,8 +39,8 @@ echo "sanitize: built in $(( $(date +%s) - start )) s"
 export ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-# Left out under the sanitizers: thirteen tests whose cost is statistics, not code. Each repeats, for
-# its estimate, code that the rest of the suite runs under the sanitizers in smaller form (the
+# Left out under the sanitizers: fourteen tests whose cost is statistics or a measurement, not code.
+# Each repeats, for its estimate, code that the rest of the suite runs under the sanitizers in smaller form (the
 # same renders, the same solver, the same sampling routines). The release suite runs them on
 # every CI run.
 # Their sanitized times on 2026-11-24 (the first six one after another in CI; the last three
@@ -61,13 +61,17 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 #   Path.TheChangeGridFollowsTheObjectsChangeOverEveryBounce, 6.0 s in the release build (a
 #   closed form within 0.012, over paths of up to 1000 bounces;
 #   Validation.ClosedRoomAgainstCyclesWithinTheGoal builds the change grid sanitized, at its
-#   default, over a room box's planes and faces).
+#   default, over a room box's planes and faces);
+#   SplitRender.PartsAreLean, 159 s sanitized beside the other shard on 2026-12-06 (two renders of
+#   the whole demo, its inverse lighting included, for a part file's bytes per pixel: the parts'
+#   writing and reading run sanitized in the other SplitRender.* tests).
 export GTEST_FILTER="-Render.BitIdenticalForAnyNumberOfThreads:AdaptiveRender.ReachesTheTargetAgainstAReference:\
 Path.WhiteFurnaceAtEveryScale:Calibration.ReportedStandardDeviationsMatchObservedSpread:\
 Calibration.ResidualsAreConsistentWithNoiseAndDegreesOfFreedom:BsdfTest.SamplingMatchesEvalAndPdf:\
 Validation.ClosedRoomFromJpegShotsWithinTheGoal:Composite.ContactShadowHasNoFireflies:BsdfTest.EnergyIsConserved:\
 BsdfTest.VisibleNormalSamplesFollowTheirPdf:BsdfTest.PrincipledSamplingMatchesEvalAndPdf:\
-BsdfTest.ClearCoatSamplesFollowGgxVisibleNormals:Path.TheChangeGridFollowsTheObjectsChangeOverEveryBounce"
+BsdfTest.ClearCoatSamplesFollowGgxVisibleNormals:Path.TheChangeGridFollowsTheObjectsChangeOverEveryBounce:\
+SplitRender.PartsAreLean"
 # ctest starts the costliest tests first when it knows their costs (Testing/Temporary/
 # CTestCostData.txt, which each run writes); a fresh build knows none and runs the shards in
 # order, so the heaviest may start last with one core idle. tests/sanitizer/ctest-costs.txt holds
