@@ -68,63 +68,67 @@ RenderJob::Slot RenderJob::final_image(const LoadedScene& scene, const RenderRes
   return slot;
 }
 
-// The worker: load, preview the light, render pass by pass. Bad input ends it with the library's
-// message (`error`); nothing escapes the thread.
-void RenderJob::run(const std::string& integrator, int spp, bool denoise) {
+// Load, preview the light, render pass by pass.
+void RenderJob::load_and_render(const std::string& integrator, int spp, bool denoise) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-  try {
-    SceneSpec spec = parse_scene_file(scene_path_);
-    if (!integrator.empty()) spec.render.integrator = integrator;
-    if (spp > 0) spec.render.spp = spp;
-    const auto loaded = std::make_shared<const LoadedScene>(load_scene(spec, {}, nullptr, &stop_));
-    const LoadedScene& scene = *loaded;
-    const std::string name = scene.integrator.entry->name;
-    auto cube = std::make_shared<const CubeMap>(scene.environment);
+  SceneSpec spec = parse_scene_file(scene_path_);
+  if (!integrator.empty()) spec.render.integrator = integrator;
+  if (spp > 0) spec.render.spp = spp;
+  const auto loaded = std::make_shared<const LoadedScene>(load_scene(spec, {}, nullptr, &stop_));
+  const LoadedScene& scene = *loaded;
+  const std::string name = scene.integrator.entry->name;
+  auto cube = std::make_shared<const CubeMap>(scene.environment);
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    light_cube_ = std::move(cube);  // its previews are made when the page asks (light_png)
+    state_ = "rendering", integrator_ = name;
+    slots_[name] = Slot{};  // this integrator's image is the new render's from its first pass on
+  }
+  RenderState state;
+  const RenderControl control{&stop_, &state, 0, -1, true};  // a stop takes effect at once
+  int passes = 0, shown = 0;                                 // images published, and the samples of the last
+  Slot shown_slot;                                           // the last one published
+  const auto progress = [&](const RenderProgress& p) {
     {
       const std::lock_guard<std::mutex> lock(mutex_);
-      light_cube_ = std::move(cube);  // its previews are made when the page asks (light_png)
-      state_ = "rendering", integrator_ = name;
-      slots_[name] = Slot{};  // this integrator's image is the new render's from its first pass on
+      fraction_ = p.fraction;
     }
-    RenderState state;
-    const RenderControl control{&stop_, &state, 0, -1, true};  // a stop takes effect at once
-    int passes = 0, shown = 0;                                 // images published, and the samples of the last
-    Slot shown_slot;                                           // the last one published
-    const auto progress = [&](const RenderProgress& p) {
-      {
-        const std::lock_guard<std::mutex> lock(mutex_);
-        fraction_ = p.fraction;
-      }
-      if (p.noise < 0) return;  // within a pass, from the rendering threads
-      if (!publish_after_pass(p.spp_done, shown, spec.render.spp)) return;
-      shown = p.spp_done;
-      // Between passes: the threads are idle and the state holds the samples so far.
-      RenderResult r = finish_render(scene, layers_from_state(state), 0, denoise);
-      shown_slot = {std::move(r.composite_linear),
-                    std::move(r.composite_encoded),
-                    clipped_photo_weight(r.layers, scene.photo),
-                    p.spp_done,
-                    spec.render.spp,
-                    ++passes,
-                    p.noise,
-                    seconds(),
-                    false};
-      publish(name, shown_slot);
-    };
-    const RenderResult last = render_scene(scene, progress, control);
-    Slot final_slot =
-        final_image(scene, last, denoise, passes > 0 && shown == last.layers.spp_done ? &shown_slot : nullptr);
-    final_slot.spp_done = last.layers.spp_done, final_slot.spp = spec.render.spp, final_slot.passes = passes;
-    final_slot.noise = last.layers.mean_relative_noise, final_slot.seconds = seconds();
-    final_slot.done = !last.layers.interrupted;
-    if (passes > 0 || !last.layers.interrupted) publish(name, std::move(final_slot));  // stopped before a pass: nothing
-    auto finished = last.layers.interrupted || !integrator.empty()
-                        ? nullptr
-                        : std::make_shared<const Finished>(Finished{loaded, last});
-    const std::lock_guard<std::mutex> lock(mutex_);
-    state_ = last.layers.interrupted ? "stopped" : "done";
-    if (finished) finished_ = std::move(finished);
+    if (p.noise < 0) return;  // within a pass, from the rendering threads
+    if (!publish_after_pass(p.spp_done, shown, spec.render.spp)) return;
+    shown = p.spp_done;
+    // Between passes: the threads are idle and the state holds the samples so far.
+    RenderResult r = finish_render(scene, layers_from_state(state), 0, denoise);
+    shown_slot = {std::move(r.composite_linear),
+                  std::move(r.composite_encoded),
+                  clipped_photo_weight(r.layers, scene.photo),
+                  p.spp_done,
+                  spec.render.spp,
+                  ++passes,
+                  p.noise,
+                  seconds(),
+                  false};
+    publish(name, shown_slot);
+  };
+  const RenderResult last = render_scene(scene, progress, control);
+  Slot final_slot =
+      final_image(scene, last, denoise, passes > 0 && shown == last.layers.spp_done ? &shown_slot : nullptr);
+  final_slot.spp_done = last.layers.spp_done, final_slot.spp = spec.render.spp, final_slot.passes = passes;
+  final_slot.noise = last.layers.mean_relative_noise, final_slot.seconds = seconds();
+  final_slot.done = !last.layers.interrupted;
+  if (passes > 0 || !last.layers.interrupted) publish(name, std::move(final_slot));  // stopped before a pass: nothing
+  auto finished = last.layers.interrupted || !integrator.empty()
+                      ? nullptr
+                      : std::make_shared<const Finished>(Finished{loaded, last});
+  const std::lock_guard<std::mutex> lock(mutex_);
+  state_ = last.layers.interrupted ? "stopped" : "done";
+  if (finished) finished_ = std::move(finished);
+}
+
+// The worker: bad input ends it with the library's message (`error`); nothing escapes the thread.
+void RenderJob::run(const std::string& integrator, int spp, bool denoise) {
+  try {
+    load_and_render(integrator, spp, denoise);
   } catch (const Stopped&) {  // during loading or the integrator's preparation: no image
     const std::lock_guard<std::mutex> lock(mutex_);
     state_ = "stopped";

@@ -82,6 +82,7 @@ class RenderJob {
     bool done = false;
   };
   void run(const std::string& integrator, int spp, bool denoise);
+  void load_and_render(const std::string& integrator, int spp, bool denoise);
   void stop_worker();  // with control_ held
   void publish(const std::string& name, Slot slot);
   static Slot final_image(const LoadedScene& scene, const RenderResult& last, bool denoise, const Slot* shown);
