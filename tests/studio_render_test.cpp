@@ -173,6 +173,25 @@ TEST(StudioRender, PublishesEveryFixedPassAndEachEighthOfAnAdaptiveRender) {
   EXPECT_EQ(published, 9);  // 64, 128, 256, ..., 1024
 }
 
+// Images that cost more than the samples are thinned out (render_job.h): a 16-spp preview whose
+// passes render in 0.9 s and whose images take 2.3 s to make (the demo's, denoised) shows the
+// first, one between and the last; with images of 0.1 s, every pass.
+TEST(StudioRender, ImagesCostlierThanTheirPassesAreThinnedOut) {
+  for (const auto& [image_cost, expected] :
+       {std::pair{2.3, std::vector<int>{2, 12, 16}}, std::pair{0.1, std::vector<int>{2, 4, 6, 8, 10, 12, 14, 16}}}) {
+    double loop = 0, images = 0;
+    int shown = 0;
+    std::vector<int> published;
+    for (int k = 1; k <= render_passes(16); ++k) {
+      loop += 0.9;
+      if (!publish_after_pass(2 * k, shown, 16, loop, images)) continue;
+      images += image_cost, shown = 2 * k;
+      published.push_back(shown);
+    }
+    EXPECT_EQ(published, expected) << image_cost;
+  }
+}
+
 // Stop takes effect at once whatever the spp (issue 46): at 2^20 spp a pass is 131072 samples a
 // pixel, and one tile of it (33.5 M samples) 33 s in release, which a stop used to wait for. Now
 // the tiles under way are left unfinished: after the stop no tile has reported (the fraction done

@@ -89,16 +89,21 @@ void RenderJob::load_and_render(const std::string& integrator, int spp, bool den
   const RenderControl control{&stop_, &state, 0, -1, true};  // a stop takes effect at once
   int passes = 0, shown = 0;                                 // images published, and the samples of the last
   Slot shown_slot;                                           // the last one published
+  double loop_start = -1, image_seconds = 0;                 // the sample loop's first progress (after the preparation)
   const auto progress = [&](const RenderProgress& p) {
     {
       const std::lock_guard<std::mutex> lock(mutex_);
       fraction_ = p.fraction;
     }
+    if (loop_start < 0) loop_start = seconds();
     if (p.noise < 0) return;  // within a pass, from the rendering threads
-    if (!publish_after_pass(p.spp_done, shown, spec.render.spp)) return;
+    const double start = seconds();
+    if (!publish_after_pass(p.spp_done, shown, spec.render.spp, start - loop_start - image_seconds, image_seconds))
+      return;
     shown = p.spp_done;
     // Between passes: the threads are idle and the state holds the samples so far.
     RenderResult r = finish_render(scene, layers_from_state(state), 0, denoise);
+    image_seconds += seconds() - start;
     shown_slot = {std::move(r.composite_linear),
                   std::move(r.composite_encoded),
                   clipped_photo_weight(r.layers, scene.photo),
